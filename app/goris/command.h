@@ -1,0 +1,21 @@
+#pragma once
+// Each `goris` subcommand lives in its own cmd_*.cpp and registers itself here, so adding a command never
+// touches main.cpp. A command's setup adds a CLI11 subcommand to the root app and sets its callback; the
+// callback throws goris::Error for bad input (main prints it and exits 1) and returns normally on success.
+#include <CLI/CLI.hpp>
+
+namespace goris::cli {
+
+using CommandSetup = void (*)(CLI::App& root);
+
+// `order` sorts the subcommands in --help.
+bool register_command(int order, CommandSetup setup);
+
+// Exit code a callback may set for "finished, but with a non-fatal failure" (e.g. a failed check).
+void set_exit_code(int code);
+int exit_code();
+
+}  // namespace goris::cli
+
+#define GORIS_COMMAND(order, fn) \
+  static const bool goris_registered_##fn = ::goris::cli::register_command(order, fn)
