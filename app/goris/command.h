@@ -11,6 +11,10 @@ using CommandSetup = void (*)(CLI::App& root);
 // `order` sorts the subcommands in --help.
 bool register_command(int order, CommandSetup setup);
 
+// The subcommand `name` of `parent`, created on first use: lets several files add children to one group
+// (e.g. each `goris bench KIND` lives in its own file and registers with an order after the group's).
+CLI::App& subcommand_group(CLI::App& parent, const std::string& name, const std::string& description);
+
 // Exit code a callback may set for "finished, but with a non-fatal failure" (e.g. a failed check).
 void set_exit_code(int code);
 int exit_code();

@@ -21,6 +21,14 @@ bool register_command(int order, CommandSetup setup) {
   registry().emplace_back(order, setup);
   return true;
 }
+CLI::App& subcommand_group(CLI::App& parent, const std::string& name, const std::string& description) {
+  for (CLI::App* c : parent.get_subcommands([](CLI::App*) { return true; }))
+    if (c->get_name() == name) return *c;
+  CLI::App* c = parent.add_subcommand(name, description);
+  c->require_subcommand(1);
+  return *c;
+}
+
 void set_exit_code(int code) { g_exit_code = code; }
 int exit_code() { return g_exit_code; }
 
