@@ -1,0 +1,133 @@
+// `goris info PATH`: what a data set or a PLY file contains, without decoding any image (headers only).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/goris/command.h"
+#include "core/io/dataset.h"
+#include "core/io/ply.h"
+#include "core/util/error.h"
+
+namespace {
+namespace fs = std::filesystem;
+using goris::Camera;
+using goris::View;
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::string count_of(size_t have, size_t of) { return std::to_string(have) + "/" + std::to_string(of); }
+
+template <class Pred>
+size_t count_views(const std::vector<View>& views, Pred p) {
+  return size_t(std::count_if(views.begin(), views.end(), p));
+}
+
+std::string intrinsics_line(const Camera& c) {
+  return "fx " + fmt("%.4g", c.fx) + "  fy " + fmt("%.4g", c.fy) + "  cx " + fmt("%.4g", c.cx) + "  cy " + fmt("%.4g", c.cy);
+}
+
+std::string distortion_line(const Camera& c) {
+  if (!c.has_distortion()) return "none";
+  const auto& d = c.dist;
+  return "k1 " + fmt("%.6g", d.k1) + "  k2 " + fmt("%.6g", d.k2) + "  k3 " + fmt("%.6g", d.k3) + "  p1 " +
+         fmt("%.6g", d.p1) + "  p2 " + fmt("%.6g", d.p2);
+}
+
+bool same_intrinsics(const Camera& a, const Camera& b) {
+  auto near = [](float x, float y) { return std::abs(x - y) <= 1e-4f * std::max(1.0f, std::abs(x)); };
+  return a.width == b.width && a.height == b.height && near(a.fx, b.fx) && near(a.fy, b.fy) && near(a.cx, b.cx) &&
+         near(a.cy, b.cy) && near(a.dist.k1, b.dist.k1) && near(a.dist.k2, b.dist.k2) && near(a.dist.k3, b.dist.k3) &&
+         near(a.dist.p1, b.dist.p1) && near(a.dist.p2, b.dist.p2);
+}
+
+void print_dataset(const goris::Dataset& d, const goris::DatasetOptions& o) {
+  std::vector<const View*> all;
+  for (const auto* split : {&d.train, &d.test})
+    for (const View& v : *split) all.push_back(&v);
+
+  std::printf("data set:    %s\n", d.root.string().c_str());
+  std::printf("format:      %s (%s)\n", d.format.c_str(), d.source.string().c_str());
+  std::string views = std::to_string(d.view_count()) + " (" + std::to_string(d.train.size()) + " train, " +
+                      std::to_string(d.test.size()) + " test";
+  if (d.format != "nerf-synthetic")
+    views += o.test_every > 0 ? "; views 0, " + std::to_string(o.test_every) + ", " + std::to_string(2 * o.test_every) + "... held out for testing"
+                              : "; no test hold-out";
+  std::printf("views:       %s)\n", views.c_str());
+
+  std::map<std::pair<int, int>, size_t> sizes, source_sizes;
+  for (const View* v : all) {
+    ++sizes[{v->camera.width, v->camera.height}];
+    ++source_sizes[{v->source_width, v->source_height}];
+  }
+  auto size_list = [](const std::map<std::pair<int, int>, size_t>& m) {
+    std::string s;
+    for (const auto& [wh, n] : m)
+      s += (s.empty() ? "" : ", ") + std::to_string(wh.first) + "x" + std::to_string(wh.second) +
+           (m.size() > 1 ? " (" + std::to_string(n) + " views)" : "");
+    return s;
+  };
+  std::string res = size_list(sizes);
+  if (sizes != source_sizes) res += "  (files: " + size_list(source_sizes) + ")";
+  std::printf("resolution:  %s\n", res.c_str());
+
+  const Camera& first = all.front()->camera;
+  const bool uniform = std::all_of(all.begin(), all.end(), [&](const View* v) { return same_intrinsics(v->camera, first); });
+  std::printf("intrinsics:  %s%s\n", intrinsics_line(first).c_str(), uniform ? "" : "  (first view; they vary)");
+  std::printf("distortion:  %s\n", distortion_line(first).c_str());
+
+  auto has_object = [](const View& v) { return v.object_mask.has_value(); };
+  auto has_glossy = [](const View& v) { return v.glossy_mask.has_value(); };
+  auto has_full = [](const View& v) { return v.full_image.has_value(); };
+  std::printf("object masks: %s train, %s test\n", count_of(count_views(d.train, has_object), d.train.size()).c_str(),
+              count_of(count_views(d.test, has_object), d.test.size()).c_str());
+  std::printf("glossy masks: %s train, %s test\n", count_of(count_views(d.train, has_glossy), d.train.size()).c_str(),
+              count_of(count_views(d.test, has_glossy), d.test.size()).c_str());
+  if (const size_t full = count_views(d.test, has_full))
+    std::printf("full images: %s test (the test views rendered with the target)\n", count_of(full, d.test.size()).c_str());
+  std::printf("sfm points:  %zu\n", d.points.size());
+  if (d.depth_range) std::printf("depth range: %.4g .. %.4g\n", d.depth_range->x, d.depth_range->y);
+  const goris::SceneBounds b = d.camera_bounds();
+  std::printf("cameras:     centre (%.4g, %.4g, %.4g), extent %.4g\n", b.center.x, b.center.y, b.center.z, b.radius);
+}
+
+void setup_info(CLI::App& root) {
+  auto* c = root.add_subcommand("info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF) or a PLY file");
+  static std::string path;
+  static int resolution = 0;
+  static float downscale = 1.0f;
+  static int test_every = 8;
+  c->add_option("path", path, "data set folder, one of its camera files, or a .ply")->required();
+  auto* r = c->add_option("--resolution", resolution, "load images at this width in pixels (height keeps the aspect)")
+                ->check(CLI::PositiveNumber);
+  c->add_option("--downscale", downscale, "divide the image size by this factor")->check(CLI::PositiveNumber)->excludes(r);
+  c->add_option("--test-every", test_every,
+                "hold out every N-th view for testing (instant-ngp, COLMAP, LLFF); 0 = none")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  c->callback([] {
+    const fs::path p(path);
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+    if (ext == ".ply") {
+      std::printf("%s", goris::ply_summary(p).c_str());
+      return;
+    }
+    goris::DatasetOptions o;
+    o.target_width = resolution;
+    o.downscale = downscale;
+    o.test_every = test_every;
+    const goris::Dataset d = goris::load_dataset(p, o);
+    for (const auto& w : d.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    print_dataset(d, o);
+  });
+}
+}  // namespace
+GORIS_COMMAND(10, setup_info);

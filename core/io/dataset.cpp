@@ -1,0 +1,72 @@
+#include "core/io/dataset.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace goris {
+
+ImageSize scaled_size(int width, int height, const DatasetOptions& o) {
+  if (o.target_width > 0) {
+    const int h = int(std::lround(double(height) * o.target_width / width));
+    return {o.target_width, std::max(1, h)};
+  }
+  return {std::max(1, int(std::lround(width / double(o.downscale)))),
+          std::max(1, int(std::lround(height / double(o.downscale))))};
+}
+
+SceneBounds camera_bounds(const std::vector<View>& views) {
+  SceneBounds b;
+  if (views.empty()) return b;
+  glm::dvec3 sum(0.0);
+  for (const View& v : views) sum += glm::dvec3(v.camera.center());
+  b.center = glm::vec3(sum / double(views.size()));
+  float r = 0;
+  for (const View& v : views) r = std::max(r, glm::length(v.camera.center() - b.center));
+  b.radius = 1.1f * r;
+  return b;
+}
+
+SceneBounds Dataset::camera_bounds() const { return goris::camera_bounds(train.empty() ? test : train); }
+
+namespace {
+
+// The file must still be the size the data set was loaded with; then it is resampled to the camera's size.
+Image fit_to_view(Image im, const std::filesystem::path& file, const View& v, Device device) {
+  if (im.width != v.source_width || im.height != v.source_height)
+    throw Error(file.string(), "is " + std::to_string(im.width) + "x" + std::to_string(im.height) + ", expected " +
+                                   std::to_string(v.source_width) + "x" + std::to_string(v.source_height) +
+                                   " (did the file change after the data set was loaded?)");
+  Image out = resize_image(im, v.camera.width, v.camera.height);
+  if (device != Device::CPU) out.pixels = out.pixels.copy_to(device);
+  return out;
+}
+
+const std::filesystem::path& require(const std::optional<std::filesystem::path>& p, const View& v, const char* what) {
+  if (!p) throw Error(v.image.string(), std::string("has no ") + what);
+  return *p;
+}
+
+}  // namespace
+
+Image load_view_image(const View& v, const DatasetOptions& o, Device device) {
+  return fit_to_view(load_image(v.image, Device::CPU, o.background), v.image, v, device);
+}
+
+Image load_view_object_mask(const View& v, Device device) {
+  const auto& p = require(v.object_mask, v, "object mask");
+  return fit_to_view(load_mask(p, Device::CPU), p, v, device);
+}
+
+Image load_view_glossy_mask(const View& v, Device device) {
+  const auto& p = require(v.glossy_mask, v, "glossy-surface mask");
+  return fit_to_view(load_mask(p, Device::CPU), p, v, device);
+}
+
+Image load_view_full_image(const View& v, const DatasetOptions& o, Device device) {
+  const auto& p = require(v.full_image, v, "full_ image (the view with the target)");
+  return fit_to_view(load_image(p, Device::CPU, o.background), p, v, device);
+}
+
+}  // namespace goris

@@ -1,0 +1,79 @@
+#include "core/io/file_bytes.h"
+
+#include <atomic>
+#include <fstream>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "core/util/error.h"
+
+namespace goris {
+namespace fs = std::filesystem;
+
+namespace {
+void require_regular_file(const fs::path& path) {
+  std::error_code ec;
+  const auto st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) throw Error(path.string(), "file not found");
+  if (fs::is_directory(st)) throw Error(path.string(), "is a folder, expected a file");
+}
+}  // namespace
+
+std::vector<uint8_t> read_file_bytes(const fs::path& path) {
+  require_regular_file(path);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(path.string(), "cannot open for reading");
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw Error(path.string(), "cannot determine the file size");
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
+    throw Error(path.string(), "read failed");
+  return bytes;
+}
+
+std::string read_text_file(const fs::path& path) {
+  auto bytes = read_file_bytes(path);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+void write_file_bytes(const fs::path& path, const void* bytes, size_t size) {
+  write_via_temp_file(path, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path.string(), "cannot open " + tmp.string() + " for writing");
+    out.write(static_cast<const char*>(bytes), std::streamsize(size));
+    out.close();
+    if (!out) throw Error(path.string(), "write failed (disk full?)");
+  });
+}
+
+void write_via_temp_file(const fs::path& path, const std::function<void(const fs::path& tmp)>& write) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw Error(path.string(), "cannot write: folder " + dir.string() + " does not exist");
+  // Keep the extension last: some writers (OpenCV) pick the encoder from it.
+  std::string name = ".";
+  name += path.stem().string();
+  name += ".tmp";
+  name += std::to_string(::getpid());
+  name += '_';
+  name += std::to_string(counter++);
+  name += path.extension().string();
+  const fs::path tmp = dir / name;
+  try {
+    write(tmp);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ec2;
+    fs::remove(tmp, ec2);
+    throw Error(path.string(), "cannot replace the file: " + ec.message());
+  }
+}
+
+}  // namespace goris

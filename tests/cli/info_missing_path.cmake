@@ -1,0 +1,21 @@
+# `goris info` on paths that are not data sets exits non-zero with a message naming the path.
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}/empty")
+
+function(expect_failure path)
+  execute_process(COMMAND "${GORIS}" info "${path}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "goris info ${path} succeeded:\n${out}")
+  endif()
+  foreach(expected "${path}" ${ARGN})
+    string(FIND "${err}" "${expected}" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "goris info ${path}: the error does not mention '${expected}':\n${err}")
+    endif()
+  endforeach()
+endfunction()
+
+expect_failure("${WORK}/does_not_exist" "not found")
+expect_failure("${WORK}/empty" "no data set recognised")
+file(WRITE "${WORK}/bad/transforms.json" "{\"frames\": [1, 2,")
+expect_failure("${WORK}/bad" "transforms.json" "malformed JSON at byte")

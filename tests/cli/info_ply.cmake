@@ -1,0 +1,37 @@
+# `goris info` on a 3D Gaussian PLY written by other software (the garden fixture): it must report the
+# 8000 Gaussians and SH degree 3. Skipped when ../shared is absent (GORIS_TEST_SKIPPED: tests/CMakeLists.txt).
+set(ply "${SHARED}/fixtures/rasterizer_garden/gaussians.ply")
+if(NOT EXISTS "${ply}")
+  message("GORIS_TEST_SKIPPED: ${ply} is absent")
+  return()
+endif()
+
+execute_process(COMMAND "${GORIS}" info "${ply}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "goris info ${ply} exited with ${rc}\n${out}\n${err}")
+endif()
+foreach(expected "8000 Gaussians" "SH degree 3" "binary_little_endian")
+  string(FIND "${out}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "goris info ${ply}: the output does not mention '${expected}':\n${out}")
+  endif()
+endforeach()
+
+# A truncated copy must fail with a message that names the file and says it is truncated.
+file(MAKE_DIRECTORY "${WORK}")
+set(cut "${WORK}/truncated.ply")
+file(REMOVE "${cut}")
+execute_process(COMMAND head -c 5000 "${ply}" OUTPUT_FILE "${cut}" RESULT_VARIABLE rc)  # CMake cannot cut binaries
+if(NOT rc EQUAL 0 OR NOT EXISTS "${cut}")
+  message(FATAL_ERROR "could not write ${cut}")
+endif()
+execute_process(COMMAND "${GORIS}" info "${cut}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "goris info accepted a truncated PLY:\n${out}")
+endif()
+foreach(expected "${cut}" "truncated" "8000 vertices")
+  string(FIND "${err}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "goris info ${cut}: the error does not mention '${expected}':\n${err}")
+  endif()
+endforeach()
