@@ -1,0 +1,392 @@
+# Builds and renders a GOR-IS style scene with Blender Cycles from a scene description written by
+# `goris synth` (scene.json). Run as:  blender -b --factory-startup --python render_scene.py -- scene.json OUTDIR
+#
+# Per training view:  train/r_XXX.png (with the target, RGBA), train/mask_XXX.png (target),
+#                     train/gloss_XXX.png (glossy surfaces), train/gt/{diffcol,glosscol,normal,depth}_XXX.exr
+# Per test view:      test/full_XXX.png (with the target), test/r_XXX.png (target hidden: its reflections and
+#                     shadows go too), test/mask_XXX.png, test/gt/gloss_XXX.png (glossy surfaces)
+# Masks come from a second, cheap render per view: every object emits its mask channel (R = target,
+# G = glossy) through a view-layer material override, no bounces, raw colour transform. Its edges are
+# anti-aliased by the same pixel filter as the beauty render, and occlusion is exact.
+# After each view the script prints "GORIS_FRAME <done> <total>" so the caller can show progress.
+import json
+import math
+import os
+import sys
+
+import bpy
+from mathutils import Vector
+
+TARGET_INDEX = 1  # object pass_index of the target
+GLOSSY_INDEX = 2  # object pass_index of glossy surfaces
+
+
+def args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(argv) != 2:
+        raise SystemExit("usage: blender -b --python render_scene.py -- scene.json OUTDIR")
+    with open(argv[0]) as f:
+        return json.load(f), argv[1]
+
+
+def clear_scene():
+    for o in list(bpy.data.objects):
+        bpy.data.objects.remove(o, do_unlink=True)
+    for m in list(bpy.data.materials):
+        bpy.data.materials.remove(m)
+
+
+# ---------------------------------------------------------------- materials
+def texture_node(nodes, links, tex):
+    """Returns the output socket giving the base colour of a procedural texture description."""
+    coord = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    links.new(coord.outputs["Object"], mapping.inputs["Vector"])
+    kind = tex["kind"]
+    if kind == "checker":
+        t = nodes.new("ShaderNodeTexChecker")
+        t.inputs["Color1"].default_value = (*tex["color1"], 1)
+        t.inputs["Color2"].default_value = (*tex["color2"], 1)
+        t.inputs["Scale"].default_value = tex["scale"]
+        links.new(mapping.outputs["Vector"], t.inputs["Vector"])
+        return t.outputs["Color"]
+    if kind == "brick":
+        t = nodes.new("ShaderNodeTexBrick")
+        t.inputs["Color1"].default_value = (*tex["color1"], 1)
+        t.inputs["Color2"].default_value = (*tex["color2"], 1)
+        t.inputs["Mortar"].default_value = (0.8, 0.8, 0.78, 1)
+        t.inputs["Scale"].default_value = tex["scale"]
+        links.new(mapping.outputs["Vector"], t.inputs["Vector"])
+        return t.outputs["Color"]
+    # noise and marble: a scalar pattern mapped between two colours by a ramp
+    if kind == "noise":
+        t = nodes.new("ShaderNodeTexNoise")
+        t.inputs["Scale"].default_value = tex["scale"]
+        t.inputs["Detail"].default_value = 4.0
+        fac = t.outputs["Fac"]
+    elif kind == "marble":
+        t = nodes.new("ShaderNodeTexWave")
+        t.inputs["Scale"].default_value = tex["scale"]
+        t.inputs["Distortion"].default_value = 8.0
+        t.inputs["Detail"].default_value = 4.0
+        fac = t.outputs["Fac"]
+    else:
+        raise SystemExit("unknown texture kind " + kind)
+    links.new(mapping.outputs["Vector"], t.inputs["Vector"])
+    ramp = nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.elements[0].color = (*tex["color1"], 1)
+    ramp.color_ramp.elements[1].color = (*tex["color2"], 1)
+    links.new(fac, ramp.inputs["Fac"])
+    return ramp.outputs["Color"]
+
+
+def make_material(name, desc):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    bsdf = nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (*desc["color"], 1)
+    bsdf.inputs["Metallic"].default_value = desc["metallic"]
+    bsdf.inputs["Roughness"].default_value = desc["roughness"]
+    bsdf.inputs["Specular"].default_value = desc["specular"]
+    if desc.get("texture"):
+        links.new(texture_node(nodes, links, desc["texture"]), bsdf.inputs["Base Color"])
+    return mat
+
+
+def mask_override_material():
+    """Emits (is target, is glossy, 0) from each object's pass_index: one render gives both masks."""
+    mat = bpy.data.materials.new("goris_mask_override")
+    mat.use_nodes = True
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    nodes.clear()
+    info = nodes.new("ShaderNodeObjectInfo")
+    rgb = nodes.new("ShaderNodeCombineColor")
+    for channel, index in (("Red", TARGET_INDEX), ("Green", GLOSSY_INDEX)):
+        cmp = nodes.new("ShaderNodeMath")
+        cmp.operation = "COMPARE"
+        cmp.inputs[1].default_value = index
+        cmp.inputs[2].default_value = 0.25
+        links.new(info.outputs["Object Index"], cmp.inputs[0])
+        links.new(cmp.outputs[0], rgb.inputs[channel])
+    emit = nodes.new("ShaderNodeEmission")
+    links.new(rgb.outputs["Color"], emit.inputs["Color"])
+    out = nodes.new("ShaderNodeOutputMaterial")
+    links.new(emit.outputs["Emission"], out.inputs["Surface"])
+    return mat
+
+
+# ---------------------------------------------------------------- scene
+SHAPES = {
+    "cube": lambda: bpy.ops.mesh.primitive_cube_add(size=2.0),
+    "sphere": lambda: bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=48, ring_count=24),
+    "ico_sphere": lambda: bpy.ops.mesh.primitive_ico_sphere_add(radius=1.0, subdivisions=2),
+    "cylinder": lambda: bpy.ops.mesh.primitive_cylinder_add(radius=1.0, depth=2.0, vertices=64),
+    "cone": lambda: bpy.ops.mesh.primitive_cone_add(radius1=1.0, depth=2.0, vertices=64),
+    "torus": lambda: bpy.ops.mesh.primitive_torus_add(major_radius=0.7, minor_radius=0.3),
+    "monkey": lambda: bpy.ops.mesh.primitive_monkey_add(size=2.0),
+    "plane": lambda: bpy.ops.mesh.primitive_plane_add(size=2.0),
+}
+SMOOTH = {"sphere", "cylinder", "cone", "torus", "monkey"}
+
+
+def add_object(desc):
+    if desc["shape"] not in SHAPES:
+        raise SystemExit("unknown shape " + desc["shape"])
+    SHAPES[desc["shape"]]()
+    obj = bpy.context.active_object
+    obj.name = desc["name"]
+    obj.location = desc["location"]
+    obj.rotation_euler = desc["rotation"]
+    obj.scale = desc["scale"]
+    if desc["shape"] in SMOOTH:
+        bpy.ops.object.shade_smooth()
+    obj.data.materials.append(make_material(desc["name"], desc["material"]))
+    obj.pass_index = TARGET_INDEX if desc["target"] else (GLOSSY_INDEX if desc["glossy"] else 0)
+    return obj
+
+
+def add_world(desc):
+    world = bpy.data.worlds.new("goris_world")
+    bpy.context.scene.world = world
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    bg = nodes["Background"]
+    bg.inputs["Strength"].default_value = desc["strength"]
+    if desc["kind"] == "sky":
+        sky = nodes.new("ShaderNodeTexSky")
+        sky.sky_type = "HOSEK_WILKIE"
+        sky.sun_direction = Vector(desc["sun_direction"]).normalized()
+        sky.turbidity = desc["turbidity"]
+        links.new(sky.outputs["Color"], bg.inputs["Color"])
+    elif desc["kind"] == "gradient":
+        coord = nodes.new("ShaderNodeTexCoord")
+        sep = nodes.new("ShaderNodeSeparateXYZ")
+        ramp = nodes.new("ShaderNodeValToRGB")
+        links.new(coord.outputs["Generated"], sep.inputs["Vector"])  # world "Generated" = view direction
+        links.new(sep.outputs["Z"], ramp.inputs["Fac"])
+        ramp.color_ramp.elements[0].position = 0.0
+        ramp.color_ramp.elements[0].color = (*desc["horizon"], 1)
+        ramp.color_ramp.elements[1].position = 0.8
+        ramp.color_ramp.elements[1].color = (*desc["zenith"], 1)
+        links.new(ramp.outputs["Color"], bg.inputs["Color"])
+    else:
+        raise SystemExit("unknown world kind " + desc["kind"])
+
+
+def add_area_light(desc):
+    data = bpy.data.lights.new("goris_area", type="AREA")
+    data.energy = desc["energy"]
+    data.size = desc["size"]
+    data.color = desc["color"]
+    light = bpy.data.objects.new("goris_area", data)
+    bpy.context.scene.collection.objects.link(light)
+    light.location = desc["location"]
+    aim = Vector(desc["look_at"]) - Vector(desc["location"])
+    light.rotation_euler = aim.to_track_quat("-Z", "Y").to_euler()
+
+
+def add_camera(angle_x):
+    data = bpy.data.cameras.new("goris_camera")
+    data.sensor_fit = "HORIZONTAL"
+    data.angle = angle_x
+    data.clip_start = 0.05
+    data.clip_end = 100.0
+    cam = bpy.data.objects.new("goris_camera", data)
+    bpy.context.scene.collection.objects.link(cam)
+    bpy.context.scene.camera = cam
+    return cam
+
+
+def aim_camera(cam, view):
+    cam.location = view["location"]
+    aim = Vector(view["look_at"]) - Vector(view["location"])
+    cam.rotation_euler = aim.to_track_quat("-Z", "Y").to_euler()
+    bpy.context.view_layer.update()
+    return [list(row) for row in cam.matrix_world]
+
+
+# ---------------------------------------------------------------- render settings
+def setup_render(r):
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = r["threads"]
+    scene.cycles.use_auto_tile = True
+    scene.cycles.tile_size = r["tile"]
+    scene.cycles.use_denoising = False
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.seed = r["seed"]
+    scene.render.resolution_x = r["res"]
+    scene.render.resolution_y = r["res"]
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = True
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.image_settings.color_mode = "RGBA"
+    scene.render.image_settings.color_depth = "8"
+    scene.render.image_settings.compression = 90
+    scene.render.dither_intensity = 0.0  # no noise added when quantising: mask backgrounds stay exactly 0
+    scene.render.use_persistent_data = True  # keep the BVH between the many renders of one scene
+
+
+def beauty_mode(r):
+    scene = bpy.context.scene
+    scene.cycles.samples = r["spp"]
+    scene.cycles.max_bounces = 6
+    scene.cycles.sample_clamp_indirect = 10.0
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    bpy.context.view_layer.material_override = None
+
+
+def mask_mode(r, override):
+    scene = bpy.context.scene
+    scene.cycles.samples = r["mask_spp"]
+    scene.cycles.max_bounces = 0
+    scene.view_settings.view_transform = "Raw"  # the mask values are written as they are, no sRGB curve
+    bpy.context.view_layer.material_override = override
+
+
+def setup_gt_output(gt_dir):
+    """Compositor File Output writing the training views' intrinsic passes as float EXR."""
+    scene = bpy.context.scene
+    layer = bpy.context.view_layer
+    layer.use_pass_diffuse_color = True
+    layer.use_pass_glossy_color = True
+    layer.use_pass_normal = True
+    layer.use_pass_z = True
+    scene.use_nodes = True
+    tree = scene.node_tree
+    tree.nodes.clear()
+    rl = tree.nodes.new("CompositorNodeRLayers")
+    comp = tree.nodes.new("CompositorNodeComposite")
+    comp.use_alpha = True
+    tree.links.new(rl.outputs["Image"], comp.inputs["Image"])
+    tree.links.new(rl.outputs["Alpha"], comp.inputs["Alpha"])
+    out = tree.nodes.new("CompositorNodeOutputFile")
+    out.base_path = gt_dir
+    out.format.file_format = "OPEN_EXR"
+    out.format.color_depth = "32"
+    out.format.exr_codec = "ZIP"
+    out.format.color_mode = "RGB"
+    out.file_slots.clear()
+    for slot, socket in (("diffcol_", "DiffCol"), ("glosscol_", "GlossCol"), ("normal_", "Normal"), ("depth_", "Depth")):
+        out.file_slots.new(slot)
+        tree.links.new(rl.outputs[socket], out.inputs[slot])
+    return out
+
+
+def render_to(path):
+    """Renders the current camera into path through a temporary name, so no half file keeps the final name."""
+    tmp = path + ".part.png"
+    bpy.context.scene.render.filepath = tmp
+    bpy.ops.render.render(write_still=True)
+    os.replace(tmp, path)
+
+
+def split_mask(rgb_path, outputs):
+    """Splits the mask render (R = target, G = glossy) into 8-bit grey PNGs (values written as they are)."""
+    img = bpy.data.images.load(rgb_path)
+    w, h = img.size
+    px = list(img.pixels)
+    bpy.data.images.remove(img)
+    settings = bpy.context.scene.render.image_settings
+    settings.color_mode = "BW"
+    for channel, path in outputs:
+        mask = bpy.data.images.new("goris_mask", w, h, alpha=False, float_buffer=True)
+        mask.colorspace_settings.name = "Non-Color"
+        vals = []
+        for i in range(w * h):
+            v = px[4 * i + channel]
+            vals.extend((v, v, v, 1.0))
+        mask.pixels = vals
+        mask.save_render(path + ".part.png", scene=bpy.context.scene)
+        bpy.data.images.remove(mask)
+        os.replace(path + ".part.png", path)
+    settings.color_mode = "RGBA"
+    os.remove(rgb_path)
+
+
+def write_transforms(path, angle_x, frames):
+    tmp = path + ".part"
+    with open(tmp, "w") as f:
+        json.dump({"camera_angle_x": angle_x, "frames": frames}, f, indent=1)
+    os.replace(tmp, path)
+
+
+def main():
+    desc, out_dir = args()
+    r = desc["render"]
+    clear_scene()
+    setup_render(r)
+    add_world(desc["world"])
+    for light in desc["lights"]:
+        add_area_light(light)
+    objects = [add_object(o) for o in desc["objects"]]
+    target = [o for o, d in zip(objects, desc["objects"]) if d["target"]][0]
+    cam = add_camera(desc["camera_angle_x"])
+    override = mask_override_material()
+
+    train_dir, test_dir = os.path.join(out_dir, "train"), os.path.join(out_dir, "test")
+    gt_dir = os.path.join(train_dir, "gt")
+    test_gt_dir = os.path.join(test_dir, "gt")  # test glossy masks: not part of the GOR-IS layout
+    os.makedirs(test_gt_dir, exist_ok=True)
+    os.makedirs(train_dir, exist_ok=True)
+    write_gt = desc["ground_truth_maps"]
+    gt_out = None
+    if write_gt:
+        os.makedirs(gt_dir, exist_ok=True)
+        gt_out = setup_gt_output(gt_dir)
+
+    train, test = desc["cameras"]["train"], desc["cameras"]["test"]
+    total, done = len(train) + len(test), 0
+    scene = bpy.context.scene
+
+    def progress():
+        nonlocal done
+        done += 1
+        print("GORIS_FRAME %d %d" % (done, total), flush=True)
+
+    frames = []
+    for i, view in enumerate(train):
+        name = "%03d" % i
+        frames.append({"file_path": "./train/r_" + name, "transform_matrix": aim_camera(cam, view)})
+        beauty_mode(r)
+        if gt_out:
+            gt_out.mute = False
+            scene.frame_current = i
+        render_to(os.path.join(train_dir, "r_" + name + ".png"))
+        if gt_out:
+            gt_out.mute = True
+            for slot in ("diffcol_", "glosscol_", "normal_", "depth_"):
+                os.replace(os.path.join(gt_dir, "%s%04d.exr" % (slot, i)), os.path.join(gt_dir, slot + name + ".exr"))
+        mask_mode(r, override)
+        tmp = os.path.join(train_dir, "masks_" + name + ".tmp.png")
+        render_to(tmp)
+        split_mask(tmp, [(0, os.path.join(train_dir, "mask_" + name + ".png")),
+                         (1, os.path.join(train_dir, "gloss_" + name + ".png"))])
+        progress()
+    write_transforms(os.path.join(out_dir, "transforms_train.json"), desc["camera_angle_x"], frames)
+
+    frames = []
+    for i, view in enumerate(test):
+        name = "%03d" % i
+        frames.append({"file_path": "./test/r_" + name, "transform_matrix": aim_camera(cam, view)})
+        beauty_mode(r)
+        target.hide_render = False
+        render_to(os.path.join(test_dir, "full_" + name + ".png"))
+        target.hide_render = True
+        render_to(os.path.join(test_dir, "r_" + name + ".png"))
+        target.hide_render = False
+        mask_mode(r, override)
+        tmp = os.path.join(test_dir, "masks_" + name + ".tmp.png")
+        render_to(tmp)
+        split_mask(tmp, [(0, os.path.join(test_dir, "mask_" + name + ".png")),
+                         (1, os.path.join(test_gt_dir, "gloss_" + name + ".png"))])
+        progress()
+    write_transforms(os.path.join(out_dir, "transforms_test.json"), desc["camera_angle_x"], frames)
+    print("GORIS_DONE", flush=True)
+
+
+main()

@@ -1,0 +1,18 @@
+# `goris synth` bad input: a missing Blender names the apt command, an unknown preset lists the presets,
+# and nothing is written under --out. Needs no Blender.
+file(REMOVE_RECURSE "${WORK}")
+function(expect_fail what)
+  execute_process(COMMAND "${GORIS}" synth ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "goris synth ${ARGN} succeeded")
+  endif()
+  string(FIND "${out}${err}" "${what}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "expected '${what}' in:\n${out}${err}")
+  endif()
+endfunction()
+expect_fail("sudo apt-get install blender" --out "${WORK}/a" --blender "${WORK}/no-blender")
+expect_fail("twin-mirrors" --preset nope --out "${WORK}/b")
+if(EXISTS "${WORK}/a" OR EXISTS "${WORK}/b")
+  message(FATAL_ERROR "a failed goris synth left files under --out")
+endif()
