@@ -1,0 +1,156 @@
+// `goris demo`: the main job on the embedded default scene (resources/default_scene), end to end on the
+// chosen device: train a short schedule, render the test views with every map, evaluate against the views
+// with the target (`--gt full`), and write report.md with side-by-side images a person can look at.
+// Each step runs as its own `goris` subcommand in a child process (the same binary), so the demo exercises
+// exactly what a user types and a failing step stops the demo with that step's message.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "app/goris/command.h"
+#include "core/io/dataset.h"
+#include "core/io/file_bytes.h"
+#include "core/util/error.h"
+
+extern char** environ;
+
+namespace {
+namespace fs = std::filesystem;
+using goris::Error;
+
+struct Options {
+  std::string data = std::string(GORIS_RESOURCE_DIR) + "/default_scene";
+  std::string out = "goris-demo";
+  std::string device = "auto";
+  int iters = 2000;
+  int report_views = 4;
+};
+
+fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
+
+void run_step(const std::string& title, std::vector<std::string> args) {
+  std::printf("\n== demo: %s\n$ goris", title.c_str());
+  for (auto& a : args) std::printf(" %s", a.c_str());
+  std::printf("\n");
+  std::fflush(stdout);
+  const std::string exe = self_executable().string();
+  args.insert(args.begin(), exe);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+    throw Error(exe, "could not start the demo step '" + title + "'");
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw Error("demo step '" + title + "' failed (see its message above)");
+}
+
+// A row: ground truth (the view with the target) | render | depth | normal, labelled.
+cv::Mat comparison_row(const fs::path& gt, const fs::path& renders, const std::string& name) {
+  std::vector<cv::Mat> tiles;
+  const std::vector<std::pair<fs::path, std::string>> parts = {{gt, "ground truth"},
+                                                               {renders / (name + ".png"), "render"},
+                                                               {renders / (name + "_depth.png"), "depth"},
+                                                               {renders / (name + "_normal.png"), "normal"}};
+  for (const auto& [path, label] : parts) {
+    cv::Mat img = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    if (img.empty()) throw Error(path.string(), "missing or unreadable image for the demo report");
+    if (img.depth() != CV_8U) img.convertTo(img, CV_8U, 1.0 / 257.0);
+    if (img.channels() == 4) {  // composite on black, as training does
+      cv::Mat bgr, alpha;
+      cv::cvtColor(img, bgr, cv::COLOR_BGRA2BGR);
+      cv::extractChannel(img, alpha, 3);
+      cv::cvtColor(alpha, alpha, cv::COLOR_GRAY2BGR);
+      cv::multiply(bgr, alpha, img, 1.0 / 255.0);
+    } else if (img.channels() == 1) {
+      cv::cvtColor(img, img, cv::COLOR_GRAY2BGR);
+    }
+    if (!tiles.empty() && img.size() != tiles[0].size()) cv::resize(img, img, tiles[0].size());
+    cv::putText(img, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {255, 255, 255}, 1, cv::LINE_AA);
+    tiles.push_back(img);
+  }
+  cv::Mat row;
+  cv::hconcat(tiles, row);
+  return row;
+}
+
+void write_report(const Options& o, const fs::path& out, const fs::path& run, const fs::path& renders) {
+  const goris::Dataset ds = goris::load_dataset(o.data, {});
+  std::ifstream mf(run / "metrics.json");
+  if (!mf) throw Error((run / "metrics.json").string(), "missing: the evaluation step wrote no metrics");
+  const nlohmann::json m = nlohmann::json::parse(mf);
+
+  std::string md = "# GOR-IS Studio demo\n\n";
+  md += "Data: `" + o.data + "` (" + ds.format + ", " + std::to_string(ds.train.size()) + " train / " +
+        std::to_string(ds.test.size()) + " test views at " + std::to_string(ds.train[0].camera.width) + "x" +
+        std::to_string(ds.train[0].camera.height) + ")  \n";
+  md += "Training: " + std::to_string(o.iters) + " iterations, radiance mode, device `" + m.value("device", "?") +
+        "`, " + std::to_string(m.value("gaussians", 0)) + " Gaussians  \n";
+  char line[256];
+  std::snprintf(line, sizeof line, "Test views against the images with the target (`--gt full`): PSNR %.2f dB, SSIM %.4f  \n",
+                m.value("psnr", 0.0), m.value("ssim", 0.0));
+  md += line;
+  md += "Run folder: `" + run.string() + "` (config, checkpoints, log.csv, point_cloud.ply, metrics.json)\n\n";
+  md += "Each row: ground truth | render | depth (TURBO on inverse depth) | normal (n*0.5+0.5)\n\n";
+  const int n = std::min<int>(o.report_views, int(ds.test.size()));
+  for (int i = 0; i < n; ++i) {
+    const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
+    const fs::path gt = v.full_image ? *v.full_image : v.image;
+    const cv::Mat row = comparison_row(gt, renders, v.name);
+    const std::string file = "compare_" + v.name + ".png";
+    std::vector<unsigned char> png;
+    cv::imencode(".png", row, png);
+    goris::write_file_bytes(out / file, png.data(), png.size());
+    md += "![" + v.name + "](" + file + ")\n\n";
+  }
+  goris::write_file_bytes(out / "report.md", md.data(), md.size());
+  std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
+}
+
+void run_demo(const Options& o) {
+  const fs::path out = fs::absolute(o.out);
+  const fs::path run = out / "run", renders = out / "renders";
+  // The demo starts from scratch each time, but only ever clears a folder it made itself.
+  if (fs::exists(out) && !fs::is_empty(out)) {
+    if (!fs::exists(out / "demo.marker"))
+      throw Error(out.string(), "exists and is not a demo folder; choose another --out");
+    fs::remove_all(out);
+  }
+  fs::create_directories(out);
+  { std::ofstream(out / "demo.marker") << "written by goris demo\n"; }
+  const std::string data = fs::absolute(o.data).string();
+  run_step("info", {"info", data});
+  run_step("train", {"train", data, "--out", run.string(), "--iters", std::to_string(o.iters), "--device", o.device,
+                     "--checkpoint-every", "0"});
+  run_step("render test views with all maps", {"render", run.string(), "--split", "test", "--out", renders.string(),
+                                               "--maps", "--device", o.device});
+  run_step("evaluate against the views with the target", {"eval", run.string(), "--split", "test", "--gt", "full",
+                                                          "--device", o.device});
+  write_report(o, out, run, renders);
+}
+
+void setup_demo(CLI::App& root) {
+  auto o = std::make_shared<Options>();
+  auto* c = root.add_subcommand("demo", "Train, render and evaluate the embedded default scene; write a report");
+  c->add_option("--data", o->data, "Data set (default: the embedded default scene)")->capture_default_str();
+  c->add_option("--out", o->out, "Output folder (report.md, images, run/)")->capture_default_str();
+  c->add_option("--iters", o->iters, "Training iterations")->capture_default_str()->check(CLI::PositiveNumber);
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->callback([o] { run_demo(*o); });
+}
+
+}  // namespace
+GORIS_COMMAND(5, setup_demo);

@@ -1,0 +1,181 @@
+// `goris eval RUN --split test [--gt after|full]`: image metrics of a trained run against the ground truth,
+// written to RUN/metrics.json (or --out) through a temporary file.
+//
+// PSNR and SSIM (the 3DGS definitions, core/train/image_losses.h) per view, then averaged over views.
+// Masked metrics (M-PSNR, M-SSIM) use the view's object mask (test/mask_XXX.png): they are computed on the
+// crop given by the bounding box of the mask pixels >= 0.5, grown by 10% of its width / height on each
+// side (at least 4 pixels) and clamped to the image; views whose mask is empty are left out of the
+// masked means. A crop rather than the exact mask keeps SSIM's 11x11 windows meaningful at the edges.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/goris/command.h"
+#include "core/io/dataset.h"
+#include "core/io/file_bytes.h"
+#include "core/io/image.h"
+#include "core/train/image_losses.h"
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/util/bench.h"
+#include "core/util/error.h"
+#include "render/raster/rasterizer.h"
+#include "render/train/raster_renderer.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace goris;
+
+struct Options {
+  std::string run, split = "test", gt = "after", out, device = "auto";
+};
+
+struct Crop {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // exclusive ends
+  int w() const { return x1 - x0; }
+  int h() const { return y1 - y0; }
+};
+
+std::optional<Crop> mask_crop(const Image& mask) {
+  const std::vector<float> m = mask.pixels.to_host();
+  Crop c{mask.width, mask.height, -1, -1};
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x)
+      if (m[size_t(y) * mask.width + x] >= 0.5f) {
+        c.x0 = std::min(c.x0, x);
+        c.y0 = std::min(c.y0, y);
+        c.x1 = std::max(c.x1, x + 1);
+        c.y1 = std::max(c.y1, y + 1);
+      }
+  if (c.x1 < 0) return std::nullopt;
+  const int gx = std::max(4, int(std::ceil(0.1 * c.w()))), gy = std::max(4, int(std::ceil(0.1 * c.h())));
+  c.x0 = std::max(0, c.x0 - gx);
+  c.y0 = std::max(0, c.y0 - gy);
+  c.x1 = std::min(mask.width, c.x1 + gx);
+  c.y1 = std::min(mask.height, c.y1 + gy);
+  return c;
+}
+
+std::vector<float> crop_planar(const std::vector<float>& img, int w, int h, const Crop& c) {
+  std::vector<float> out(size_t(3) * c.w() * c.h());
+  for (int ch = 0; ch < 3; ++ch)
+    for (int y = 0; y < c.h(); ++y)
+      for (int x = 0; x < c.w(); ++x)
+        out[(size_t(ch) * c.h() + y) * c.w() + x] = img[(size_t(ch) * h + c.y0 + y) * w + c.x0 + x];
+  return out;
+}
+
+double mean_of(const std::vector<double>& v) {
+  if (v.empty()) return std::nan("");
+  double s = 0;
+  for (double x : v) s += x;
+  return s / double(v.size());
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void run_eval(const Options& o) {
+  const fs::path run_dir = fs::absolute(o.run);
+  const TrainConfig config = read_run_config(run_dir);
+  const Device device = resolve_device(o.device);
+  const DatasetOptions dopt = dataset_options(config);
+  const Dataset ds = load_dataset(config.data, dopt);
+  const std::vector<View>& views = o.split == "test" ? ds.test : ds.train;
+  if (views.empty()) throw Error(config.data, "the data set has no " + o.split + " views");
+  std::string source;
+  GaussianModel model = load_run_model(run_dir, device, &source);
+  const RasterSettings settings = RasterRenderer::settings_for(config);
+
+  nlohmann::json per_view = nlohmann::json::array();
+  std::vector<double> psnrs, ssims, m_psnrs, m_ssims;
+  double render_ms = 0;
+  for (const View& v : views) {
+    if (o.gt == "full" && !v.full_image)
+      throw Error(v.image.string(), "--gt full: this view has no full_XXX.png (not a GOR-IS-style data set?)");
+    const Image gt_img = o.gt == "full" ? load_view_full_image(v, dopt) : load_view_image(v, dopt);
+    const int w = v.camera.width, h = v.camera.height;
+    if (gt_img.width != w || gt_img.height != h) throw Error(v.image.string(), "ground truth size differs from the camera");
+    const std::vector<float> gt = to_planar_rgb(gt_img);
+    const auto t0 = std::chrono::steady_clock::now();
+    const RasterOutput r = rasterize(model.view(false), v.camera, settings, device);
+    const std::vector<float> pred = r.gbuffer.color.to_host();
+    render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<float> clamped(pred.size());
+    for (size_t i = 0; i < pred.size(); ++i) clamped[i] = std::clamp(pred[i], 0.0f, 1.0f);  // as a saved image
+
+    nlohmann::json jv;
+    jv["name"] = v.name;
+    const double psnr = psnr_from_mse(mse<float>(clamped.data(), gt.data(), gt.size()));
+    const double s = ssim<float>(clamped.data(), gt.data(), 3, w, h);
+    psnrs.push_back(psnr);
+    ssims.push_back(s);
+    jv["psnr"] = number_or_null(psnr);
+    jv["ssim"] = s;
+    if (v.object_mask) {
+      if (const auto c = mask_crop(load_view_object_mask(v))) {
+        const auto cp = crop_planar(clamped, w, h, *c), cg = crop_planar(gt, w, h, *c);
+        const double mp = psnr_from_mse(mse<float>(cp.data(), cg.data(), cg.size()));
+        const double ms = ssim<float>(cp.data(), cg.data(), 3, c->w(), c->h());
+        m_psnrs.push_back(mp);
+        m_ssims.push_back(ms);
+        jv["m_psnr"] = number_or_null(mp);
+        jv["m_ssim"] = ms;
+        jv["mask_crop"] = {c->x0, c->y0, c->x1, c->y1};
+      }
+    }
+    per_view.push_back(jv);
+  }
+
+  nlohmann::json j;
+  j["run"] = run_dir.string();
+  j["model"] = source;
+  j["data"] = config.data;
+  j["split"] = o.split;
+  j["gt"] = o.gt == "full" ? "full: test views with the target (full_XXX.png)" : "after: the views' images (r_XXX.png)";
+  j["views"] = views.size();
+  j["resolution"] = {views[0].camera.width, views[0].camera.height};
+  j["gaussians"] = model.count();
+  j["device"] = device_name(device);
+  j["psnr"] = number_or_null(mean_of(psnrs));
+  j["ssim"] = mean_of(ssims);
+  j["masked"] = {{"psnr", number_or_null(mean_of(m_psnrs))},
+                 {"ssim", number_or_null(mean_of(m_ssims))},
+                 {"views", m_psnrs.size()},
+                 {"region", "bounding box of the object mask (>= 0.5), grown by 10% per side (min 4 px)"}};
+  j["render_ms_mean"] = render_ms / double(views.size());
+  j["peak_host_memory_mib"] = peak_host_memory_mib();
+  j["per_view"] = per_view;
+
+  const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
+  const std::string text = j.dump(2) + "\n";
+  write_file_bytes(out, text.data(), text.size());
+  std::printf("%s split (%zu views at %dx%d, gt %s): PSNR %.2f dB  SSIM %.4f", o.split.c_str(), views.size(),
+              views[0].camera.width, views[0].camera.height, o.gt.c_str(), mean_of(psnrs), mean_of(ssims));
+  if (!m_psnrs.empty()) std::printf("  M-PSNR %.2f dB  M-SSIM %.4f (%zu views)", mean_of(m_psnrs), mean_of(m_ssims), m_psnrs.size());
+  std::printf("\nmetrics: %s\n", out.string().c_str());
+}
+
+void setup_eval(CLI::App& root) {
+  auto o = std::make_shared<Options>();
+  auto* c = root.add_subcommand("eval", "Compute PSNR / SSIM (and masked versions) of a trained run");
+  c->add_option("run", o->run, "Run folder written by `goris train`")->required();
+  c->add_option("--split", o->split, "Which views: test or train")->check(CLI::IsMember({"test", "train"}));
+  c->add_option("--gt", o->gt,
+                "Ground truth: after (the views' images; for GOR-IS sets the scene after removal) or full "
+                "(GOR-IS test/full_XXX.png, the scene with the target)")
+      ->check(CLI::IsMember({"after", "full"}));
+  c->add_option("--out", o->out, "Metrics file (default RUN/metrics.json)");
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->callback([o] { run_eval(*o); });
+}
+
+}  // namespace
+GORIS_COMMAND(45, setup_eval);

@@ -1,0 +1,99 @@
+// `goris render RUN --split test --out DIR [--maps]`: renders a trained run from the data set's cameras
+// (at the training resolution). With --maps every G-buffer channel is written as a viewable PNG too.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/goris/command.h"
+#include "core/io/dataset.h"
+#include "core/io/image.h"
+#include "core/scene/gaussians.h"
+#include "core/train/depth_normal_loss.h"
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/util/error.h"
+#include "render/maps/gbuffer_maps.h"
+#include "render/raster/rasterizer.h"
+#include "render/train/raster_renderer.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace goris;
+
+struct Options {
+  std::string run, split = "test", out, device = "auto";
+  bool maps = false;
+};
+
+// The channels of an extras G-buffer worth a picture each: (name, first channel, channel count).
+struct ExtraMap {
+  const char* name;
+  int first, count;
+};
+constexpr ExtraMap kExtraMaps[] = {{"diffuse", extra::kDiffuse, 3}, {"fresnel", extra::kFresnel, 3},
+                                   {"roughness", extra::kRoughness, 1}, {"region", extra::kRegion, 1},
+                                   {"label", extra::kLabel, 1}};
+
+void run_render(const Options& o) {
+  const fs::path run_dir = fs::absolute(o.run);
+  const TrainConfig config = read_run_config(run_dir);
+  const Device device = resolve_device(o.device);
+  const Dataset ds = load_dataset(config.data, dataset_options(config));
+  const std::vector<View>& views = o.split == "test" ? ds.test : ds.train;
+  if (views.empty()) throw Error(config.data, "the data set has no " + o.split + " views");
+  std::string source;
+  GaussianModel model = load_run_model(run_dir, device, &source);
+  const fs::path out = fs::absolute(o.out);
+  fs::create_directories(out);
+  std::printf("rendering %zu %s views of %s (%zu Gaussians, %s) on %s -> %s\n", views.size(), o.split.c_str(),
+              run_dir.string().c_str(), model.count(), source.c_str(), device_name(device), out.string().c_str());
+
+  const RasterSettings settings = RasterRenderer::settings_for(config);
+  double total_ms = 0;
+  for (const View& v : views) {
+    const Camera& cam = v.camera;
+    const auto t0 = std::chrono::steady_clock::now();
+    const RasterOutput r = rasterize(model.view(o.maps), cam, settings, device);
+    total_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const int w = cam.width, h = cam.height;
+    const size_t hw = size_t(w) * h;
+    const std::vector<float> color = r.gbuffer.color.to_host();
+    save_png(out / (v.name + ".png"), from_planar(color.data(), 3, w, h));
+    if (!o.maps) continue;
+    const std::vector<float> alpha = r.gbuffer.alpha.to_host(), depth = r.gbuffer.depth.to_host(),
+                             median = r.gbuffer.median_depth.to_host(), normal = r.gbuffer.normal.to_host(),
+                             extras = r.gbuffer.extras.to_host();
+    save_png(out / (v.name + "_alpha.png"), from_planar(alpha.data(), 1, w, h));
+    save_png(out / (v.name + "_depth.png"), depth_to_turbo(depth.data(), alpha.data(), w, h, true));
+    save_png(out / (v.name + "_median_depth.png"), depth_to_turbo(median.data(), alpha.data(), w, h, false));
+    save_png(out / (v.name + "_normal.png"), normals_to_rgb(normal.data(), alpha.data(), w, h));
+    // The normal the depth map implies (what the depth-normal consistency loss compares against).
+    std::vector<float> expected(hw), depth_normal(3 * hw);
+    for (size_t p = 0; p < hw; ++p) expected[p] = alpha[p] > 1e-4f ? depth[p] / alpha[p] : 0.0f;
+    normal_from_depth<float>(expected.data(), w, h, cam.fx, cam.fy, cam.cx, cam.cy, depth_normal.data());
+    save_png(out / (v.name + "_depth_normal.png"), normals_to_rgb(depth_normal.data(), alpha.data(), w, h));
+    if (r.gbuffer.n_extras == extra::kCount)
+      for (const ExtraMap& m : kExtraMaps)
+        save_png(out / (v.name + "_" + m.name + ".png"), from_planar(extras.data() + size_t(m.first) * hw, m.count, w, h));
+  }
+  std::printf("%zu images at %dx%d, %.1f ms per render (mean)\n", views.size(), views[0].camera.width,
+              views[0].camera.height, total_ms / double(views.size()));
+}
+
+void setup_render(CLI::App& root) {
+  auto o = std::make_shared<Options>();
+  auto* c = root.add_subcommand("render", "Render a trained run from the data set's cameras");
+  c->add_option("run", o->run, "Run folder written by `goris train`")->required();
+  c->add_option("--split", o->split, "Which cameras: test or train")->check(CLI::IsMember({"test", "train"}));
+  c->add_option("--out", o->out, "Output folder for the PNG images")->required();
+  c->add_flag("--maps", o->maps,
+              "Also write every G-buffer channel: alpha, depth and median depth (TURBO on inverse depth), "
+              "normal and depth-normal (n*0.5+0.5), diffuse, fresnel, roughness, region, label");
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->callback([o] { run_render(*o); });
+}
+
+}  // namespace
+GORIS_COMMAND(40, setup_render);

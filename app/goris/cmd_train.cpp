@@ -1,0 +1,228 @@
+// `goris train DATA --out RUN`: stage-1 training (radiance mode) into a run folder: config.json,
+// checkpoints/, log.csv and the final point_cloud.ply. Ctrl-C finishes the current iteration, writes a
+// checkpoint and exits 0 with the command that resumes the run.
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/goris/command.h"
+#include "core/compute/device.h"
+#include "core/io/dataset.h"
+#include "core/io/ply.h"
+#include "core/train/checkpoint.h"
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/train/trainer.h"
+#include "core/util/bench.h"
+#include "core/util/error.h"
+#include "render/train/raster_renderer.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace goris;
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_sigint(int) {
+  g_stop = true;
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+struct Options {
+  std::string data, out, mode = "radiance", device = "auto";
+  std::optional<int> iters, resolution, init_points, checkpoint_every;
+  std::optional<float> downscale;
+  std::optional<std::uint64_t> seed;
+  std::vector<std::string> sets;  // KEY=VALUE overrides of config.json keys
+  bool resume = false;
+};
+
+// --set KEY=VALUE: VALUE as JSON (number, true/false, "string" or [1,2,3]), else as a plain string.
+void apply_overrides(const std::vector<std::string>& sets, TrainConfig& config) {
+  nlohmann::json j = config;
+  for (const std::string& kv : sets) {
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw Error("--set " + kv + ": expected KEY=VALUE");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (!j.contains(key)) throw Error("--set " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
+    nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
+    j[key] = v.is_discarded() ? nlohmann::json(value) : v;
+  }
+  try {
+    from_json(j, config);
+  } catch (const Error& e) {
+    throw Error(std::string("--set: ") + e.what());
+  }
+}
+
+std::string duration_text(double s) {
+  if (!(s >= 0) || s > 1e8) return "--";
+  const long t = long(s + 0.5);
+  char b[32];
+  if (t >= 3600)
+    std::snprintf(b, sizeof b, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60)
+    std::snprintf(b, sizeof b, "%ldm%02lds", t / 60, t % 60);
+  else
+    std::snprintf(b, sizeof b, "%lds", t);
+  return b;
+}
+
+std::string shell_quote(const std::string& s) {
+  if (s.find_first_of(" \t'\"$\\") == std::string::npos) return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Settings a resumed run must keep: refuse to change them silently.
+void reject_changes_on_resume(const Options& o) {
+  auto no = [](bool given, const char* flag) {
+    if (given) throw Error(std::string(flag) + " cannot change when resuming (the run keeps its settings)");
+  };
+  no(o.resolution.has_value(), "--resolution");
+  no(o.downscale.has_value(), "--downscale");
+  no(o.seed.has_value(), "--seed");
+  no(o.init_points.has_value(), "--init-points");
+  no(o.mode != "radiance", "--mode");
+  no(!o.sets.empty(), "--set");
+}
+
+void run_train(const Options& o) {
+  const fs::path run_dir = fs::absolute(o.out);
+  const fs::path data = fs::weakly_canonical(fs::absolute(o.data));
+  std::optional<Checkpoint> resumed;
+  TrainConfig config;
+  if (o.resume) {
+    reject_changes_on_resume(o);
+    const auto ck = latest_checkpoint(run_dir);
+    if (!ck) throw Error(run_dir.string(), "no checkpoint in checkpoints/ to resume from");
+    resumed = read_checkpoint(*ck, Device::CPU);
+    config = resumed->config;
+    if (fs::weakly_canonical(fs::path(config.data)) != fs::weakly_canonical(data))
+      throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
+    std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->state.iteration,
+                ck->filename().string().c_str());
+  } else {
+    if (fs::exists(run_config_path(run_dir)) || latest_checkpoint(run_dir))
+      throw Error(run_dir.string(), "already holds a training run: add --resume to continue it, or choose another --out");
+    config.mode = o.mode;
+    config.data = data.string();
+    if (o.seed) config.seed = *o.seed;
+    if (o.resolution) config.resolution = *o.resolution;
+    if (o.downscale) config.downscale = *o.downscale;
+    if (o.init_points) config.random_init_points = *o.init_points;
+    apply_overrides(o.sets, config);
+  }
+  if (o.iters) config.iterations = *o.iters;
+  if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;
+  config.device = o.device;
+  config.validate("training options");
+  if (resumed && resumed->state.iteration >= config.iterations)
+    throw Error(run_dir.string(), "already trained for " + std::to_string(resumed->state.iteration) +
+                                      " iterations; pass a larger --iters to train further");
+  const Device device = resolve_device(config.device);
+
+  const DatasetOptions dopt = dataset_options(config);
+  const Dataset ds = load_dataset(data, dopt);
+  for (const auto& w : ds.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (ds.train.empty()) throw Error(data.string(), "the data set has no training views");
+  const float extent = scene_extent(ds);
+  std::vector<TrainView> views = load_train_views(ds.train, dopt, [](size_t i, size_t n) {
+    if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\rloading images %zu/%zu", i + 1, n);
+  });
+  if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+
+  TrainerState state;
+  if (resumed) {
+    state = std::move(resumed->state);
+    if (device != Device::CPU) state.model = state.model.copy_to(device);
+    for (Buffer<float>* b : {&state.stats.grad_accum, &state.stats.denom, &state.stats.max_radii})
+      *b = b->copy_to(device);
+  } else {
+    std::string how;
+    state = Trainer::initial_state(config, initial_model(ds, config, device, &how));
+    std::printf("initial model: %s\n", how.c_str());
+  }
+  fs::create_directories(run_dir / "checkpoints");
+  write_run_config(run_dir, config);
+  std::printf("training %s (%s, %zu views at %dx%d, extent %.3g) on %s for %d iterations -> %s\n", data.string().c_str(),
+              ds.format.c_str(), views.size(), views[0].camera.width, views[0].camera.height, double(extent),
+              device_name(device), config.iterations, run_dir.string().c_str());
+
+  auto renderer = std::make_shared<RasterRenderer>(RasterRenderer::settings_for(config), device);
+  Trainer trainer(config, std::move(views), extent, renderer, std::move(state));
+
+  const bool tty = isatty(STDERR_FILENO);
+  Trainer::RunOptions ro;
+  ro.run_dir = run_dir;
+  ro.stop = &g_stop;
+  ro.progress_every = tty ? 10 : config.log_interval;
+  ro.on_progress = [tty](const TrainProgress& p) {
+    std::fprintf(stderr, "%s[%*d/%d] loss %.4f  PSNR %5.2f dB  %zu Gaussians  %.1f it/s  ETA %s%s", tty ? "\r" : "",
+                 int(std::to_string(p.total).size()), p.iteration, p.total, p.loss, p.psnr, p.gaussians, p.it_per_s,
+                 duration_text(p.eta_s).c_str(), tty ? "   " : "\n");
+    std::fflush(stderr);
+  };
+  g_stop = false;
+  auto previous = std::signal(SIGINT, on_sigint);
+  Trainer::RunResult result;
+  try {
+    result = trainer.run(ro);
+  } catch (...) {
+    std::signal(SIGINT, previous);
+    if (tty) std::fprintf(stderr, "\n");
+    throw;
+  }
+  std::signal(SIGINT, previous);
+  if (tty) std::fprintf(stderr, "\n");
+
+  const TrainerState& st = trainer.state();
+  if (result == Trainer::RunResult::Stopped) {
+    std::printf("interrupted at iteration %d/%d; checkpoint %s\nresume with: goris train %s --out %s --resume\n",
+                st.iteration, config.iterations, checkpoint_path(run_dir, st.iteration).string().c_str(),
+                shell_quote(data.string()).c_str(), shell_quote(run_dir.string()).c_str());
+    return;
+  }
+  write_ply(run_ply_path(run_dir), st.model.to_ply(/*bake_3d_filter=*/true));
+  std::printf("done: %d iterations in %s, %zu Gaussians, training PSNR %.2f dB (smoothed), peak memory %.0f MiB\n"
+              "model: %s\n",
+              st.iteration, duration_text(st.elapsed_s).c_str(), st.model.count(), st.ema_psnr, peak_host_memory_mib(),
+              run_ply_path(run_dir).string().c_str());
+}
+
+void setup_train(CLI::App& root) {
+  auto o = std::make_shared<Options>();
+  auto* c = root.add_subcommand("train", "Train a Gaussian scene on a data set into a run folder");
+  c->add_option("data", o->data, "Data set folder (NeRF-synthetic, instant-ngp, COLMAP, LLFF)")->required();
+  c->add_option("--out", o->out, "Run folder (config.json, checkpoints/, log.csv, point_cloud.ply)")->required();
+  c->add_option("--mode", o->mode, "What to train: radiance (SH colour, stage 1 warm-up)")
+      ->check(CLI::IsMember({"radiance"}));
+  c->add_option("--iters", o->iters, "Number of iterations (default 30000)")->check(CLI::PositiveNumber);
+  auto* res = c->add_option("--resolution", o->resolution, "Train at this image width (height keeps the aspect)")
+                  ->check(CLI::PositiveNumber);
+  auto* ds = c->add_option("--downscale", o->downscale, "Divide the image size by this factor (>= 1)")
+                 ->check(CLI::Range(1.0f, 1000.0f));
+  res->excludes(ds);
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->add_flag("--resume", o->resume, "Continue the run in --out from its latest checkpoint");
+  c->add_option("--seed", o->seed, "Random seed (initial points, view order, splits)");
+  c->add_option("--init-points", o->init_points, "Random initial points when the data has no SfM points (100000)")
+      ->check(CLI::PositiveNumber);
+  c->add_option("--checkpoint-every", o->checkpoint_every, "Checkpoint interval in iterations (2000; 0 = end only)")
+      ->check(CLI::NonNegativeNumber);
+  c->add_option("--set", o->sets, "Override any training setting: KEY=VALUE with a config.json key (repeatable)");
+  c->callback([o] { run_train(*o); });
+}
+
+}  // namespace
+GORIS_COMMAND(20, setup_train);

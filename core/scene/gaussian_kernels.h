@@ -1,0 +1,38 @@
+#pragma once
+// Per-element maths of the scene model, shared by the CPU driver (gaussians.cpp) and a CUDA twin.
+// Templated on the scalar so the finite-difference tests can run the same code in double.
+#include <cmath>
+#include <cstddef>
+
+#include "core/compute/hd.h"
+
+namespace goris::kernels {
+
+GORIS_HDI float exp_t(float x) { return expf(x); }
+GORIS_HDI double exp_t(double x) { return ::exp(x); }
+GORIS_HDI float log_t(float x) { return logf(x); }
+GORIS_HDI double log_t(double x) { return ::log(x); }
+
+template <class T>
+GORIS_HDI T sigmoid(T x) {
+  return T(1) / (T(1) + exp_t(-x));
+}
+template <class T>
+GORIS_HDI T logit(T p) {
+  return log_t(p / (T(1) - p));
+}
+
+// Activated extras and the chain rule back to the logits: d sigmoid / dx = s (1 - s). The activated-space
+// gradient is consumed (zeroed) so the scratch is ready for the next backward pass.
+template <class T>
+GORIS_HDI void extras_forward(const T* logits, T* activated, size_t i) {
+  activated[i] = sigmoid(logits[i]);
+}
+template <class T>
+GORIS_HDI void extras_backward(const T* activated, T* activated_grad, T* logit_grad, size_t i) {
+  const T s = activated[i];
+  logit_grad[i] += activated_grad[i] * s * (T(1) - s);
+  activated_grad[i] = T(0);
+}
+
+}  // namespace goris::kernels

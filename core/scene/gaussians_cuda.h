@@ -1,0 +1,8 @@
+#pragma once
+// CUDA entry points of the scene model's kernels (gaussians_cuda.cu); only declared in CUDA builds.
+#include <cstddef>
+
+namespace goris::detail {
+void extras_forward_cuda(const float* logits, float* activated, size_t n);
+void extras_backward_cuda(const float* activated, float* activated_grad, float* logit_grad, size_t n);
+}  // namespace goris::detail

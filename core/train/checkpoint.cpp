@@ -1,0 +1,231 @@
+#include "core/train/checkpoint.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/file_bytes.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+namespace {
+
+constexpr char kMagic[8] = {'G', 'O', 'R', 'I', 'S', 'C', 'K', 'P'};
+constexpr std::uint32_t kVersion = 1;
+
+std::uint64_t fnv1a(const std::string& bytes) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  template <class T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  void str(const std::string& s) {
+    pod(std::uint64_t(s.size()));
+    out_ += s;
+  }
+  void floats(const Buffer<float>& b) {
+    const std::vector<float> h = b.to_host();
+    pod(std::uint64_t(h.size()));
+    out_.append(reinterpret_cast<const char*>(h.data()), h.size() * sizeof(float));
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& data, const std::filesystem::path& path) : d_(data), path_(path) {}
+  template <class T>
+  T pod() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, d_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  std::string str() {
+    const std::uint64_t n = pod<std::uint64_t>();
+    need(n);
+    std::string s = d_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  Buffer<float> floats(size_t expect, Device device, const char* what, bool allow_empty = false) {
+    const std::uint64_t n = pod<std::uint64_t>();
+    if (n != expect && !(allow_empty && n == 0)) fail(std::string(what) + ": " + std::to_string(n) + " values where " + std::to_string(expect) + " were expected");
+    need(n * sizeof(float));
+    Buffer<float> cpu(n, Device::CPU);
+    if (n) std::memcpy(cpu.data(), d_.data() + pos_, n * sizeof(float));
+    pos_ += n * sizeof(float);
+    return device == Device::CPU ? std::move(cpu) : cpu.copy_to(device);
+  }
+  [[noreturn]] void fail(const std::string& problem) const { throw Error(path_.string(), "checkpoint " + problem); }
+
+ private:
+  void need(std::uint64_t n) const {
+    if (n > d_.size() - pos_) fail("is truncated");
+  }
+  const std::string& d_;
+  std::filesystem::path path_;
+  size_t pos_ = 8;  // after the magic
+};
+
+}  // namespace
+
+void write_checkpoint(const std::filesystem::path& path, const TrainConfig& config, const TrainerState& st) {
+  Writer w;
+  w.bytes().append(kMagic, 8);
+  w.pod(kVersion);
+  w.str(nlohmann::json(config).dump());
+  w.pod(std::int32_t(st.iteration));
+  std::ostringstream rng;
+  rng << st.rng;
+  w.str(rng.str());
+  w.pod(std::uint64_t(st.view_stack.size()));
+  for (std::uint32_t v : st.view_stack) w.pod(v);
+  w.pod(st.ema_loss);
+  w.pod(st.ema_psnr);
+  w.pod(st.elapsed_s);
+
+  const GaussianModel& m = st.model;
+  w.pod(std::uint64_t(m.count()));
+  w.pod(std::int32_t(m.sh_degree));
+  w.pod(std::int32_t(m.max_sh_degree));
+  for (int p = 0; p < kParamCount; ++p) {
+    const ParamTensor& t = m.tensor(Param(p));
+    w.pod(std::int32_t(t.width));
+    w.floats(t.value);
+    w.floats(t.adam_m);
+    w.floats(t.adam_v);
+  }
+  w.floats(m.filter3d_var);
+  w.pod(st.adam.beta1);
+  w.pod(st.adam.beta2);
+  w.pod(st.adam.eps);
+  for (int s : st.adam.steps) w.pod(std::int32_t(s));
+  w.floats(st.stats.grad_accum);
+  w.floats(st.stats.denom);
+  w.floats(st.stats.max_radii);
+  w.pod(fnv1a(w.bytes()));
+
+  write_file_bytes(path, w.bytes().data(), w.bytes().size());
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Error(path.string(), "cannot open the checkpoint");
+  const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (data.size() < 8 + 4 + 8 || std::memcmp(data.data(), kMagic, 8) != 0)
+    throw Error(path.string(), "not a GOR-IS checkpoint");
+  std::uint64_t stored_sum;
+  std::memcpy(&stored_sum, data.data() + data.size() - 8, 8);
+  if (fnv1a(data.substr(0, data.size() - 8)) != stored_sum)
+    throw Error(path.string(), "checkpoint is corrupted or truncated (checksum mismatch)");
+
+  Reader r(data, path);
+  const auto version = r.pod<std::uint32_t>();
+  if (version != kVersion)
+    r.fail("has format version " + std::to_string(version) + " (this build reads " + std::to_string(kVersion) + ")");
+  Checkpoint ck;
+  try {
+    from_json(nlohmann::json::parse(r.str()), ck.config);
+  } catch (const std::exception& e) {
+    r.fail(std::string("configuration is invalid: ") + e.what());
+  }
+  TrainerState& st = ck.state;
+  st.iteration = r.pod<std::int32_t>();
+  std::istringstream rng(r.str());
+  rng >> st.rng;
+  if (!rng) r.fail("RNG state is invalid");
+  const auto stack = r.pod<std::uint64_t>();
+  if (stack > data.size()) r.fail("view list is invalid");
+  st.view_stack.resize(stack);
+  for (auto& v : st.view_stack) v = r.pod<std::uint32_t>();
+  st.ema_loss = r.pod<double>();
+  st.ema_psnr = r.pod<double>();
+  st.elapsed_s = r.pod<double>();
+
+  const auto n = r.pod<std::uint64_t>();
+  if (n > data.size()) r.fail("Gaussian count is invalid");
+  GaussianModel m(device);
+  m.allocate(n);
+  m.sh_degree = r.pod<std::int32_t>();
+  m.max_sh_degree = r.pod<std::int32_t>();
+  if (m.sh_degree < 0 || m.sh_degree > 3 || m.max_sh_degree < 0 || m.max_sh_degree > 3) r.fail("SH degree is invalid");
+  for (int p = 0; p < kParamCount; ++p) {
+    ParamTensor& t = m.tensor(Param(p));
+    if (r.pod<std::int32_t>() != t.width) r.fail(std::string("parameter ") + param_name(Param(p)) + " has the wrong width");
+    t.value = r.floats(n * t.width, device, param_name(Param(p)));
+    t.adam_m = r.floats(n * t.width, device, param_name(Param(p)));
+    t.adam_v = r.floats(n * t.width, device, param_name(Param(p)));
+  }
+  m.filter3d_var = r.floats(n, device, "3D filter", /*allow_empty=*/true);
+  st.model = std::move(m);
+  st.adam.beta1 = r.pod<float>();
+  st.adam.beta2 = r.pod<float>();
+  st.adam.eps = r.pod<float>();
+  for (int& s : st.adam.steps) s = r.pod<std::int32_t>();
+  st.stats.grad_accum = r.floats(n, device, "densification statistics", true);
+  st.stats.denom = r.floats(n, device, "densification statistics", true);
+  st.stats.max_radii = r.floats(n, device, "densification statistics", true);
+  return ck;
+}
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir, int iteration) {
+  char name[32];
+  std::snprintf(name, sizeof name, "iter_%08d.ckpt", iteration);
+  return run_dir / "checkpoints" / name;
+}
+
+namespace {
+std::vector<std::pair<int, std::filesystem::path>> list_checkpoints(const std::filesystem::path& run_dir) {
+  std::vector<std::pair<int, std::filesystem::path>> out;
+  const auto dir = run_dir / "checkpoints";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return out;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    int it = 0;
+    char tail[8] = {};
+    if (name.size() == 18 && std::sscanf(name.c_str(), "iter_%8d.%4s", &it, tail) == 2 && std::string(tail) == "ckpt")
+      out.emplace_back(it, e.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+}  // namespace
+
+std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir) {
+  const auto all = list_checkpoints(run_dir);
+  if (all.empty()) return std::nullopt;
+  return all.back().second;
+}
+
+void remove_old_checkpoints(const std::filesystem::path& run_dir, int keep) {
+  const auto all = list_checkpoints(run_dir);
+  for (size_t i = 0; i + size_t(std::max(keep, 1)) < all.size(); ++i) {
+    std::error_code ec;
+    std::filesystem::remove(all[i].second, ec);
+  }
+}
+
+}  // namespace goris

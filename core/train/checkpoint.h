@@ -1,0 +1,31 @@
+#pragma once
+// Training checkpoints: one binary file with the configuration, the iteration, the view-order RNG, every
+// parameter with its Adam moments and step counts, the densification statistics and the 3D filter, ending
+// in a checksum. Written to a temporary file and renamed, so a crash never leaves a half-written
+// checkpoint under the final name. Resuming from one continues bit for bit as if never interrupted.
+#include <filesystem>
+#include <optional>
+
+#include "core/train/train_config.h"
+#include "core/train/trainer.h"
+
+namespace goris {
+
+void write_checkpoint(const std::filesystem::path& path, const TrainConfig& config, const TrainerState& state);
+
+struct Checkpoint {
+  TrainConfig config;
+  TrainerState state;
+};
+// Reads a checkpoint onto `device`. Throws goris::Error naming the file for a missing, truncated,
+// corrupted (checksum) or foreign file.
+Checkpoint read_checkpoint(const std::filesystem::path& path, Device device);
+
+// Checkpoint files of a run folder: RUN/checkpoints/iter_<8 digits>.ckpt.
+std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir, int iteration);
+// The checkpoint with the highest iteration in RUN/checkpoints, if any.
+std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir);
+// Deletes all but the `keep` most recent checkpoints.
+void remove_old_checkpoints(const std::filesystem::path& run_dir, int keep);
+
+}  // namespace goris

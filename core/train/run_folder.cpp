@@ -1,0 +1,49 @@
+#include "core/train/run_folder.h"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/file_bytes.h"
+#include "core/io/ply.h"
+#include "core/train/checkpoint.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+std::filesystem::path run_config_path(const std::filesystem::path& run_dir) { return run_dir / "config.json"; }
+std::filesystem::path run_ply_path(const std::filesystem::path& run_dir) { return run_dir / "point_cloud.ply"; }
+
+void write_run_config(const std::filesystem::path& run_dir, const TrainConfig& config) {
+  const std::string text = nlohmann::json(config).dump(2) + "\n";
+  write_file_bytes(run_config_path(run_dir), text.data(), text.size());
+}
+
+TrainConfig read_run_config(const std::filesystem::path& run_dir) {
+  const auto path = run_config_path(run_dir);
+  std::ifstream f(path);
+  if (!f) throw Error(path.string(), "cannot open (is " + run_dir.string() + " a training run folder?)");
+  TrainConfig c;
+  try {
+    from_json(nlohmann::json::parse(f), c);
+  } catch (const std::exception& e) {
+    throw Error(path.string(), e.what());
+  }
+  c.validate(path.string());
+  return c;
+}
+
+GaussianModel load_run_model(const std::filesystem::path& run_dir, Device device, std::string* source) {
+  if (const auto ck = latest_checkpoint(run_dir)) {
+    if (source) *source = ck->string();
+    return std::move(read_checkpoint(*ck, device).state.model);
+  }
+  const auto ply = run_ply_path(run_dir);
+  if (std::filesystem::exists(ply)) {
+    if (source) *source = ply.string();
+    return GaussianModel::from_ply(read_ply(ply), device);
+  }
+  throw Error(run_dir.string(), "no trained model: neither checkpoints/ nor point_cloud.ply");
+}
+
+}  // namespace goris

@@ -1,0 +1,26 @@
+#pragma once
+// A training run's folder (DESIGN.md §1): config.json (the TrainConfig, with the data set path so other
+// commands find the data), checkpoints/, log.csv, point_cloud.ply (the final model in the standard 3DGS
+// layout). Shared by `goris train | render | eval` and the editor.
+#include <filesystem>
+#include <string>
+
+#include "core/scene/gaussians.h"
+#include "core/train/train_config.h"
+
+namespace goris {
+
+std::filesystem::path run_config_path(const std::filesystem::path& run_dir);
+std::filesystem::path run_ply_path(const std::filesystem::path& run_dir);
+
+// Writes RUN/config.json through a temporary file.
+void write_run_config(const std::filesystem::path& run_dir, const TrainConfig& config);
+// Reads RUN/config.json; throws goris::Error naming the file when it is missing or invalid.
+TrainConfig read_run_config(const std::filesystem::path& run_dir);
+
+// The trained model of a run on `device`: the latest checkpoint (which carries the 3D filter and the
+// current SH degree), else point_cloud.ply. `source` receives the file used. Throws when the run has
+// neither.
+GaussianModel load_run_model(const std::filesystem::path& run_dir, Device device, std::string* source = nullptr);
+
+}  // namespace goris

@@ -1,0 +1,129 @@
+#include "core/train/train_config.h"
+
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "core/util/error.h"
+
+namespace goris {
+
+namespace {
+
+// One list of (name, member) pairs serves both directions, so writing and reading cannot drift apart.
+template <class Config, class F>
+void visit_fields(Config& c, F&& f) {
+  f("mode", c.mode);
+  f("iterations", c.iterations);
+  f("seed", c.seed);
+  f("device", c.device);
+  f("data", c.data);
+  f("downscale", c.downscale);
+  f("resolution", c.resolution);
+  f("background", c.background);
+  f("random_init_points", c.random_init_points);
+  f("random_init_box_ratio", c.random_init_box_ratio);
+  f("lr_position_init", c.lr.position_init);
+  f("lr_position_final", c.lr.position_final);
+  f("lr_position_max_steps", c.lr.position_max_steps);
+  f("lr_sh_dc", c.lr.sh_dc);
+  f("lr_sh_rest", c.lr.sh_rest);
+  f("lr_opacity", c.lr.opacity);
+  f("lr_scale", c.lr.scale);
+  f("lr_rotation", c.lr.rotation);
+  f("lr_materials", c.lr.materials);
+  f("lr_region", c.lr.region);
+  f("lr_label", c.lr.label);
+  f("lambda_ssim", c.lambda_ssim);
+  f("depth_normal_weight", c.depth_normal_weight);
+  f("depth_normal_from", c.depth_normal_from);
+  f("depth_normal_median_ratio", c.depth_normal_median_ratio);
+  f("sh_degree_interval", c.sh_degree_interval);
+  f("max_sh_degree", c.max_sh_degree);
+  f("densify_from_iter", c.densify.from_iter);
+  f("densify_until_iter", c.densify.until_iter);
+  f("densify_interval", c.densify.interval);
+  f("densify_until_fraction", c.densify_until_fraction);
+  f("densify_grad_threshold", c.densify.grad_threshold);
+  f("percent_dense", c.densify.percent_dense);
+  f("split_count", c.densify.split_count);
+  f("prune_min_opacity", c.densify.min_opacity);
+  f("opacity_reset_interval", c.densify.opacity_reset_interval);
+  f("reset_opacity", c.densify.reset_opacity);
+  f("prune_max_screen_radius", c.densify.max_screen_radius);
+  f("prune_max_world_scale", c.densify.max_world_scale);
+  f("filter_3d", c.filter_3d);
+  f("filter_3d_interval", c.filter_3d_interval);
+  f("filter_2d", c.filter_2d);
+  f("log_interval", c.log_interval);
+  f("checkpoint_interval", c.checkpoint_interval);
+  f("keep_checkpoints", c.keep_checkpoints);
+}
+
+nlohmann::json vec_json(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+}  // namespace
+
+void TrainConfig::validate(const std::string& what) const {
+  auto fail = [&](const std::string& p) { throw Error(what, p); };
+  if (mode != "radiance") fail("mode '" + mode + "' is not supported (expected radiance)");
+  if (iterations < 1) fail("iterations must be at least 1");
+  if (device != "auto" && device != "cpu" && device != "cuda") fail("device must be auto, cpu or cuda");
+  if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
+  if (resolution < 0) fail("resolution must be positive (or 0 for none)");
+  if (random_init_points < 1) fail("random_init_points must be at least 1");
+  if (!(random_init_box_ratio > 0)) fail("random_init_box_ratio must be positive");
+  if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
+  if (!(depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
+  if (!(depth_normal_median_ratio >= 0 && depth_normal_median_ratio <= 1))
+    fail("depth_normal_median_ratio must lie in [0, 1]");
+  if (sh_degree_interval < 1) fail("sh_degree_interval must be at least 1");
+  if (max_sh_degree < 0 || max_sh_degree > 3) fail("max_sh_degree must lie in 0..3");
+  if (densify.interval < 1) fail("densify_interval must be at least 1");
+  if (!(densify_until_fraction >= 0 && densify_until_fraction <= 1)) fail("densify_until_fraction must lie in [0, 1]");
+  if (densify.opacity_reset_interval < 1) fail("opacity_reset_interval must be at least 1");
+  if (densify.split_count < 1 || densify.split_count > 8) fail("split_count must lie in 1..8");
+  if (!(densify.min_opacity >= 0 && densify.min_opacity < 1)) fail("prune_min_opacity must lie in [0, 1)");
+  if (!(densify.reset_opacity > 0 && densify.reset_opacity < 1)) fail("reset_opacity must lie in (0, 1)");
+  if (filter_3d_interval < 1) fail("filter_3d_interval must be at least 1");
+  if (log_interval < 1) fail("log_interval must be at least 1");
+  if (checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
+  if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
+  for (float lr : {lr.position_init, lr.position_final, lr.sh_dc, lr.sh_rest, lr.opacity, lr.scale, lr.rotation,
+                   lr.materials, lr.region, lr.label})
+    if (!(lr >= 0)) fail("learning rates must be >= 0");
+}
+
+void to_json(nlohmann::json& j, const TrainConfig& c) {
+  j = nlohmann::json::object();
+  visit_fields(c, [&](const char* name, const auto& v) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, glm::vec3>)
+      j[name] = vec_json(v);
+    else
+      j[name] = v;
+  });
+}
+
+void from_json(const nlohmann::json& j, TrainConfig& c) {
+  if (!j.is_object()) throw Error("training configuration: expected a JSON object");
+  std::set<std::string> known;
+  visit_fields(c, [&](const char* name, auto& v) {
+    known.insert(name);
+    if (!j.contains(name)) return;
+    const nlohmann::json& x = j.at(name);
+    try {
+      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, glm::vec3>) {
+        if (!x.is_array() || x.size() != 3) throw Error("expected 3 numbers");
+        for (int k = 0; k < 3; ++k) v[k] = x.at(k).get<float>();
+      } else {
+        v = x.get<std::decay_t<decltype(v)>>();
+      }
+    } catch (const std::exception& e) {
+      throw Error(std::string("training configuration: key '") + name + "' has the wrong type (" + e.what() + ")");
+    }
+  });
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) throw Error("training configuration: unknown key '" + it.key() + "'");
+}
+
+}  // namespace goris

@@ -1,0 +1,73 @@
+#pragma once
+// Everything that defines a training run (DESIGN.md §4 and §6 numbers as defaults). Stored as config.json
+// in the run folder and inside every checkpoint, so a run can be resumed or repeated exactly.
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/train/densify.h"
+
+namespace goris {
+
+struct LearningRates {
+  float position_init = 1.6e-4f;  // x scene extent, decays exponentially to position_final
+  float position_final = 1.6e-6f;
+  int position_max_steps = 0;  // decay length; 0 = the whole run (short schedules still anneal)
+  float sh_dc = 2.5e-3f;
+  float sh_rest = 2.5e-3f / 20.0f;  // 1.25e-4
+  float opacity = 0.05f;
+  float scale = 5e-3f;
+  float rotation = 1e-3f;
+  float materials = 2.5e-3f;
+  float region = 5e-3f;
+  float label = 0.01f;
+};
+
+struct TrainConfig {
+  std::string mode = "radiance";  // "radiance": SH colour only (the stage-1 warm-up of DESIGN.md §6)
+  int iterations = 30000;
+  std::uint64_t seed = 0;
+  std::string device = "auto";  // auto | cpu | cuda
+
+  // Data.
+  std::string data;             // data set path (as given, made absolute)
+  float downscale = 1.0f;       // --downscale
+  int resolution = 0;           // --resolution: target width in pixels (0 = use downscale)
+  glm::vec3 background{0.0f};   // RGBA images composited on it; also the renderer's background
+
+  // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
+  int random_init_points = 100000;
+  float random_init_box_ratio = 0.33f;
+
+  // Optimisation.
+  LearningRates lr;
+  float lambda_ssim = 0.2f;            // colour loss (1 - l) L1 + l (1 - SSIM)
+  float depth_normal_weight = 0.05f;   // RaDe-GS depth-normal consistency ...
+  int depth_normal_from = 7000;        // ... from this iteration (0 weight = off)
+  float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
+  int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
+  int max_sh_degree = 3;
+  DensifySettings densify;
+  // Density control also stops at this fraction of the run (3DGS densifies until 15K of 30K), so that a
+  // shortened schedule ends with pure optimisation: see Trainer::densify_until.
+  float densify_until_fraction = 0.5f;
+  bool filter_3d = true;               // Mip-Splatting 3D filter
+  int filter_3d_interval = 100;        // recomputed this often after densification ends
+  bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
+
+  // Bookkeeping.
+  int log_interval = 100;         // log.csv line every this many iterations
+  int checkpoint_interval = 2000; // 0 = only at the end / on interruption
+  int keep_checkpoints = 2;       // older checkpoint files are deleted
+
+  // Throws goris::Error(what, problem) for a value outside its range.
+  void validate(const std::string& what) const;
+};
+
+void to_json(nlohmann::json& j, const TrainConfig& c);
+// Missing keys keep their defaults; unknown keys are errors (typos must not pass silently).
+void from_json(const nlohmann::json& j, TrainConfig& c);
+
+}  // namespace goris

@@ -1,0 +1,15 @@
+#pragma once
+// CUDA entry points of the training kernels (train_kernels_cuda.cu); declared for CUDA builds only.
+#include <cstddef>
+#include <cstdint>
+
+#include "core/train/adam_kernel.h"
+
+namespace goris::detail {
+void adam_step_cuda(float* p, float* m, float* v, const float* g, const kernels::AdamStep& s, size_t rows);
+void zero_columns_cuda(float* data, int width, int col_begin, int col_end, size_t rows);
+void densify_stats_add_cuda(const float* view_grad_norm, const std::int32_t* radii, float ndc_scale,
+                            float* grad_accum, float* denom, float* max_radii, size_t n);
+// Index of the first non-finite element, or n when all are finite.
+size_t first_non_finite_cuda(const float* data, size_t n);
+}  // namespace goris::detail

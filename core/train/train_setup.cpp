@@ -1,0 +1,79 @@
+#include "core/train/train_setup.h"
+
+#include "core/scene/gaussian_init.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+DatasetOptions dataset_options(const TrainConfig& config) {
+  DatasetOptions o;
+  o.background = config.background;
+  o.downscale = config.downscale;
+  o.target_width = config.resolution;
+  return o;
+}
+
+std::vector<float> to_planar_rgb(const Image& image) {
+  if (image.channels != 3) throw Error("to_planar_rgb: expected an RGB image, got " + std::to_string(image.channels) + " channels");
+  const std::vector<float> hwc = image.pixels.to_host();
+  const size_t hw = image.pixel_count();
+  std::vector<float> out(3 * hw);
+  for (size_t p = 0; p < hw; ++p)
+    for (int c = 0; c < 3; ++c) out[c * hw + p] = hwc[p * 3 + c];
+  return out;
+}
+
+Image from_planar(const float* planar, int channels, int width, int height) {
+  Image img(width, height, channels, Device::CPU);
+  const size_t hw = size_t(width) * size_t(height);
+  for (size_t p = 0; p < hw; ++p)
+    for (int c = 0; c < channels; ++c) img.pixels[p * channels + c] = planar[c * hw + p];
+  return img;
+}
+
+std::vector<TrainView> load_train_views(const std::vector<View>& views, const DatasetOptions& options,
+                                        const std::function<void(size_t, size_t)>& on_view) {
+  std::vector<TrainView> out;
+  out.reserve(views.size());
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (on_view) on_view(i, views.size());
+    const View& v = views[i];
+    if (v.camera.has_distortion())
+      throw Error(v.image.string(), "the camera has lens distortion, which the rasterizer does not model "
+                                    "(undistort the images first)");
+    const Image img = load_view_image(v, options, Device::CPU);
+    if (img.width != v.camera.width || img.height != v.camera.height)
+      throw Error(v.image.string(), "image size differs from its camera's");
+    out.push_back(TrainView{v.name, v.camera, to_planar_rgb(img)});
+  }
+  return out;
+}
+
+float scene_extent(const Dataset& dataset) {
+  const SceneBounds b = dataset.camera_bounds();
+  // A single camera (or coincident ones) has radius 0: fall back to its distance to the origin.
+  if (b.radius > 0) return b.radius;
+  const float d = glm::length(b.center);
+  return d > 0 ? d : 1.0f;
+}
+
+GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, Device device, std::string* how) {
+  if (!dataset.points.xyz.empty()) {
+    if (how) *how = std::to_string(dataset.points.size()) + " SfM points";
+    return init_from_points(dataset.points.xyz, dataset.points.rgb, device);
+  }
+  std::vector<Camera> cams;
+  for (const View& v : dataset.train) cams.push_back(v.camera);
+  const Box box = box_from_cameras(cams, config.random_init_box_ratio);
+  std::vector<glm::vec3> pts, cols;
+  random_points(box, size_t(config.random_init_points), config.seed, pts, cols);
+  if (how) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%d random points in the box [%.2f, %.2f] x [%.2f, %.2f] x [%.2f, %.2f]",
+                  config.random_init_points, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
+    *how = buf;
+  }
+  return init_from_points(pts, cols, device);
+}
+
+}  // namespace goris

@@ -1,0 +1,374 @@
+#include "core/train/trainer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+
+#include "core/compute/memory.h"
+#include "core/io/file_bytes.h"
+#include "core/scene/filter3d.h"
+#include "core/train/checkpoint.h"
+#include "core/train/depth_normal_loss.h"
+#include "core/train/finite_check.h"
+#include "core/train/image_losses.h"
+#include "core/train/lr_schedule.h"
+#include "core/train/param_groups.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+namespace {
+
+// A device image readable on the host: the image itself on the CPU, a downloaded copy otherwise.
+class HostView {
+ public:
+  HostView(const float* p, size_t n, Device d) {
+    if (d == Device::CPU) {
+      ptr_ = p;
+    } else {
+      copy_.resize(n);
+      device_copy(copy_.data(), Device::CPU, p, d, n * sizeof(float));
+      ptr_ = copy_.data();
+    }
+  }
+  const float* data() const { return ptr_; }
+
+ private:
+  std::vector<float> copy_;
+  const float* ptr_ = nullptr;
+};
+
+// A host gradient image as the rasterizer's backward pass reads it (uploaded for a CUDA forward pass).
+class DeviceGrad {
+ public:
+  DeviceGrad(const std::vector<float>& host, Device d) {
+    if (d == Device::CPU) {
+      ptr_ = host.data();
+    } else {
+      buf_ = Buffer<float>(host, d);
+      ptr_ = buf_.data();
+    }
+  }
+  const float* data() const { return ptr_; }
+
+ private:
+  Buffer<float> buf_;
+  const float* ptr_ = nullptr;
+};
+
+constexpr ParamGroup kRadianceGroups[] = {ParamGroup::Position, ParamGroup::Scale,   ParamGroup::Rotation,
+                                          ParamGroup::Opacity,  ParamGroup::ShDc,    ParamGroup::ShRest};
+
+std::string format_iteration_problem(int it, const std::string& what) {
+  return "iteration " + std::to_string(it) + ": " + what;
+}
+
+}  // namespace
+
+Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
+                 std::shared_ptr<DifferentiableRenderer> renderer, TrainerState state)
+    : config_(std::move(config)),
+      views_(std::move(views)),
+      extent_(extent),
+      renderer_(std::move(renderer)),
+      device_(renderer_ ? renderer_->device() : Device::CPU),
+      state_(std::move(state)) {
+  if (!renderer_) throw Error("training: no renderer");
+  config_.validate("training configuration");
+  if (views_.empty()) throw Error("training: no training views");
+  for (const TrainView& v : views_)
+    if (v.image.size() != size_t(3) * v.camera.width * v.camera.height)
+      throw Error(v.name, "training image size does not match its camera");
+  if (!(extent_ > 0) || !std::isfinite(extent_)) throw Error("training: the scene extent must be positive");
+  if (state_.model.device() != device_) throw Error("training: the model lives on another device");
+  if (state_.model.count() == 0) throw Error("training: the initial model has no Gaussians");
+  state_.model.max_sh_degree = config_.max_sh_degree;
+  for (const std::uint32_t v : state_.view_stack)
+    if (v >= views_.size()) throw Error("training: the saved view order refers to a view that does not exist");
+  if (state_.stats.grad_accum.size() != state_.model.count()) state_.stats.reset(state_.model.count(), device_);
+  if (config_.filter_3d && state_.model.filter3d_var.size() != state_.model.count())
+    compute_filter3d(state_.model, cameras());
+}
+
+TrainerState Trainer::initial_state(const TrainConfig& config, GaussianModel model) {
+  TrainerState s;
+  s.model = std::move(model);
+  s.model.sh_degree = 0;
+  s.model.max_sh_degree = config.max_sh_degree;
+  s.rng.seed(config.seed);
+  return s;
+}
+
+std::vector<Camera> Trainer::cameras() const {
+  std::vector<Camera> c;
+  c.reserve(views_.size());
+  for (const TrainView& v : views_) c.push_back(v.camera);
+  return c;
+}
+
+StepStats Trainer::step() {
+  if (finished()) throw Error("training: step() called after the last iteration");
+  const int it = state_.iteration + 1;
+  GaussianModel& m = state_.model;
+  StepStats out;
+
+  if (it % config_.sh_degree_interval == 0) m.sh_degree = std::min(m.sh_degree + 1, m.max_sh_degree);
+
+  // The next view of a random permutation of all views (a new one each epoch).
+  if (state_.view_stack.empty()) {
+    state_.view_stack.resize(views_.size());
+    for (size_t i = 0; i < views_.size(); ++i) state_.view_stack[i] = std::uint32_t(i);
+    std::shuffle(state_.view_stack.begin(), state_.view_stack.end(), state_.rng);
+  }
+  const TrainView& view = views_[state_.view_stack.back()];
+  state_.view_stack.pop_back();
+  const Camera& cam = view.camera;
+  const int w = cam.width, h = cam.height;
+  const size_t hw = size_t(w) * size_t(h);
+
+  // Forward.
+  const GaussianView gv = m.view(false);
+  const RenderedImages fwd = renderer_->forward(gv, cam);
+  if (fwd.width != w || fwd.height != h) throw Error("training: the renderer returned an image of another size");
+
+  // Losses and their gradients on the host.
+  const HostView color(fwd.color, 3 * hw, device_);
+  std::vector<float> g_color(3 * hw, 0.0f);
+  const ColorLossParts cl = color_loss<float>(color.data(), view.image.data(), 3, w, h, g_color.data(), config_.lambda_ssim);
+  out.l1 = cl.l1;
+  out.ssim = cl.ssim;
+  out.loss = cl.total;
+  out.psnr = psnr_from_mse(mse<float>(color.data(), view.image.data(), 3 * hw));
+
+  std::vector<float> g_depth, g_alpha, g_median, g_normal;
+  const bool use_dn = config_.depth_normal_weight > 0 && it > config_.depth_normal_from;
+  if (use_dn) {
+    const HostView depth(fwd.depth, hw, device_), alpha(fwd.alpha, hw, device_),
+        median(fwd.median_depth, hw, device_), normal(fwd.normal, 3 * hw, device_);
+    g_depth.assign(hw, 0.0f);
+    g_alpha.assign(hw, 0.0f);
+    g_median.assign(hw, 0.0f);
+    g_normal.assign(3 * hw, 0.0f);
+    out.depth_normal = rendered_depth_normal_loss<float>(
+        depth.data(), alpha.data(), median.data(), normal.data(), w, h, cam.fx, cam.fy, cam.cx, cam.cy,
+        config_.depth_normal_median_ratio, g_depth.data(), g_alpha.data(), g_median.data(), g_normal.data(),
+        config_.depth_normal_weight);
+    out.loss += config_.depth_normal_weight * out.depth_normal;
+  }
+  if (!std::isfinite(out.loss))
+    throw Error(format_iteration_problem(it, "the loss is not finite (" + std::to_string(out.loss) + ") on view " +
+                                                 view.name + "; stopping, the checkpoints on disk are intact"));
+
+  // Backward.
+  m.zero_grad();
+  if (view_grad_norm_.size() != m.count() || view_grad_norm_.device() != device_)
+    view_grad_norm_ = Buffer<float>(m.count(), device_);
+  view_grad_norm_.fill_zero();
+  GaussianGradView gg = m.grad_view(false);
+  gg.mean2d_grad_norm = view_grad_norm_.data();
+  const DeviceGrad dg_color(g_color, device_);
+  ImageGradients go;
+  go.color = dg_color.data();
+  std::optional<DeviceGrad> dg_depth, dg_alpha, dg_median, dg_normal;
+  if (use_dn) {
+    dg_depth.emplace(g_depth, device_);
+    dg_alpha.emplace(g_alpha, device_);
+    dg_median.emplace(g_median, device_);
+    dg_normal.emplace(g_normal, device_);
+    go.depth = dg_depth->data();
+    go.alpha = dg_alpha->data();
+    go.median_depth = dg_median->data();
+    go.normal = dg_normal->data();
+  }
+  renderer_->backward(gv, go, gg);
+  if (it <= densify_until())
+    state_.stats.add_view(view_grad_norm_.data(), fwd.radii, ndc_gradient_scale(w, h), m.count(), device_);
+  check_finite_gradients();
+
+  // Adam.
+  const int decay_steps = config_.lr.position_max_steps > 0 ? config_.lr.position_max_steps : config_.iterations;
+  for (ParamGroup g : kRadianceGroups) {
+    float lr = 0;
+    switch (g) {
+      case ParamGroup::Position:
+        lr = exponential_lr(it, config_.lr.position_init * extent_, config_.lr.position_final * extent_, decay_steps);
+        break;
+      case ParamGroup::Scale: lr = config_.lr.scale; break;
+      case ParamGroup::Rotation: lr = config_.lr.rotation; break;
+      case ParamGroup::Opacity: lr = config_.lr.opacity; break;
+      case ParamGroup::ShDc: lr = config_.lr.sh_dc; break;
+      case ParamGroup::ShRest: lr = config_.lr.sh_rest; break;
+      default: break;
+    }
+    state_.adam.step(m, g, lr, g == ParamGroup::ShRest ? 3 * (m.sh_degree + 1) * (m.sh_degree + 1) : 0);
+  }
+  check_finite_parameters();
+
+  // Density control and the 3D filter. An opacity reset only happens when a pruning step follows it inside
+  // the window (otherwise the Gaussians it silenced would never be removed, only dimmed).
+  const DensifySettings& ds = config_.densify;
+  const int until = densify_until();
+  if (it <= until) {
+    if (it >= ds.from_iter && it % ds.interval == 0) {
+      out.densify = densify_and_prune(m, state_.stats, ds, extent_, it > ds.opacity_reset_interval,
+                                      config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it));
+      if (m.count() == 0)
+        throw Error(format_iteration_problem(
+            it, "pruning removed every Gaussian (opacities below " + std::to_string(ds.min_opacity) +
+                    "); stopping, the checkpoints on disk are intact"));
+      state_.stats.reset(m.count(), device_);
+      if (config_.filter_3d) compute_filter3d(m, cameras());
+    }
+    if (it % ds.opacity_reset_interval == 0 && it + ds.interval <= until) reset_opacity(m, ds.reset_opacity);
+  } else if (config_.filter_3d && it % config_.filter_3d_interval == 0 &&
+             it < config_.iterations - config_.filter_3d_interval) {
+    compute_filter3d(m, cameras());
+  }
+
+  // Smoothed over about the last 20 iterations (views differ a lot in difficulty).
+  state_.ema_loss = state_.iteration == 0 ? out.loss : 0.05 * out.loss + 0.95 * state_.ema_loss;
+  const double psnr = std::min(out.psnr, 99.0);
+  state_.ema_psnr = state_.iteration == 0 ? psnr : 0.05 * psnr + 0.95 * state_.ema_psnr;
+  state_.iteration = it;
+  return out;
+}
+
+void Trainer::check_finite_gradients() const {
+  const GaussianModel& m = state_.model;
+  for (ParamGroup g : kRadianceGroups) {
+    const GroupSpan span = group_span(g);
+    const ParamTensor& t = m.tensor(span.param);
+    const size_t bad = first_non_finite(t.grad.data(), t.grad.size(), device_);
+    if (bad == t.grad.size()) continue;
+    const size_t col = bad % size_t(t.width);
+    if (int(col) < span.col_begin || int(col) >= span.col_end) continue;  // another group of the tensor
+    throw Error(format_iteration_problem(
+        state_.iteration + 1, std::string("non-finite gradient in parameter group '") + group_name(g) +
+                                  "' (Gaussian " + std::to_string(bad / t.width) +
+                                  "); stopping, the checkpoints on disk are intact"));
+  }
+}
+
+void Trainer::check_finite_parameters() const {
+  const GaussianModel& m = state_.model;
+  for (ParamGroup g : kRadianceGroups) {
+    const GroupSpan span = group_span(g);
+    const ParamTensor& t = m.tensor(span.param);
+    const size_t bad = first_non_finite(t.value.data(), t.value.size(), device_);
+    if (bad == t.value.size()) continue;
+    const size_t col = bad % size_t(t.width);
+    if (int(col) < span.col_begin || int(col) >= span.col_end) continue;
+    throw Error(format_iteration_problem(
+        state_.iteration + 1, std::string("parameter group '") + group_name(g) + "' became non-finite (Gaussian " +
+                                  std::to_string(bad / t.width) + "); stopping, the checkpoints on disk are intact"));
+  }
+}
+
+int Trainer::densify_until() const {
+  return std::min(config_.densify.until_iter, int(double(config_.densify_until_fraction) * config_.iterations));
+}
+
+TrainProgress Trainer::progress(double it_per_s) const {
+  TrainProgress p;
+  p.iteration = state_.iteration;
+  p.total = config_.iterations;
+  p.loss = state_.ema_loss;
+  p.psnr = state_.ema_psnr;
+  p.gaussians = state_.model.count();
+  p.it_per_s = it_per_s;
+  p.eta_s = it_per_s > 0 ? double(config_.iterations - state_.iteration) / it_per_s : 0;
+  p.elapsed_s = state_.elapsed_s;
+  return p;
+}
+
+void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(path, config_, state_); }
+
+namespace {
+
+// log.csv: one line per log interval; on resume, lines past the checkpoint's iteration are dropped so the
+// log never repeats iterations.
+class CsvLog {
+ public:
+  static constexpr const char* kHeader = "iteration,loss,psnr,gaussians,elapsed_s,it_per_s";
+
+  CsvLog(const std::filesystem::path& path, int resume_iteration) : path_(path) {
+    std::vector<std::string> keep;
+    if (std::filesystem::exists(path)) {
+      std::ifstream in(path);
+      std::string line;
+      while (std::getline(in, line)) {
+        if (line.empty() || line == kHeader) continue;
+        if (std::atoi(line.c_str()) <= resume_iteration) keep.push_back(line);
+      }
+    }
+    std::string text = std::string(kHeader) + "\n";
+    for (const auto& l : keep) text += l + "\n";
+    write_file_bytes(path, text.data(), text.size());
+    out_.open(path, std::ios::app);
+    if (!out_) throw Error(path.string(), "cannot append to the training log");
+  }
+  void add(int it, double loss, double psnr, size_t gaussians, double elapsed, double it_per_s) {
+    char line[256];
+    std::snprintf(line, sizeof line, "%d,%.6f,%.4f,%zu,%.3f,%.3f\n", it, loss, psnr, gaussians, elapsed, it_per_s);
+    out_ << line;
+    out_.flush();
+  }
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+};
+
+}  // namespace
+
+Trainer::RunResult Trainer::run(const RunOptions& o) {
+  using clock = std::chrono::steady_clock;
+  std::optional<CsvLog> log;
+  if (!o.run_dir.empty()) {
+    std::filesystem::create_directories(o.run_dir / "checkpoints");
+    log.emplace(o.run_dir / "log.csv", state_.iteration);
+  }
+  auto checkpoint = [&] {
+    if (o.run_dir.empty()) return;
+    save_checkpoint(checkpoint_path(o.run_dir, state_.iteration));
+    remove_old_checkpoints(o.run_dir, config_.keep_checkpoints);
+  };
+  // Interval means for the log; a smoothed iteration time (about the last 50 iterations) for the rate.
+  double sum_loss = 0, sum_psnr = 0;
+  int n_sum = 0;
+  double ema_dt = 0, it_per_s = 0;
+  auto last = clock::now();
+
+  while (!finished()) {
+    if (o.stop && o.stop->load()) {
+      checkpoint();
+      if (o.on_progress) o.on_progress(progress(it_per_s));
+      return RunResult::Stopped;
+    }
+    const StepStats s = step();
+    const auto now = clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    state_.elapsed_s += dt;
+    ema_dt = ema_dt == 0 ? dt : 0.98 * ema_dt + 0.02 * dt;
+    it_per_s = ema_dt > 0 ? 1.0 / ema_dt : 0;
+    sum_loss += s.loss;
+    sum_psnr += std::min(s.psnr, 99.0);
+    ++n_sum;
+    const int it = state_.iteration;
+    if (log && (it % config_.log_interval == 0 || finished())) {
+      log->add(it, sum_loss / n_sum, sum_psnr / n_sum, state_.model.count(), state_.elapsed_s, it_per_s);
+      sum_loss = sum_psnr = 0;
+      n_sum = 0;
+    }
+    if (config_.checkpoint_interval > 0 && it % config_.checkpoint_interval == 0 && !finished()) checkpoint();
+    if (o.on_progress && (it % std::max(o.progress_every, 1) == 0 || finished())) o.on_progress(progress(it_per_s));
+  }
+  checkpoint();
+  return RunResult::Finished;
+}
+
+}  // namespace goris

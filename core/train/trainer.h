@@ -1,0 +1,111 @@
+#pragma once
+// The training loop (stage 1, radiance mode: DESIGN.md §6), usable from the CLI and from a GUI thread:
+// step() runs one iteration; run() loops with periodic checkpoints, a CSV log and a progress callback, and
+// stops cleanly (checkpoint written) when a stop flag is raised. A NaN/Inf loss, gradient or parameter
+// throws goris::Error naming the iteration and the parameter group; the checkpoints on disk stay intact.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/io/camera.h"
+#include "core/scene/gaussians.h"
+#include "core/train/adam.h"
+#include "core/train/densify.h"
+#include "core/train/differentiable_renderer.h"
+#include "core/train/train_config.h"
+
+namespace goris {
+
+// One training image with its camera, the image as planar RGB [3][H][W] on the host, at camera's size.
+struct TrainView {
+  std::string name;
+  Camera camera;
+  std::vector<float> image;
+};
+
+// Everything that changes while training; a checkpoint stores exactly this (and the config).
+struct TrainerState {
+  int iteration = 0;  // iterations completed
+  GaussianModel model;
+  GaussianAdam adam;
+  DensifyStats stats;
+  std::mt19937_64 rng;                   // view order
+  std::vector<std::uint32_t> view_stack; // views left in this epoch (taken from the back)
+  double ema_loss = 0, ema_psnr = 0;     // training loss / PSNR smoothed over ~20 iterations, for display
+  double elapsed_s = 0;                  // training time so far, over all sessions
+};
+
+struct TrainProgress {
+  int iteration = 0, total = 0;
+  double loss = 0, psnr = 0;  // smoothed over recent iterations
+  size_t gaussians = 0;
+  double it_per_s = 0, eta_s = 0, elapsed_s = 0;
+};
+
+struct StepStats {
+  double loss = 0, l1 = 0, ssim = 0, depth_normal = 0, psnr = 0;
+  DensifyCounts densify;  // after == 0 when this step did not densify
+};
+
+class Trainer {
+ public:
+  // `extent`: the scene's size (3DGS camera extent radius): scales the position learning rate, the
+  // clone/split limit and world-space pruning. The model in `state` must live on the renderer's device.
+  Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
+          std::shared_ptr<DifferentiableRenderer> renderer, TrainerState state);
+
+  // A fresh state: the model from initial points (SfM or random; see core/scene/gaussian_init.h), RNG
+  // seeded from config.seed.
+  static TrainerState initial_state(const TrainConfig& config, GaussianModel model);
+
+  // One iteration. Returns the losses of this step.
+  StepStats step();
+  bool finished() const { return state_.iteration >= config_.iterations; }
+
+  enum class RunResult { Finished, Stopped };
+  struct RunOptions {
+    std::filesystem::path run_dir;                 // checkpoints/ and log.csv; empty = neither
+    const std::atomic<bool>* stop = nullptr;       // raised (e.g. by SIGINT): finish the step, checkpoint, return
+    std::function<void(const TrainProgress&)> on_progress;  // called every progress_every iterations and at the end
+    int progress_every = 10;
+  };
+  // Steps until config.iterations or until *stop. Writes a checkpoint every config.checkpoint_interval
+  // iterations, at the end and when stopped; appends to run_dir/log.csv every config.log_interval.
+  RunResult run(const RunOptions& options);
+
+  // Checkpoint file for the current state, written to a temporary file then renamed.
+  void save_checkpoint(const std::filesystem::path& path) const;
+
+  const TrainConfig& config() const { return config_; }
+  TrainerState& state() { return state_; }
+  const TrainerState& state() const { return state_; }
+  GaussianModel& model() { return state_.model; }
+  Device device() const { return device_; }
+  float extent() const { return extent_; }
+  const std::vector<TrainView>& views() const { return views_; }
+  TrainProgress progress(double it_per_s) const;
+  // Last iteration of adaptive density control: densify.until_iter, but at most densify_until_fraction of
+  // the run, so that a shortened schedule keeps 3DGS's proportion (densify until 15K of 30K) and ends with
+  // a stretch of pure optimisation instead of adding untrained Gaussians at the very end.
+  int densify_until() const;
+
+ private:
+  void check_finite_gradients() const;
+  void check_finite_parameters() const;
+  std::vector<Camera> cameras() const;
+
+  TrainConfig config_;
+  std::vector<TrainView> views_;
+  float extent_;
+  std::shared_ptr<DifferentiableRenderer> renderer_;
+  Device device_;
+  TrainerState state_;
+  Buffer<float> view_grad_norm_;  // per-view |dL/dmean2d| scratch for the densification statistic
+};
+
+}  // namespace goris

@@ -1,0 +1,26 @@
+#pragma once
+// The tile rasterizer (render/raster/rasterizer.h) behind the trainer's DifferentiableRenderer interface.
+#include "core/train/differentiable_renderer.h"
+#include "core/train/train_config.h"
+#include "render/raster/rasterizer.h"
+
+namespace goris {
+
+class RasterRenderer final : public DifferentiableRenderer {
+ public:
+  RasterRenderer(const RasterSettings& settings, Device device) : settings_(settings), device_(device) {}
+  // Settings of a training configuration: Mip-Splatting's 2D filter (or 3DGS's dilation), its background.
+  static RasterSettings settings_for(const TrainConfig& config);
+  Device device() const override { return device_; }
+  RenderedImages forward(const GaussianView& gaussians, const Camera& camera) override;
+  void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) override;
+  // The last forward pass (G-buffer and state), e.g. for the extra channels.
+  const RasterOutput& last() const { return last_; }
+
+ private:
+  RasterSettings settings_;
+  Device device_;
+  RasterOutput last_;
+};
+
+}  // namespace goris

@@ -1,0 +1,377 @@
+// The training loop end to end on a tiny synthetic scene rendered by the engine itself (no ../shared):
+// re-fitting from a perturbed start (gradients and optimiser work together), bit-exact resume from a
+// checkpoint, clean stops, NaN detection naming the parameter group, and bad checkpoint files.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/ply.h"
+#include "core/train/checkpoint.h"
+#include "core/train/image_losses.h"
+#include "core/train/trainer.h"
+#include "core/util/error.h"
+#include "render/train/raster_renderer.h"
+#include "tests/support/test_support.h"
+
+using namespace goris;
+
+namespace {
+
+Camera look_at(glm::vec3 eye, int size, float fov_deg) {
+  Camera c;
+  c.width = c.height = size;
+  c.fx = c.fy = 0.5f * size / std::tan(glm::radians(fov_deg) * 0.5f);
+  c.cx = c.cy = 0.5f * size;
+  const glm::vec3 z = glm::normalize(-eye);
+  const glm::vec3 x = glm::normalize(glm::cross(z, glm::vec3(0, 0, 1)));
+  const glm::vec3 y = glm::cross(z, x);
+  glm::mat3 R;
+  for (int k = 0; k < 3; ++k) {
+    R[k][0] = x[k];
+    R[k][1] = y[k];
+    R[k][2] = z[k];
+  }
+  c.R = R;
+  c.t = -(R * eye);
+  return c;
+}
+
+// A few dozen coloured Gaussians around the origin (SH degree 0).
+GaussianModel ground_truth_scene(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1);
+  GaussianModel m(Device::CPU);
+  m.allocate(size_t(n));
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      m.values(Param::Position)[i * 3 + a] = 0.8f * u(rng);
+      m.values(Param::LogScale)[i * 3 + a] = std::log(0.12f + 0.06f * u(rng));
+    }
+    float* q = m.values(Param::Rotation) + i * 4;
+    for (int k = 0; k < 4; ++k) q[k] = u(rng);
+    q[0] += 2.0f;
+    m.values(Param::OpacityLogit)[i] = 1.0f + u(rng);
+    float* sh = m.values(Param::Sh) + i * 48;
+    std::fill(sh, sh + 48, 0.0f);
+    for (int c = 0; c < 3; ++c) sh[c] = 1.5f * u(rng);
+    for (int k = 0; k < extra::kCount; ++k) m.values(Param::ExtraLogit)[i * extra::kCount + k] = 0.0f;
+  }
+  m.sh_degree = 0;
+  m.max_sh_degree = 0;
+  return m;
+}
+
+TrainConfig refit_config(int iterations) {
+  TrainConfig c;
+  c.iterations = iterations;
+  c.device = "cpu";
+  c.max_sh_degree = 0;
+  c.densify.from_iter = 1 << 30;  // pure optimisation: no densification, no opacity reset
+  c.densify.until_iter = 0;
+  c.densify.opacity_reset_interval = 1 << 30;
+  c.filter_3d = false;
+  c.depth_normal_weight = 0;
+  c.log_interval = 50;
+  c.checkpoint_interval = 0;
+  return c;
+}
+
+struct Scene {
+  std::vector<TrainView> views;
+  std::shared_ptr<RasterRenderer> renderer;
+};
+
+Scene make_scene(const TrainConfig& config, int size = 48) {
+  Scene s;
+  s.renderer = std::make_shared<RasterRenderer>(RasterRenderer::settings_for(config), Device::CPU);
+  GaussianModel gt = ground_truth_scene(40, 11);
+  const glm::vec3 eyes[4] = {{4, 0.5f, 1}, {-0.5f, 4, 1.5f}, {-4, -0.5f, 0.5f}, {0.3f, -4, 2}};
+  for (int k = 0; k < 4; ++k) {
+    TrainView v;
+    v.name = "view" + std::to_string(k);
+    v.camera = look_at(eyes[k], size, 50);
+    const RenderedImages r = s.renderer->forward(gt.view(false), v.camera);
+    v.image.assign(r.color, r.color + 3 * size * size);
+    s.views.push_back(std::move(v));
+  }
+  return s;
+}
+
+GaussianModel perturbed(std::uint64_t seed) {
+  GaussianModel m = ground_truth_scene(40, 11);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> n(0, 1);
+  for (size_t i = 0; i < m.count(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      m.values(Param::Position)[i * 3 + a] += 0.08f * n(rng);
+      m.values(Param::LogScale)[i * 3 + a] += 0.3f * n(rng);
+      m.values(Param::Sh)[i * 48 + a] += 0.6f * n(rng);
+    }
+    m.values(Param::OpacityLogit)[i] += 1.0f * n(rng);
+  }
+  return m;
+}
+
+double mean_psnr(Trainer& t) {
+  double sum = 0;
+  for (const TrainView& v : t.views()) {
+    auto r = std::make_shared<RasterRenderer>(RasterRenderer::settings_for(t.config()), Device::CPU);
+    const RenderedImages img = r->forward(t.model().view(false), v.camera);
+    sum += psnr_from_mse(mse<float>(img.color, v.image.data(), v.image.size()));
+  }
+  return sum / double(t.views().size());
+}
+
+std::vector<float> all_values(const GaussianModel& m) {
+  std::vector<float> out;
+  for (int p = 0; p < kParamCount; ++p) {
+    for (const Buffer<float>* b : {&m.tensor(Param(p)).value, &m.tensor(Param(p)).adam_m, &m.tensor(Param(p)).adam_v}) {
+      const auto h = b->to_host();
+      out.insert(out.end(), h.begin(), h.end());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(Trainer, RefitsAPerturbedSceneTo35Db) {
+  const TrainConfig config = refit_config(1500);
+  Scene s = make_scene(config);
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(5)));
+  const double before = mean_psnr(t);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!t.finished()) t.step();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double after = mean_psnr(t);
+  std::printf("re-fit: %zu Gaussians, 4 views 48x48, %d iterations in %.2f s: PSNR %.2f -> %.2f dB\n",
+              t.model().count(), config.iterations, secs, before, after);
+  EXPECT_LT(before, 25.0) << "the perturbation should be visible";
+  EXPECT_GE(after, 35.0);
+}
+
+TEST(Trainer, ResumeFromCheckpointIsBitExact) {
+  TrainConfig config = refit_config(80);
+  // Densification and opacity resets inside the run, so their state is part of what must survive.
+  config.densify.from_iter = 10;
+  config.densify.interval = 10;
+  config.densify.until_iter = 40;
+  config.densify.opacity_reset_interval = 20;
+  config.densify.min_opacity = 0.005f;  // reset Gaussians have 10 iterations to recover
+  config.densify.grad_threshold = 1e-5f;
+  config.max_sh_degree = 2;
+  config.sh_degree_interval = 25;
+  config.filter_3d = true;
+  Scene s = make_scene(config, 32);
+  Trainer straight(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(6)));
+  while (!straight.finished()) straight.step();
+
+  Trainer first(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(6)));
+  for (int i = 0; i < 35; ++i) first.step();
+  const auto dir = test::scratch_dir("trainer_resume");
+  first.save_checkpoint(dir / "a.ckpt");
+  Checkpoint ck = read_checkpoint(dir / "a.ckpt", Device::CPU);
+  EXPECT_EQ(ck.state.iteration, 35);
+  EXPECT_EQ(all_values(ck.state.model), all_values(first.model())) << "write/read round trip";
+  EXPECT_EQ(ck.state.view_stack, first.state().view_stack);
+  Trainer resumed(ck.config, s.views, 4.0f, s.renderer, std::move(ck.state));
+  while (!resumed.finished()) resumed.step();
+
+  ASSERT_EQ(resumed.model().count(), straight.model().count());
+  EXPECT_GT(straight.model().count(), 40u) << "densification should have added Gaussians";
+  EXPECT_EQ(resumed.model().sh_degree, 2);
+  EXPECT_EQ(all_values(resumed.model()), all_values(straight.model()));
+  EXPECT_EQ(resumed.model().filter3d_var.to_host(), straight.model().filter3d_var.to_host());
+  EXPECT_EQ(resumed.state().adam.steps, straight.state().adam.steps);
+}
+
+TEST(Trainer, StopFlagWritesACheckpointAndLog) {
+  TrainConfig config = refit_config(1000);
+  config.log_interval = 5;
+  Scene s = make_scene(config, 32);
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(7)));
+  std::atomic<bool> stop{false};
+  const auto dir = test::scratch_dir("trainer_stop");
+  Trainer::RunOptions o;
+  o.run_dir = dir;
+  o.stop = &stop;
+  int calls = 0;
+  o.progress_every = 1;
+  o.on_progress = [&](const TrainProgress& p) {
+    ++calls;
+    EXPECT_EQ(p.total, 1000);
+    EXPECT_EQ(p.gaussians, 40u);
+    if (p.iteration == 12) stop = true;
+  };
+  EXPECT_EQ(t.run(o), Trainer::RunResult::Stopped);
+  EXPECT_EQ(t.state().iteration, 12);
+  const auto latest = latest_checkpoint(dir);
+  ASSERT_TRUE(latest.has_value());
+  EXPECT_EQ(latest->filename().string(), "iter_00000012.ckpt");
+  EXPECT_EQ(read_checkpoint(*latest, Device::CPU).state.iteration, 12);
+  std::ifstream log(dir / "log.csv");
+  std::string header, line, last;
+  std::getline(log, header);
+  EXPECT_EQ(header, "iteration,loss,psnr,gaussians,elapsed_s,it_per_s");
+  int lines = 0;
+  while (std::getline(log, line)) {
+    ++lines;
+    last = line;
+  }
+  EXPECT_EQ(lines, 2);  // iterations 5 and 10
+  EXPECT_EQ(last.rfind("10,", 0), 0u);
+  EXPECT_GE(calls, 12);
+}
+
+TEST(Trainer, NonFiniteParameterNamesItsGroup) {
+  const TrainConfig config = refit_config(10);
+  Scene s = make_scene(config, 32);
+  GaussianModel m = perturbed(8);
+  // Behind every camera (culled), so only the parameter check can see it.
+  m.values(Param::Position)[0] = 0;
+  m.values(Param::Position)[1] = 0;
+  m.values(Param::Position)[2] = 200;
+  m.values(Param::LogScale)[3 * 0 + 1] = NAN;
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, std::move(m)));
+  try {
+    t.step();
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("iteration 1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'scale'"), std::string::npos) << msg;
+  }
+}
+
+TEST(Checkpoint, BadFilesAreRejectedWithTheirName) {
+  const auto dir = test::scratch_dir("trainer_bad_ckpt");
+  EXPECT_THROW(read_checkpoint(dir / "missing.ckpt", Device::CPU), Error);
+  {
+    std::ofstream f(dir / "foreign.ckpt", std::ios::binary);
+    f << "hello, this is not a checkpoint at all";
+  }
+  try {
+    read_checkpoint(dir / "foreign.ckpt", Device::CPU);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("foreign.ckpt"), std::string::npos);
+  }
+  const TrainConfig config = refit_config(3);
+  TrainerState st = Trainer::initial_state(config, perturbed(9));
+  write_checkpoint(dir / "good.ckpt", config, st);
+  std::string bytes;
+  {
+    std::ifstream f(dir / "good.ckpt", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  bytes[bytes.size() / 2] ^= 0x40;
+  {
+    std::ofstream f(dir / "flipped.ckpt", std::ios::binary);
+    f.write(bytes.data(), std::streamsize(bytes.size()));
+  }
+  EXPECT_THROW(read_checkpoint(dir / "flipped.ckpt", Device::CPU), Error);
+  {
+    std::ofstream f(dir / "short.ckpt", std::ios::binary);
+    f.write(bytes.data(), std::streamsize(bytes.size() / 3));
+  }
+  EXPECT_THROW(read_checkpoint(dir / "short.ckpt", Device::CPU), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir / "good.ckpt.tmp"));
+  EXPECT_NO_THROW(read_checkpoint(dir / "good.ckpt", Device::CPU));
+}
+
+TEST(TrainConfig, JsonRoundTripAndValidation) {
+  TrainConfig c;
+  c.iterations = 1234;
+  c.background = glm::vec3(1, 0.5f, 0);
+  c.densify.grad_threshold = 3e-4f;
+  c.lr.label = 0.5f;
+  const nlohmann::json j = c;
+  TrainConfig back;
+  from_json(j, back);
+  EXPECT_EQ(nlohmann::json(back), j);
+  EXPECT_EQ(back.background, c.background);
+  nlohmann::json bad = j;
+  bad["iteratoins"] = 5;
+  EXPECT_THROW(from_json(bad, back), Error);
+  bad = j;
+  bad["iterations"] = "many";
+  EXPECT_THROW(from_json(bad, back), Error);
+  TrainConfig invalid;
+  invalid.mode = "intrinsic-but-not-yet";
+  EXPECT_THROW(invalid.validate("cfg"), Error);
+  invalid = TrainConfig{};
+  invalid.downscale = 0.5f;
+  EXPECT_THROW(invalid.validate("cfg"), Error);
+  EXPECT_NO_THROW(TrainConfig{}.validate("cfg"));
+}
+
+TEST(PlyExport, BakedThreeDFilterRendersLikeTheFilteredModel) {
+  // Viewers without Mip-Splatting's 3D filter must see what the engine renders with it.
+  TrainConfig config = refit_config(1);
+  Scene s = make_scene(config, 40);
+  GaussianModel m = ground_truth_scene(40, 11);
+  std::vector<Camera> cams;
+  for (const TrainView& v : s.views) cams.push_back(v.camera);
+  // A strong filter (as from low-resolution cameras) so the difference is visible if baking were wrong.
+  m.filter3d_var = Buffer<float>(std::vector<float>(m.count(), 0.01f), Device::CPU);
+  GaussianModel baked = GaussianModel::from_ply(m.to_ply(true), Device::CPU);
+  GaussianModel unbaked = GaussianModel::from_ply(m.to_ply(false), Device::CPU);
+  EXPECT_EQ(baked.filter3d_var.size(), 0u);
+  const Camera& cam = s.views[0].camera;
+  const RenderedImages a = s.renderer->forward(m.view(false), cam);
+  const std::vector<float> with_filter(a.color, a.color + 3 * 40 * 40);
+  const RenderedImages b = s.renderer->forward(baked.view(false), cam);
+  const std::vector<float> from_baked(b.color, b.color + 3 * 40 * 40);
+  const RenderedImages c = s.renderer->forward(unbaked.view(false), cam);
+  const std::vector<float> from_unbaked(c.color, c.color + 3 * 40 * 40);
+  EXPECT_GT(psnr_from_mse(mse<float>(from_baked.data(), with_filter.data(), with_filter.size())), 60.0);
+  EXPECT_LT(psnr_from_mse(mse<float>(from_unbaked.data(), with_filter.data(), with_filter.size())), 40.0);
+}
+
+TEST(Trainer, DepthNormalConsistencyTrainsWithoutHarm) {
+  // The RaDe-GS regulariser switched on from the start: finite, positive, and the re-fit still converges.
+  TrainConfig config = refit_config(400);
+  config.depth_normal_from = 0;
+  config.depth_normal_weight = 0.05f;
+  Scene s = make_scene(config, 32);
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(10)));
+  double first = 0, last = 0;
+  while (!t.finished()) {
+    const StepStats st = t.step();
+    ASSERT_TRUE(std::isfinite(st.depth_normal));
+    if (t.state().iteration <= 4) first += st.depth_normal;
+    if (t.state().iteration > 396) last += st.depth_normal;
+  }
+  EXPECT_GT(first, 0.0);
+  EXPECT_LT(last, first) << "the consistency term should not grow while training";
+  EXPECT_GT(mean_psnr(t), 30.0);
+}
+
+TEST(Trainer, DensificationScheduleFitsShortRuns) {
+  // until_iter beyond the run: density control stops at half the run, and a reset only happens when a
+  // pruning step follows it inside that window.
+  TrainConfig config = refit_config(100);
+  config.densify.from_iter = 10;
+  config.densify.interval = 10;
+  config.densify.until_iter = 1000;
+  config.densify.opacity_reset_interval = 30;
+  config.densify.min_opacity = 0.005f;
+  Scene s = make_scene(config, 24);
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(11)));
+  EXPECT_EQ(t.densify_until(), 50);
+  std::vector<int> densified;
+  while (!t.finished()) {
+    const StepStats st = t.step();
+    if (st.densify.before > 0) densified.push_back(t.state().iteration);
+    const float* op = t.model().values(Param::OpacityLogit);
+    const float max_logit = *std::max_element(op, op + t.model().count());
+    if (t.state().iteration == 30) EXPECT_LE(max_logit, std::log(0.01f / 0.99f) + 1e-5f) << "reset at 30";
+    if (t.state().iteration == 60) EXPECT_GT(max_logit, std::log(0.01f / 0.99f) + 0.1f) << "no reset at 60";
+  }
+  EXPECT_EQ(densified, (std::vector<int>{10, 20, 30, 40, 50}));
+}
