@@ -1,8 +1,8 @@
 # A short `goris train` on lego at 32x32, then resume, render --maps and eval; Ctrl-C leaves a checkpoint
 # and the message how to resume. Skipped when ../shared/datasets/lego is absent.
 if(NOT EXISTS "${SHARED}/datasets/lego")
-  message(STATUS "../shared/datasets/lego absent: skipped")
-  cmake_language(EXIT 77)
+  message("GORIS_TEST_SKIPPED: ../shared/datasets/lego is absent")
+  return()
 endif()
 file(REMOVE_RECURSE "${WORK}")
 get_filename_component(DATA "${SHARED}/datasets/lego" REALPATH)

@@ -42,7 +42,6 @@ TEST(SynthRender, TinyGlossyTable) {
   job.options.seed = 3;
   job.script = goris::test::resource_dir() / "synth" / "render_scene.py";
   job.out = out;
-  job.contact_sheet = true;
   int frames = 0;
   job.on_frame = [&](int done, int total) {
     ++frames;
@@ -53,14 +52,9 @@ TEST(SynthRender, TinyGlossyTable) {
   EXPECT_EQ(frames, 5);
   EXPECT_FALSE(fs::exists(out.string() + ".synth-tmp"));
 
-  for (const char* f : {"scene.json", "blender.log", "transforms_train.json", "transforms_test.json", "contact_sheet.png",
-                        "train/gt/diffcol_000.exr", "train/gt/glosscol_001.exr", "train/gt/normal_000.exr",
-                        "train/gt/depth_001.exr", "train/gt/encoding.json"})
+  for (const char* f : {"scene.json", "blender.log", "transforms_train.json", "transforms_test.json", "train/gt/diffcol_000.exr",
+                        "train/gt/glosscol_001.exr", "train/gt/normal_000.exr", "train/gt/depth_001.exr"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
-  nlohmann::json encoding = nlohmann::json::parse(std::ifstream(out / "train/gt/encoding.json"));
-  for (const char* map : {"diffcol", "glosscol", "normal", "depth"}) EXPECT_TRUE(encoding["maps"].contains(map)) << map;
-  cv::Mat sheet = read(out / "contact_sheet.png", cv::IMREAD_COLOR);
-  EXPECT_GE(sheet.cols, 3 * 256);  // at least one enlarged triplet full_ | r_ | mask
   nlohmann::json train = nlohmann::json::parse(std::ifstream(out / "transforms_train.json"));
   EXPECT_EQ(train["frames"].size(), 2u);
   EXPECT_EQ(train["frames"][1]["file_path"], "./train/r_001");
@@ -74,17 +68,7 @@ TEST(SynthRender, TinyGlossyTable) {
     EXPECT_EQ(rgba.channels(), 4);
     EXPECT_EQ(rgba.cols, 32);
     EXPECT_GT(cv::countNonZero(read(*v.object_mask, cv::IMREAD_GRAYSCALE) > 128), 4) << v.name;
-    cv::Mat gloss = read(*v.glossy_mask, cv::IMREAD_GRAYSCALE);
-    EXPECT_GT(cv::countNonZero(gloss > 128), 50) << v.name;
-    // Masks are coverage: where the table's silhouette meets the transparent background, the glossy mask
-    // follows the image's alpha (it cannot cover more of a pixel than all surfaces together do).
-    std::vector<cv::Mat> ch;
-    cv::split(rgba, ch);
-    cv::Mat excess;
-    cv::subtract(gloss, ch[3], excess);  // saturates at 0
-    cv::Mat silhouette = (ch[3] > 0) & (ch[3] < 255) & (gloss > 0);
-    ASSERT_GT(cv::countNonZero(silhouette), 0) << v.name;
-    EXPECT_LT(cv::mean(excess, silhouette)[0], 40.0) << v.name;
+    EXPECT_GT(cv::countNonZero(read(*v.glossy_mask, cv::IMREAD_GRAYSCALE) > 128), 50) << v.name;
   }
   for (const auto& v : d.test) {
     ASSERT_TRUE(v.object_mask && v.full_image) << v.name;
