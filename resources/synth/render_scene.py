@@ -2,12 +2,15 @@
 # `goris synth` (scene.json). Run as:  blender -b --factory-startup --python render_scene.py -- scene.json OUTDIR
 #
 # Per training view:  train/r_XXX.png (with the target, RGBA), train/mask_XXX.png (target),
-#                     train/gloss_XXX.png (glossy surfaces), train/gt/{diffcol,glosscol,normal,depth}_XXX.exr
+#                     train/gloss_XXX.png (glossy surfaces),
+#                     train/gt/{diffcol,glosscol,normal,depth,f0,roughness}_XXX.exr
+#                     (their encoding is written next to them: train/gt/encoding.json, from GT_ENCODING below)
 # Per test view:      test/full_XXX.png (with the target), test/r_XXX.png (target hidden: its reflections and
 #                     shadows go too), test/mask_XXX.png, test/gt/gloss_XXX.png (glossy surfaces)
 # Masks come from a second, cheap render per view: every object emits its mask channel (R = target,
-# G = glossy) through a view-layer material override, no bounces, raw colour transform. Its edges are
-# anti-aliased by the same pixel filter as the beauty render, and occlusion is exact.
+# G = glossy) through a view-layer material override, no bounces, raw colour transform, on an opaque black
+# background. Its edges are anti-aliased by the same pixel filter as the beauty render (a mask pixel is
+# the covered fraction of the pixel), and occlusion is exact.
 # After each view the script prints "GORIS_FRAME <done> <total>" so the caller can show progress.
 import json
 import math
@@ -19,6 +22,36 @@ from mathutils import Vector
 
 TARGET_INDEX = 1  # object pass_index of the target
 GLOSSY_INDEX = 2  # object pass_index of glossy surfaces
+
+# (file prefix, Render Layers output) of the training views' ground-truth maps.
+GT_MAPS = (("diffcol_", "DiffCol"), ("glosscol_", "GlossCol"), ("normal_", "Normal"), ("depth_", "Depth"),
+           ("f0_", "f0"), ("roughness_", "roughness"))
+GT_ENCODING = {
+    "format": "goris-synth-gt",
+    "version": 1,
+    "files": "train/gt/<map>_XXX.exr, one per training view: OpenEXR, 32-bit float RGB, linear values "
+             "(no colour management), same size and pixel grid as train/r_XXX.png",
+    "maps": {
+        "diffcol": "Cycles Diffuse Color pass: diffuse albedo, linear RGB",
+        "glosscol": "Cycles Glossy Color pass: the colour weight of glossy closures, linear RGB; for the "
+                    "Principled BSDF of these scenes it is white wherever there is a specular layer (the "
+                    "Fresnel colour is inside the closure): use f0 for the reflectance",
+        "f0": "shader AOV: reflectance at normal incidence, linear RGB: 0.08 * Specular for dielectrics, "
+              "the base colour for metals, mixed by Metallic",
+        "roughness": "shader AOV: the Principled BSDF roughness in [0, 1], the same value in R, G and B",
+        "normal": "Cycles Normal pass: world-space shading normal in Blender axes (Z up) as raw components "
+                  "in [-1, 1]",
+        "depth": "Cycles Z pass: distance along the camera's optical axis (not along the ray) in scene "
+                 "units (metres); the same value in R, G and B",
+    },
+    "units": "metres",
+    "background": "pixels that see no surface hold 0 (depth: 1e10)",
+    "antialiasing": "diffcol, glosscol, normal, f0 and roughness are means over a pixel's samples, "
+                    "background samples counting as 0: at silhouettes against the background divide by the "
+                    "alpha of train/r_XXX.png to get the surface value; normals are not renormalised. depth "
+                    "comes from the pixel's first sample only (Cycles): a silhouette pixel holds either one "
+                    "surface's depth or 1e10",
+}
 
 
 def args():
@@ -89,9 +122,26 @@ def make_material(name, desc):
     bsdf.inputs["Metallic"].default_value = desc["metallic"]
     bsdf.inputs["Roughness"].default_value = desc["roughness"]
     bsdf.inputs["Specular"].default_value = desc["specular"]
-    if desc.get("texture"):
-        links.new(texture_node(nodes, links, desc["texture"]), bsdf.inputs["Base Color"])
+    base = texture_node(nodes, links, desc["texture"]) if desc.get("texture") else None
+    if base is not None:
+        links.new(base, bsdf.inputs["Base Color"])
+    # Ground-truth material AOVs for the decomposition (train/gt/f0_, roughness_): Principled's normal-
+    # incidence reflectance is 0.08 * Specular for dielectrics and the base colour for metals.
+    f0 = nodes.new("ShaderNodeMixRGB")
+    f0.inputs["Fac"].default_value = desc["metallic"]
+    f0.inputs["Color1"].default_value = (*[0.08 * desc["specular"]] * 3, 1)
+    f0.inputs["Color2"].default_value = (*desc["color"], 1)
+    if base is not None:
+        links.new(base, f0.inputs["Color2"])
+    links.new(f0.outputs["Color"], aov_output(nodes, "f0").inputs["Color"])
+    aov_output(nodes, "roughness").inputs["Value"].default_value = desc["roughness"]
     return mat
+
+
+def aov_output(nodes, name):
+    node = nodes.new("ShaderNodeOutputAOV")
+    setattr(node, "aov_name" if hasattr(node, "aov_name") else "name", name)  # renamed in later Blenders
+    return node
 
 
 def mask_override_material():
@@ -146,6 +196,13 @@ def add_object(desc):
     return obj
 
 
+def black_world():
+    world = bpy.data.worlds.new("goris_black")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    return world
+
+
 def add_world(desc):
     world = bpy.data.worlds.new("goris_world")
     bpy.context.scene.world = world
@@ -172,6 +229,7 @@ def add_world(desc):
         links.new(ramp.outputs["Color"], bg.inputs["Color"])
     else:
         raise SystemExit("unknown world kind " + desc["kind"])
+    return world
 
 
 def add_area_light(desc):
@@ -228,10 +286,15 @@ def setup_render(r):
     scene.render.image_settings.compression = 90
     scene.render.dither_intensity = 0.0  # no noise added when quantising: mask backgrounds stay exactly 0
     scene.render.use_persistent_data = True  # keep the BVH between the many renders of one scene
+    for prop in dir(scene.render):  # no date, frame, camera ... metadata in the images
+        if prop.startswith("use_stamp"):
+            setattr(scene.render, prop, False)
 
 
-def beauty_mode(r):
+def beauty_mode(r, world):
     scene = bpy.context.scene
+    scene.world = world
+    scene.render.film_transparent = True
     scene.cycles.samples = r["spp"]
     scene.cycles.max_bounces = 6
     scene.cycles.sample_clamp_indirect = 10.0
@@ -240,8 +303,13 @@ def beauty_mode(r):
     bpy.context.view_layer.material_override = None
 
 
-def mask_mode(r, override):
+def mask_mode(r, override, mask_world):
+    # An opaque black background rather than a transparent one: PNG stores straight (un-premultiplied)
+    # colour, which would turn a silhouette against the background into a hard 1. On black, the colour of
+    # an edge pixel is exactly the object's coverage.
     scene = bpy.context.scene
+    scene.world = mask_world
+    scene.render.film_transparent = False
     scene.cycles.samples = r["mask_spp"]
     scene.cycles.max_bounces = 0
     scene.view_settings.view_transform = "Raw"  # the mask values are written as they are, no sRGB curve
@@ -256,6 +324,9 @@ def setup_gt_output(gt_dir):
     layer.use_pass_glossy_color = True
     layer.use_pass_normal = True
     layer.use_pass_z = True
+    for name, kind in (("f0", "COLOR"), ("roughness", "VALUE")):
+        aov = layer.aovs.add()
+        aov.name, aov.type = name, kind
     scene.use_nodes = True
     tree = scene.node_tree
     tree.nodes.clear()
@@ -271,10 +342,26 @@ def setup_gt_output(gt_dir):
     out.format.exr_codec = "ZIP"
     out.format.color_mode = "RGB"
     out.file_slots.clear()
-    for slot, socket in (("diffcol_", "DiffCol"), ("glosscol_", "GlossCol"), ("normal_", "Normal"), ("depth_", "Depth")):
+    for slot, socket in GT_MAPS:
         out.file_slots.new(slot)
         tree.links.new(rl.outputs[socket], out.inputs[slot])
     return out
+
+
+def strip_png_text(path):
+    """Drops a PNG's text chunks: Cycles always stamps render times there, and without them the same scene
+    and seed give byte-identical files (a regenerated data set shows no spurious changes)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    out, pos = [data[:8]], 8
+    while pos < len(data):
+        length = int.from_bytes(data[pos:pos + 4], "big")
+        end = pos + 12 + length  # length, type, data, CRC
+        if data[pos + 4:pos + 8] not in (b"tEXt", b"zTXt", b"iTXt", b"tIME"):
+            out.append(data[pos:end])
+        pos = end
+    with open(path, "wb") as f:
+        f.write(b"".join(out))
 
 
 def render_to(path):
@@ -282,6 +369,7 @@ def render_to(path):
     tmp = path + ".part.png"
     bpy.context.scene.render.filepath = tmp
     bpy.ops.render.render(write_still=True)
+    strip_png_text(tmp)
     os.replace(tmp, path)
 
 
@@ -302,17 +390,22 @@ def split_mask(rgb_path, outputs):
             vals.extend((v, v, v, 1.0))
         mask.pixels = vals
         mask.save_render(path + ".part.png", scene=bpy.context.scene)
+        strip_png_text(path + ".part.png")
         bpy.data.images.remove(mask)
         os.replace(path + ".part.png", path)
     settings.color_mode = "RGBA"
     os.remove(rgb_path)
 
 
-def write_transforms(path, angle_x, frames):
+def write_json(path, data):
     tmp = path + ".part"
     with open(tmp, "w") as f:
-        json.dump({"camera_angle_x": angle_x, "frames": frames}, f, indent=1)
+        json.dump(data, f, indent=1)
     os.replace(tmp, path)
+
+
+def write_transforms(path, angle_x, frames):
+    write_json(path, {"camera_angle_x": angle_x, "frames": frames})
 
 
 def main():
@@ -320,7 +413,8 @@ def main():
     r = desc["render"]
     clear_scene()
     setup_render(r)
-    add_world(desc["world"])
+    world = add_world(desc["world"])
+    mask_world = black_world()
     for light in desc["lights"]:
         add_area_light(light)
     objects = [add_object(o) for o in desc["objects"]]
@@ -338,6 +432,7 @@ def main():
     if write_gt:
         os.makedirs(gt_dir, exist_ok=True)
         gt_out = setup_gt_output(gt_dir)
+        write_json(os.path.join(gt_dir, "encoding.json"), GT_ENCODING)
 
     train, test = desc["cameras"]["train"], desc["cameras"]["test"]
     total, done = len(train) + len(test), 0
@@ -352,16 +447,16 @@ def main():
     for i, view in enumerate(train):
         name = "%03d" % i
         frames.append({"file_path": "./train/r_" + name, "transform_matrix": aim_camera(cam, view)})
-        beauty_mode(r)
+        beauty_mode(r, world)
         if gt_out:
             gt_out.mute = False
             scene.frame_current = i
         render_to(os.path.join(train_dir, "r_" + name + ".png"))
         if gt_out:
             gt_out.mute = True
-            for slot in ("diffcol_", "glosscol_", "normal_", "depth_"):
+            for slot, _ in GT_MAPS:
                 os.replace(os.path.join(gt_dir, "%s%04d.exr" % (slot, i)), os.path.join(gt_dir, slot + name + ".exr"))
-        mask_mode(r, override)
+        mask_mode(r, override, mask_world)
         tmp = os.path.join(train_dir, "masks_" + name + ".tmp.png")
         render_to(tmp)
         split_mask(tmp, [(0, os.path.join(train_dir, "mask_" + name + ".png")),
@@ -373,13 +468,13 @@ def main():
     for i, view in enumerate(test):
         name = "%03d" % i
         frames.append({"file_path": "./test/r_" + name, "transform_matrix": aim_camera(cam, view)})
-        beauty_mode(r)
+        beauty_mode(r, world)
         target.hide_render = False
         render_to(os.path.join(test_dir, "full_" + name + ".png"))
         target.hide_render = True
         render_to(os.path.join(test_dir, "r_" + name + ".png"))
         target.hide_render = False
-        mask_mode(r, override)
+        mask_mode(r, override, mask_world)
         tmp = os.path.join(test_dir, "masks_" + name + ".tmp.png")
         render_to(tmp)
         split_mask(tmp, [(0, os.path.join(test_dir, "mask_" + name + ".png")),

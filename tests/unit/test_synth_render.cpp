@@ -3,7 +3,9 @@
 // reflection was). Skips with a message when Blender is not installed.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -24,6 +26,42 @@ cv::Mat read(const fs::path& p, int flags) {
   if (m.empty()) ADD_FAILURE() << "cannot read " << p;
   return m;
 }
+// On pixels fully inside the glossy table top, the ground-truth maps hold the table's material from
+// scene.json: F0 (metal: its colour; marble: 0.08 * specular), roughness, an up-facing normal and a
+// depth within the camera's range.
+void check_table_ground_truth(const fs::path& out) {
+  ::setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 1);  // OpenCV reads EXR only when asked to
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(out / "scene.json"));
+  nlohmann::json table;
+  for (const auto& o : scene["objects"])
+    if (o["name"] == "table") table = o["material"];
+  ASSERT_FALSE(table.is_null());
+  const double metallic = table["metallic"], spec = table["specular"], rough = table["roughness"];
+  cv::Mat gloss = read(out / "train/gloss_000.png", cv::IMREAD_GRAYSCALE);
+  cv::Mat f0 = read(out / "train/gt/f0_000.exr", cv::IMREAD_UNCHANGED);
+  cv::Mat roughness = read(out / "train/gt/roughness_000.exr", cv::IMREAD_UNCHANGED);
+  cv::Mat normal = read(out / "train/gt/normal_000.exr", cv::IMREAD_UNCHANGED);
+  cv::Mat depth = read(out / "train/gt/depth_000.exr", cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(f0.type(), CV_32FC3);
+  ASSERT_EQ(f0.size(), gloss.size());
+  cv::Mat inside;
+  cv::erode(gloss == 255, inside, cv::Mat());  // away from the table's edges and the objects on it
+  ASSERT_GT(cv::countNonZero(inside), 20);
+  cv::Scalar f0_mean = cv::mean(f0, inside), n_mean = cv::mean(normal, inside);
+  if (metallic > 0.5) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f0_mean[2 - c], double(table["color"][c]), 0.02) << "F0 channel " << c;
+  } else {  // marble: textured base colour does not enter a dielectric's F0
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f0_mean[c], 0.08 * spec, 0.01) << "F0 channel " << c;
+  }
+  EXPECT_NEAR(cv::mean(roughness, inside)[0], rough, 0.01);
+  EXPECT_NEAR(n_mean[0], 1.0, 0.02);  // BGR: the table's normal is +Z (Blender's up)
+  double lo = 0, hi = 0;
+  std::vector<cv::Mat> dch;
+  cv::split(depth, dch);
+  cv::minMaxLoc(dch[0], &lo, &hi, nullptr, nullptr, inside);
+  EXPECT_GT(lo, 2.0);  // cameras are 5.2 m from the table's centre, the table's radius is 1.5 m
+  EXPECT_LT(hi, 8.0);
+}
 }  // namespace
 
 TEST(SynthRender, TinyGlossyTable) {
@@ -42,6 +80,7 @@ TEST(SynthRender, TinyGlossyTable) {
   job.options.seed = 3;
   job.script = goris::test::resource_dir() / "synth" / "render_scene.py";
   job.out = out;
+  job.contact_sheet = true;
   int frames = 0;
   job.on_frame = [&](int done, int total) {
     ++frames;
@@ -52,9 +91,18 @@ TEST(SynthRender, TinyGlossyTable) {
   EXPECT_EQ(frames, 5);
   EXPECT_FALSE(fs::exists(out.string() + ".synth-tmp"));
 
-  for (const char* f : {"scene.json", "blender.log", "transforms_train.json", "transforms_test.json", "train/gt/diffcol_000.exr",
-                        "train/gt/glosscol_001.exr", "train/gt/normal_000.exr", "train/gt/depth_001.exr"})
+  for (const char* f : {"scene.json", "blender.log", "transforms_train.json", "transforms_test.json", "contact_sheet.png",
+                        "train/gt/diffcol_000.exr", "train/gt/glosscol_001.exr", "train/gt/normal_000.exr",
+                        "train/gt/depth_001.exr", "train/gt/encoding.json"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  nlohmann::json encoding = nlohmann::json::parse(std::ifstream(out / "train/gt/encoding.json"));
+  for (const char* map : {"diffcol", "glosscol", "normal", "depth", "f0", "roughness"}) {
+    EXPECT_TRUE(encoding["maps"].contains(map)) << map;
+    EXPECT_TRUE(fs::is_regular_file(out / "train" / "gt" / (std::string(map) + "_001.exr"))) << map;
+  }
+  check_table_ground_truth(out);
+  cv::Mat sheet = read(out / "contact_sheet.png", cv::IMREAD_COLOR);
+  EXPECT_GE(sheet.cols, 3 * 256);  // at least one enlarged triplet full_ | r_ | mask
   nlohmann::json train = nlohmann::json::parse(std::ifstream(out / "transforms_train.json"));
   EXPECT_EQ(train["frames"].size(), 2u);
   EXPECT_EQ(train["frames"][1]["file_path"], "./train/r_001");
@@ -68,7 +116,17 @@ TEST(SynthRender, TinyGlossyTable) {
     EXPECT_EQ(rgba.channels(), 4);
     EXPECT_EQ(rgba.cols, 32);
     EXPECT_GT(cv::countNonZero(read(*v.object_mask, cv::IMREAD_GRAYSCALE) > 128), 4) << v.name;
-    EXPECT_GT(cv::countNonZero(read(*v.glossy_mask, cv::IMREAD_GRAYSCALE) > 128), 50) << v.name;
+    cv::Mat gloss = read(*v.glossy_mask, cv::IMREAD_GRAYSCALE);
+    EXPECT_GT(cv::countNonZero(gloss > 128), 50) << v.name;
+    // Masks are coverage: where the table's silhouette meets the transparent background, the glossy mask
+    // follows the image's alpha (it cannot cover more of a pixel than all surfaces together do).
+    std::vector<cv::Mat> ch;
+    cv::split(rgba, ch);
+    cv::Mat excess;
+    cv::subtract(gloss, ch[3], excess);  // saturates at 0
+    cv::Mat silhouette = (ch[3] > 0) & (ch[3] < 255) & (gloss > 0);
+    ASSERT_GT(cv::countNonZero(silhouette), 0) << v.name;
+    EXPECT_LT(cv::mean(excess, silhouette)[0], 40.0) << v.name;
   }
   for (const auto& v : d.test) {
     ASSERT_TRUE(v.object_mask && v.full_image) << v.name;
