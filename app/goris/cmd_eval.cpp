@@ -27,7 +27,8 @@
 #include "core/train/train_setup.h"
 #include "core/util/bench.h"
 #include "core/util/error.h"
-#include "render/raster/rasterizer.h"
+#include "core/compute/memory.h"
+#include "render/train/run_renderer.h"
 #include "render/train/raster_renderer.h"
 
 namespace {
@@ -92,7 +93,7 @@ void run_eval(const Options& o) {
   if (views.empty()) throw Error(config.data, "the data set has no " + o.split + " views");
   std::string source;
   GaussianModel model = load_run_model(run_dir, device, &source);
-  const RasterSettings settings = RasterRenderer::settings_for(config);
+  const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
 
   nlohmann::json per_view = nlohmann::json::array();
   std::vector<double> psnrs, ssims, m_psnrs, m_ssims;
@@ -105,8 +106,9 @@ void run_eval(const Options& o) {
     if (gt_img.width != w || gt_img.height != h) throw Error(v.image.string(), "ground truth size differs from the camera");
     const std::vector<float> gt = to_planar_rgb(gt_img);
     const auto t0 = std::chrono::steady_clock::now();
-    const RasterOutput r = rasterize(model.view(false), v.camera, settings, device);
-    const std::vector<float> pred = r.gbuffer.color.to_host();
+    const RenderedImages r = renderer->forward(model.view(renderer->wants_extras()), v.camera);
+    std::vector<float> pred(3 * size_t(w) * h);
+    device_copy(pred.data(), Device::CPU, r.color, device, pred.size() * sizeof(float));
     render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     std::vector<float> clamped(pred.size());
     for (size_t i = 0; i < pred.size(); ++i) clamped[i] = std::clamp(pred[i], 0.0f, 1.0f);  // as a saved image

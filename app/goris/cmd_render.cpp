@@ -17,6 +17,9 @@
 #include "render/maps/gbuffer_maps.h"
 #include "render/raster/rasterizer.h"
 #include "render/train/raster_renderer.h"
+#include "render/train/run_renderer.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "core/compute/memory.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -50,21 +53,39 @@ void run_render(const Options& o) {
   std::printf("rendering %zu %s views of %s (%zu Gaussians, %s) on %s -> %s\n", views.size(), o.split.c_str(),
               run_dir.string().c_str(), model.count(), source.c_str(), device_name(device), out.string().c_str());
 
-  const RasterSettings settings = RasterRenderer::settings_for(config);
+  const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
+  IntrinsicRenderer* intrinsic = as_intrinsic(renderer.get());
   double total_ms = 0;
   for (const View& v : views) {
     const Camera& cam = v.camera;
-    const auto t0 = std::chrono::steady_clock::now();
-    const RasterOutput r = rasterize(model.view(o.maps), cam, settings, device);
-    total_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const int w = cam.width, h = cam.height;
     const size_t hw = size_t(w) * h;
-    const std::vector<float> color = r.gbuffer.color.to_host();
+    const auto t0 = std::chrono::steady_clock::now();
+    const GaussianView gv = model.view(o.maps || renderer->wants_extras());
+    std::vector<float> color(3 * hw);
+    if (intrinsic && o.maps) {
+      const IntrinsicMaps im = intrinsic->render_maps(gv, cam);
+      color = im.color;
+      save_png(out / (v.name + "_sh_color.png"), from_planar(im.sh_color.data(), 3, w, h));
+      save_png(out / (v.name + "_glossy.png"), from_planar(im.glossy.data(), 3, w, h));
+      save_png(out / (v.name + "_indirect.png"), from_planar(im.indirect.data(), 3, w, h));
+      save_png(out / (v.name + "_visibility.png"), from_planar(im.visibility.data(), 1, w, h));
+      save_png(out / (v.name + "_env_light.png"), from_planar(im.env.data(), 3, w, h));
+      if (!im.screen_roughness.empty())
+        save_png(out / (v.name + "_screen_roughness.png"), from_planar(im.screen_roughness.data(), 1, w, h));
+    } else {
+      const RenderedImages r = renderer->forward(gv, cam);
+      device_copy(color.data(), Device::CPU, r.color, device, color.size() * sizeof(float));
+    }
+    total_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     save_png(out / (v.name + ".png"), from_planar(color.data(), 3, w, h));
     if (!o.maps) continue;
-    const std::vector<float> alpha = r.gbuffer.alpha.to_host(), depth = r.gbuffer.depth.to_host(),
-                             median = r.gbuffer.median_depth.to_host(), normal = r.gbuffer.normal.to_host(),
-                             extras = r.gbuffer.extras.to_host();
+    // The G-buffer of the same view (the intrinsic renderer keeps its own; rasterize for a radiance run).
+    const RasterOutput r = intrinsic ? RasterOutput{} : rasterize(gv, cam, RasterRenderer::settings_for(config), device);
+    const GBuffer& gb = intrinsic ? intrinsic->last().gbuffer : r.gbuffer;
+    const std::vector<float> alpha = gb.alpha.to_host(), depth = gb.depth.to_host(),
+                             median = gb.median_depth.to_host(), normal = gb.normal.to_host(),
+                             extras = gb.extras.to_host();
     save_png(out / (v.name + "_alpha.png"), from_planar(alpha.data(), 1, w, h));
     save_png(out / (v.name + "_depth.png"), depth_to_turbo(depth.data(), alpha.data(), w, h, true));
     save_png(out / (v.name + "_median_depth.png"), depth_to_turbo(median.data(), alpha.data(), w, h, false));
@@ -74,7 +95,7 @@ void run_render(const Options& o) {
     for (size_t p = 0; p < hw; ++p) expected[p] = alpha[p] > 1e-4f ? depth[p] / alpha[p] : 0.0f;
     normal_from_depth<float>(expected.data(), w, h, cam.fx, cam.fy, cam.cx, cam.cy, depth_normal.data());
     save_png(out / (v.name + "_depth_normal.png"), normals_to_rgb(depth_normal.data(), alpha.data(), w, h));
-    if (r.gbuffer.n_extras == extra::kCount)
+    if (gb.n_extras == extra::kCount)
       for (const ExtraMap& m : kExtraMaps)
         save_png(out / (v.name + "_" + m.name + ".png"), from_planar(extras.data() + size_t(m.first) * hw, m.count, w, h));
   }
@@ -90,7 +111,8 @@ void setup_render(CLI::App& root) {
   c->add_option("--out", o->out, "Output folder for the PNG images")->required();
   c->add_flag("--maps", o->maps,
               "Also write every G-buffer channel: alpha, depth and median depth (TURBO on inverse depth), "
-              "normal and depth-normal (n*0.5+0.5), diffuse, fresnel, roughness, region, label");
+              "normal and depth-normal (n*0.5+0.5), diffuse, fresnel, roughness, region, label; intrinsic runs add "
+              "sh_color (D), glossy (G), indirect (L_ind'), visibility (V'), env_light (L_dir'), screen_roughness");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_render(*o); });
 }

@@ -3,6 +3,7 @@
 // checkpoint and exits 0 with the command that resumes the run.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -17,6 +18,7 @@
 #include "app/goris/command.h"
 #include "core/compute/device.h"
 #include "core/io/dataset.h"
+#include "core/io/image.h"
 #include "core/io/ply.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
@@ -24,7 +26,9 @@
 #include "core/train/trainer.h"
 #include "core/util/bench.h"
 #include "core/util/error.h"
-#include "render/train/raster_renderer.h"
+#include "core/train/normal_prior.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/run_renderer.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -38,7 +42,7 @@ extern "C" void on_sigint(int) {
 }
 
 struct Options {
-  std::string data, out, mode = "radiance", device = "auto";
+  std::string data, out, mode = "radiance", device = "auto", normals;
   std::optional<int> iters, resolution, init_points, checkpoint_every;
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;
@@ -94,6 +98,7 @@ void reject_changes_on_resume(const Options& o) {
   no(o.seed.has_value(), "--seed");
   no(o.init_points.has_value(), "--init-points");
   no(o.mode != "radiance", "--mode");
+  no(!o.normals.empty(), "--normals");
   no(!o.sets.empty(), "--set");
 }
 
@@ -117,6 +122,7 @@ void run_train(const Options& o) {
       throw Error(run_dir.string(), "already holds a training run: add --resume to continue it, or choose another --out");
     config.mode = o.mode;
     config.data = data.string();
+    if (!o.normals.empty()) config.intrinsic.normals = fs::weakly_canonical(fs::absolute(o.normals)).string();
     if (o.seed) config.seed = *o.seed;
     if (o.resolution) config.resolution = *o.resolution;
     if (o.downscale) config.downscale = *o.downscale;
@@ -136,11 +142,31 @@ void run_train(const Options& o) {
   const Dataset ds = load_dataset(data, dopt);
   for (const auto& w : ds.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (ds.train.empty()) throw Error(data.string(), "the data set has no training views");
+  if (config.mode == "auto") {
+    // Later issues add detection from the data; today: intrinsic when the data set has glossy masks.
+    const bool glossy = std::any_of(ds.train.begin(), ds.train.end(), [](const View& v) { return v.glossy_mask.has_value(); });
+    config.mode = glossy ? "intrinsic" : "radiance";
+    std::printf("--mode auto: %s (%s)\n", config.mode.c_str(),
+                glossy ? "the data set has glossy masks" : "no glossy masks in the data set");
+    config.validate("training options");
+  }
   const float extent = scene_extent(ds);
   std::vector<TrainView> views = load_train_views(ds.train, dopt, [](size_t i, size_t n) {
     if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\rloading images %zu/%zu", i + 1, n);
   });
   if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+  if (config.mode == "intrinsic") {
+    size_t glossy = 0, masks = 0;
+    for (const TrainView& v : views) {
+      glossy += !v.glossy_mask.empty();
+      masks += !v.object_mask.empty();
+    }
+    if (!config.intrinsic.normals.empty()) load_normal_priors(config.intrinsic.normals, views);
+    std::printf("intrinsic mode: %zu/%zu views with glossy masks, %zu with object masks, normal prior %s; shading "
+                "from iteration %d\n",
+                glossy, views.size(), masks, config.intrinsic.normals.empty() ? "none" : config.intrinsic.normals.c_str(),
+                config.scaled_iteration(config.intrinsic.warmup) + 1);
+  }
 
   TrainerState state;
   if (resumed) {
@@ -159,7 +185,8 @@ void run_train(const Options& o) {
               ds.format.c_str(), views.size(), views[0].camera.width, views[0].camera.height, double(extent),
               device_name(device), config.iterations, run_dir.string().c_str());
 
-  auto renderer = std::make_shared<RasterRenderer>(RasterRenderer::settings_for(config), device);
+  auto renderer = make_renderer(config, extent, device);
+  if (resumed) Trainer::load_renderer_state(*latest_checkpoint(run_dir), *renderer);
   Trainer trainer(config, std::move(views), extent, renderer, std::move(state));
 
   const bool tty = isatty(STDERR_FILENO);
@@ -194,6 +221,14 @@ void run_train(const Options& o) {
     return;
   }
   write_ply(run_ply_path(run_dir), st.model.to_ply(/*bake_3d_filter=*/true));
+  if (IntrinsicRenderer* ir = as_intrinsic(renderer.get())) {
+    // The environment map as a picture (the run's checkpoints keep it with the net for resuming).
+    const int ew = 4 * ir->environment().resolution();
+    const std::vector<float> eq = ir->environment().equirect_image(ew);
+    Image img(ew, ew / 2, 3);
+    img.pixels.upload(eq.data(), eq.size());
+    save_png(run_dir / "environment.png", img);
+  }
   std::printf("done: %d iterations in %s, %zu Gaussians, training PSNR %.2f dB (smoothed), peak memory %.0f MiB\n"
               "model: %s\n",
               st.iteration, duration_text(st.elapsed_s).c_str(), st.model.count(), st.ema_psnr, peak_host_memory_mib(),
@@ -205,8 +240,11 @@ void setup_train(CLI::App& root) {
   auto* c = root.add_subcommand("train", "Train a Gaussian scene on a data set into a run folder");
   c->add_option("data", o->data, "Data set folder (NeRF-synthetic, instant-ngp, COLMAP, LLFF)")->required();
   c->add_option("--out", o->out, "Run folder (config.json, checkpoints/, log.csv, point_cloud.ply)")->required();
-  c->add_option("--mode", o->mode, "What to train: radiance (SH colour, stage 1 warm-up)")
-      ->check(CLI::IsMember({"radiance"}));
+  c->add_option("--mode", o->mode,
+                 "What to train: radiance (SH colour), intrinsic (materials, tracing, shading: stage 1), auto "
+                 "(intrinsic when the data set has glossy masks)")
+      ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
+  c->add_option("--normals", o->normals, "Folder of normal-prior maps for intrinsic mode (see README)");
   c->add_option("--iters", o->iters, "Number of iterations (default 30000)")->check(CLI::PositiveNumber);
   auto* res = c->add_option("--resolution", o->resolution, "Train at this image width (height keeps the aspect)")
                   ->check(CLI::PositiveNumber);

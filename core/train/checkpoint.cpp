@@ -220,11 +220,18 @@ std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::pa
   return all.back().second;
 }
 
+std::filesystem::path renderer_state_path(const std::filesystem::path& checkpoint) {
+  std::filesystem::path p = checkpoint;
+  p += ".renderer";
+  return p;
+}
+
 void remove_old_checkpoints(const std::filesystem::path& run_dir, int keep) {
   const auto all = list_checkpoints(run_dir);
   for (size_t i = 0; i + size_t(std::max(keep, 1)) < all.size(); ++i) {
     std::error_code ec;
     std::filesystem::remove(all[i].second, ec);
+    std::filesystem::remove(renderer_state_path(all[i].second), ec);
   }
 }
 

@@ -25,6 +25,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device);
 std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir, int iteration);
 // The checkpoint with the highest iteration in RUN/checkpoints, if any.
 std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir);
+// Where the renderer's own parameters (environment map, roughness net) of a checkpoint are stored:
+// the checkpoint's path + ".renderer" (written only by renderers that own parameters).
+std::filesystem::path renderer_state_path(const std::filesystem::path& checkpoint);
 // Deletes all but the `keep` most recent checkpoints.
 void remove_old_checkpoints(const std::filesystem::path& run_dir, int keep);
 

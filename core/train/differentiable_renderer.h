@@ -3,6 +3,7 @@
 // render -> core), so the trainer talks to this interface and render/ implements it (the rasterizer:
 // render/train/raster_renderer.h).
 #include <cstdint>
+#include <string>
 
 #include "core/compute/device.h"
 #include "core/io/camera.h"
@@ -19,6 +20,8 @@ struct RenderedImages {
   const float* median_depth = nullptr;  // [H][W]
   const float* normal = nullptr;        // [3][H][W] camera space, facing the camera, not normalised
   const std::int32_t* radii = nullptr;  // [N] screen radius per Gaussian, 0 = not visible
+  const float* extras = nullptr;        // [n_extras][H][W] blended extra channels (intrinsic renderers)
+  int n_extras = 0;
 };
 
 // dL/d(image) for the last forward; null = zero.
@@ -28,6 +31,10 @@ struct ImageGradients {
   const float* depth = nullptr;
   const float* median_depth = nullptr;
   const float* normal = nullptr;
+  const float* extras = nullptr;  // [n_extras][H][W]
+  // Gradients on the extra channels that train the per-Gaussian extras only, not the geometry that
+  // blends them (the object label: a mask must not make Gaussians transparent). [n_extras][H][W]
+  const float* extras_detached = nullptr;
 };
 
 class DifferentiableRenderer {
@@ -37,6 +44,19 @@ class DifferentiableRenderer {
   virtual RenderedImages forward(const GaussianView& gaussians, const Camera& camera) = 0;
   // Adds dL/dparameters of the last forward's Gaussians into `grads` (grads.mean2d_grad_norm included).
   virtual void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) = 0;
+
+  // Whether forward() wants the Gaussians' extra channels (model.view(true)) and returns them.
+  virtual bool wants_extras() const { return false; }
+  // Told the iteration about to run before its forward pass (e.g. to switch from the radiance warm-up to
+  // shading).
+  virtual void begin_iteration(int /*iteration*/) {}
+  // Parameters the renderer owns (environment map, roughness net): one optimiser step after backward(),
+  // with the renderer's own schedule; throws goris::Error naming the parameters when they turn non-finite.
+  virtual void step_own_parameters(int /*iteration*/) {}
+  // Those parameters with their optimiser state, as bytes stored beside each checkpoint (empty = none).
+  virtual std::string save_own_state() const { return {}; }
+  // Restores save_own_state()'s bytes; `source` names the file in errors.
+  virtual void load_own_state(const std::string& /*bytes*/, const std::string& /*source*/) {}
 };
 
 }  // namespace goris

@@ -1,5 +1,6 @@
 #include "core/train/train_config.h"
 
+#include <cmath>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -55,6 +56,24 @@ void visit_fields(Config& c, F&& f) {
   f("filter_3d", c.filter_3d);
   f("filter_3d_interval", c.filter_3d_interval);
   f("filter_2d", c.filter_2d);
+  f("intrinsic_warmup", c.intrinsic.warmup);
+  f("intrinsic_env_resolution", c.intrinsic.env_resolution);
+  f("intrinsic_env_initial", c.intrinsic.env_initial);
+  f("intrinsic_lr_env", c.intrinsic.lr_env);
+  f("intrinsic_lr_env_final", c.intrinsic.lr_env_final);
+  f("intrinsic_lr_net", c.intrinsic.lr_net);
+  f("intrinsic_net_ease_until", c.intrinsic.net_ease_until);
+  f("intrinsic_screen_space_filter", c.intrinsic.screen_space_filter);
+  f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
+  f("intrinsic_ray_offset", c.intrinsic.ray_offset);
+  f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
+  f("intrinsic_normal_prior", c.intrinsic.normal_prior);
+  f("intrinsic_normal_prior_final", c.intrinsic.normal_prior_final);
+  f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
+  f("intrinsic_smoothness", c.intrinsic.smoothness);
+  f("intrinsic_region", c.intrinsic.region);
+  f("intrinsic_label", c.intrinsic.label);
+  f("intrinsic_normals", c.intrinsic.normals);
   f("log_interval", c.log_interval);
   f("checkpoint_interval", c.checkpoint_interval);
   f("keep_checkpoints", c.keep_checkpoints);
@@ -66,7 +85,8 @@ nlohmann::json vec_json(const glm::vec3& v) { return nlohmann::json::array({v.x,
 
 void TrainConfig::validate(const std::string& what) const {
   auto fail = [&](const std::string& p) { throw Error(what, p); };
-  if (mode != "radiance") fail("mode '" + mode + "' is not supported (expected radiance)");
+  if (mode != "radiance" && mode != "intrinsic" && mode != "auto")
+    fail("mode '" + mode + "' is not supported (expected radiance, intrinsic or auto)");
   if (iterations < 1) fail("iterations must be at least 1");
   if (device != "auto" && device != "cpu" && device != "cuda") fail("device must be auto, cpu or cuda");
   if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
@@ -89,9 +109,24 @@ void TrainConfig::validate(const std::string& what) const {
   if (log_interval < 1) fail("log_interval must be at least 1");
   if (checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
   if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
+  const IntrinsicSettings& in = intrinsic;
+  if (in.warmup < 0) fail("intrinsic_warmup must be >= 0");
+  if (in.env_resolution < 1 || in.env_resolution > 4096 || (in.env_resolution & (in.env_resolution - 1)))
+    fail("intrinsic_env_resolution must be a power of two in 1..4096");
+  if (!(in.env_initial > 0)) fail("intrinsic_env_initial must be positive");
+  if (in.net_hidden_layers < 0 || in.net_hidden_layers > 16) fail("intrinsic_net_hidden_layers must lie in 0..16");
+  if (!(in.ray_offset >= 0)) fail("intrinsic_ray_offset must be >= 0");
+  for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
+                  in.region, in.label})
+    if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");
   for (float lr : {lr.position_init, lr.position_final, lr.sh_dc, lr.sh_rest, lr.opacity, lr.scale, lr.rotation,
                    lr.materials, lr.region, lr.label})
     if (!(lr >= 0)) fail("learning rates must be >= 0");
+}
+
+int TrainConfig::scaled_iteration(int full) const {
+  if (iterations >= 30000) return full;
+  return int(std::lround(double(full) * double(iterations) / 30000.0));
 }
 
 void to_json(nlohmann::json& j, const TrainConfig& c) {

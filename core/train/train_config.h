@@ -25,8 +25,35 @@ struct LearningRates {
   float label = 0.01f;
 };
 
+// Stage 1 in intrinsic mode (DESIGN.md §5-§6, paper S1.5). Iteration numbers are those of a full 30K
+// schedule; shorter runs scale them by iterations / 30000 (see TrainConfig::scaled_iteration) so a demo keeps
+// the same proportions (warm-up = the first 13 %).
+struct IntrinsicSettings {
+  int warmup = 4000;               // radiance-only iterations before shading with tracing starts
+  int env_resolution = 64;         // cube map face size (paper 256; 64 suffices at the data sets' 256 px)
+  float env_initial = 0.5f;        // initial radiance of every texel
+  float lr_env = 0.01f;            // environment map: 0.01 -> 0.001 exponentially over the shading phase
+  float lr_env_final = 0.001f;
+  float lr_net = 1e-5f;            // roughness net, eased in between warmup and net_ease_until
+  int net_ease_until = 10000;
+  bool screen_space_filter = true; // L_ind and V through the screen-space glossy filter (+ssf)
+  int net_hidden_layers = 6;       // 3x3 layers of the roughness net
+  float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
+  bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
+  // Loss weights (0 = off).
+  float normal_prior = 0.5f;       // decays to normal_prior_final between warmup and normal_prior_until
+  float normal_prior_final = 0.001f;
+  int normal_prior_until = 10000;
+  float smoothness = 0.05f;        // edge-aware smoothness of F0, roughness and the normal on the glossy mask
+  float region = 1.0f;             // mean(M_gt M)
+  float label = 1.0f;              // BCE of the rendered label against the object masks
+  std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
+};
+
 struct TrainConfig {
-  std::string mode = "radiance";  // "radiance": SH colour only (the stage-1 warm-up of DESIGN.md §6)
+  // "radiance": SH colour only (also the stage-1 warm-up of DESIGN.md §6); "intrinsic": stage 1 with
+  // materials, tracing and shading (the data set's glossy masks drive the region loss).
+  std::string mode = "radiance";
   int iterations = 30000;
   std::uint64_t seed = 0;
   std::string device = "auto";  // auto | cpu | cuda
@@ -57,10 +84,15 @@ struct TrainConfig {
   int filter_3d_interval = 100;        // recomputed this often after densification ends
   bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
 
+  IntrinsicSettings intrinsic;
+
   // Bookkeeping.
   int log_interval = 100;         // log.csv line every this many iterations
   int checkpoint_interval = 2000; // 0 = only at the end / on interruption
   int keep_checkpoints = 2;       // older checkpoint files are deleted
+
+  // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
+  int scaled_iteration(int full_schedule_iteration) const;
 
   // Throws goris::Error(what, problem) for a value outside its range.
   void validate(const std::string& what) const;

@@ -44,7 +44,10 @@ std::vector<TrainView> load_train_views(const std::vector<View>& views, const Da
     const Image img = load_view_image(v, options, Device::CPU);
     if (img.width != v.camera.width || img.height != v.camera.height)
       throw Error(v.image.string(), "image size differs from its camera's");
-    out.push_back(TrainView{v.name, v.camera, to_planar_rgb(img)});
+    TrainView tv{v.name, v.camera, to_planar_rgb(img), {}, {}, {}};
+    if (v.glossy_mask) tv.glossy_mask = load_view_glossy_mask(v).pixels.to_host();
+    if (v.object_mask) tv.object_mask = load_view_object_mask(v).pixels.to_host();
+    out.push_back(std::move(tv));
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #include "core/train/depth_normal_loss.h"
 #include "core/train/finite_check.h"
 #include "core/train/image_losses.h"
+#include "core/train/intrinsic_losses.h"
 #include "core/train/lr_schedule.h"
 #include "core/train/param_groups.h"
 #include "core/util/error.h"
@@ -78,6 +79,7 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
       state_(std::move(state)) {
   if (!renderer_) throw Error("training: no renderer");
   config_.validate("training configuration");
+  if (config_.mode == "auto") throw Error("training: mode 'auto' must be resolved from the data set before training");
   if (views_.empty()) throw Error("training: no training views");
   for (const TrainView& v : views_)
     if (v.image.size() != size_t(3) * v.camera.width * v.camera.height)
@@ -130,7 +132,9 @@ StepStats Trainer::step() {
   const size_t hw = size_t(w) * size_t(h);
 
   // Forward.
-  const GaussianView gv = m.view(false);
+  const bool with_extras = renderer_->wants_extras();
+  renderer_->begin_iteration(it);
+  const GaussianView gv = m.view(with_extras);
   const RenderedImages fwd = renderer_->forward(gv, cam);
   if (fwd.width != w || fwd.height != h) throw Error("training: the renderer returned an image of another size");
 
@@ -143,7 +147,7 @@ StepStats Trainer::step() {
   out.loss = cl.total;
   out.psnr = psnr_from_mse(mse<float>(color.data(), view.image.data(), 3 * hw));
 
-  std::vector<float> g_depth, g_alpha, g_median, g_normal;
+  std::vector<float> g_depth, g_alpha, g_median, g_normal, g_extras, g_detached;
   const bool use_dn = config_.depth_normal_weight > 0 && it > config_.depth_normal_from;
   if (use_dn) {
     const HostView depth(fwd.depth, hw, device_), alpha(fwd.alpha, hw, device_),
@@ -158,6 +162,7 @@ StepStats Trainer::step() {
         config_.depth_normal_weight);
     out.loss += config_.depth_normal_weight * out.depth_normal;
   }
+  if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g_normal, g_extras, g_detached, out);
   if (!std::isfinite(out.loss))
     throw Error(format_iteration_problem(it, "the loss is not finite (" + std::to_string(out.loss) + ") on view " +
                                                  view.name + "; stopping, the checkpoints on disk are intact"));
@@ -167,30 +172,32 @@ StepStats Trainer::step() {
   if (view_grad_norm_.size() != m.count() || view_grad_norm_.device() != device_)
     view_grad_norm_ = Buffer<float>(m.count(), device_);
   view_grad_norm_.fill_zero();
-  GaussianGradView gg = m.grad_view(false);
+  GaussianGradView gg = m.grad_view(with_extras);
   gg.mean2d_grad_norm = view_grad_norm_.data();
   const DeviceGrad dg_color(g_color, device_);
   ImageGradients go;
   go.color = dg_color.data();
-  std::optional<DeviceGrad> dg_depth, dg_alpha, dg_median, dg_normal;
-  if (use_dn) {
-    dg_depth.emplace(g_depth, device_);
-    dg_alpha.emplace(g_alpha, device_);
-    dg_median.emplace(g_median, device_);
-    dg_normal.emplace(g_normal, device_);
-    go.depth = dg_depth->data();
-    go.alpha = dg_alpha->data();
-    go.median_depth = dg_median->data();
-    go.normal = dg_normal->data();
-  }
+  std::optional<DeviceGrad> dg_depth, dg_alpha, dg_median, dg_normal, dg_extras, dg_detached;
+  auto upload = [&](const std::vector<float>& host, std::optional<DeviceGrad>& dev, const float*& ptr) {
+    if (host.empty()) return;
+    dev.emplace(host, device_);
+    ptr = dev->data();
+  };
+  upload(g_depth, dg_depth, go.depth);
+  upload(g_alpha, dg_alpha, go.alpha);
+  upload(g_median, dg_median, go.median_depth);
+  upload(g_normal, dg_normal, go.normal);
+  upload(g_extras, dg_extras, go.extras);
+  upload(g_detached, dg_detached, go.extras_detached);
   renderer_->backward(gv, go, gg);
+  if (with_extras) m.backprop_extras();
   if (it <= densify_until())
     state_.stats.add_view(view_grad_norm_.data(), fwd.radii, ndc_gradient_scale(w, h), m.count(), device_);
   check_finite_gradients();
 
   // Adam.
   const int decay_steps = config_.lr.position_max_steps > 0 ? config_.lr.position_max_steps : config_.iterations;
-  for (ParamGroup g : kRadianceGroups) {
+  for (ParamGroup g : active_groups()) {
     float lr = 0;
     switch (g) {
       case ParamGroup::Position:
@@ -201,11 +208,14 @@ StepStats Trainer::step() {
       case ParamGroup::Opacity: lr = config_.lr.opacity; break;
       case ParamGroup::ShDc: lr = config_.lr.sh_dc; break;
       case ParamGroup::ShRest: lr = config_.lr.sh_rest; break;
-      default: break;
+      case ParamGroup::Materials: lr = config_.lr.materials; break;
+      case ParamGroup::Region: lr = config_.lr.region; break;
+      case ParamGroup::Label: lr = config_.lr.label; break;
     }
     state_.adam.step(m, g, lr, g == ParamGroup::ShRest ? 3 * (m.sh_degree + 1) * (m.sh_degree + 1) : 0);
   }
   check_finite_parameters();
+  renderer_->step_own_parameters(it);
 
   // Density control and the 3D filter. An opacity reset only happens when a pruning step follows it inside
   // the window (otherwise the Gaussians it silenced would never be removed, only dimmed).
@@ -238,7 +248,7 @@ StepStats Trainer::step() {
 
 void Trainer::check_finite_gradients() const {
   const GaussianModel& m = state_.model;
-  for (ParamGroup g : kRadianceGroups) {
+  for (ParamGroup g : active_groups()) {
     const GroupSpan span = group_span(g);
     const ParamTensor& t = m.tensor(span.param);
     const size_t bad = first_non_finite(t.grad.data(), t.grad.size(), device_);
@@ -254,7 +264,7 @@ void Trainer::check_finite_gradients() const {
 
 void Trainer::check_finite_parameters() const {
   const GaussianModel& m = state_.model;
-  for (ParamGroup g : kRadianceGroups) {
+  for (ParamGroup g : active_groups()) {
     const GroupSpan span = group_span(g);
     const ParamTensor& t = m.tensor(span.param);
     const size_t bad = first_non_finite(t.value.data(), t.value.size(), device_);
@@ -265,6 +275,78 @@ void Trainer::check_finite_parameters() const {
         state_.iteration + 1, std::string("parameter group '") + group_name(g) + "' became non-finite (Gaussian " +
                                   std::to_string(bad / t.width) + "); stopping, the checkpoints on disk are intact"));
   }
+}
+
+std::vector<ParamGroup> Trainer::active_groups() const {
+  std::vector<ParamGroup> g(std::begin(kRadianceGroups), std::end(kRadianceGroups));
+  if (renderer_->wants_extras()) g.insert(g.end(), {ParamGroup::Materials, ParamGroup::Region, ParamGroup::Label});
+  return g;
+}
+
+double Trainer::normal_prior_weight(int it) const {
+  const IntrinsicSettings& in = config_.intrinsic;
+  const int from = config_.scaled_iteration(in.warmup), until = config_.scaled_iteration(in.normal_prior_until);
+  if (in.normal_prior <= 0) return 0.0;
+  if (it <= from || until <= from) return it <= from ? in.normal_prior : in.normal_prior_final;
+  if (it >= until) return in.normal_prior_final;
+  const double t = double(it - from) / double(until - from);
+  return std::exp((1 - t) * std::log(double(in.normal_prior)) + t * std::log(std::max(double(in.normal_prior_final), 1e-12)));
+}
+
+double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fwd, int it, std::vector<float>& g_normal,
+                                 std::vector<float>& g_extras, std::vector<float>& g_detached, StepStats& out) const {
+  if (!fwd.extras || fwd.n_extras != extra::kCount)
+    throw Error("training: intrinsic mode needs a renderer that returns the material channels");
+  const IntrinsicSettings& in = config_.intrinsic;
+  const int w = fwd.width, h = fwd.height;
+  const size_t hw = size_t(w) * size_t(h);
+  const HostView extras(fwd.extras, size_t(extra::kCount) * hw, device_), normal(fwd.normal, 3 * hw, device_);
+  if (g_normal.empty()) g_normal.assign(3 * hw, 0.0f);
+  g_extras.assign(size_t(extra::kCount) * hw, 0.0f);
+  auto plane = [&](int c) { return extras.data() + size_t(c) * hw; };
+  auto gplane = [&](int c) { return g_extras.data() + size_t(c) * hw; };
+  double total = 0;
+  const bool glossy = !view.glossy_mask.empty();
+  if (glossy && in.region > 0) {
+    out.region = region_loss<float>(plane(extra::kRegion), view.glossy_mask.data(), w, h, gplane(extra::kRegion), in.region);
+    total += in.region * out.region;
+  }
+  if (glossy && in.smoothness > 0) {
+    const float s = in.smoothness;
+    out.smoothness =
+        edge_aware_smoothness<float>(plane(extra::kFresnel), 3, view.image.data(), view.glossy_mask.data(), w, h,
+                                     gplane(extra::kFresnel), s) +
+        edge_aware_smoothness<float>(plane(extra::kRoughness), 1, view.image.data(), view.glossy_mask.data(), w, h,
+                                     gplane(extra::kRoughness), s) +
+        edge_aware_smoothness<float>(normal.data(), 3, view.image.data(), view.glossy_mask.data(), w, h,
+                                     g_normal.data(), s, /*normalize_x=*/true);
+    total += s * out.smoothness;
+  }
+  const double wn = normal_prior_weight(it);
+  if (glossy && !view.normal_prior.empty() && wn > 0) {
+    out.normal_prior = normal_prior_loss<float>(normal.data(), view.normal_prior.data(), view.glossy_mask.data(), w, h,
+                                                g_normal.data(), float(wn));
+    total += wn * out.normal_prior;
+  }
+  if (!view.object_mask.empty() && in.label > 0) {
+    // The label learns from the masks without moving geometry (see ImageGradients::extras_detached).
+    g_detached.assign(size_t(extra::kCount) * hw, 0.0f);
+    out.label = label_bce_loss<float>(plane(extra::kLabel), view.object_mask.data(), w, h,
+                                      g_detached.data() + size_t(extra::kLabel) * hw, in.label);
+    total += in.label * out.label;
+  }
+  return total;
+}
+
+void Trainer::load_renderer_state(const std::filesystem::path& checkpoint, DifferentiableRenderer& renderer) {
+  const std::filesystem::path p = renderer_state_path(checkpoint);
+  if (!std::filesystem::exists(p)) {
+    if (!renderer.save_own_state().empty())
+      throw Error(p.string(), "missing: the checkpoint's environment map and roughness net are not beside it");
+    return;
+  }
+  const std::vector<uint8_t> bytes = read_file_bytes(p);
+  renderer.load_own_state(std::string(bytes.begin(), bytes.end()), p.string());
 }
 
 int Trainer::densify_until() const {
@@ -284,7 +366,12 @@ TrainProgress Trainer::progress(double it_per_s) const {
   return p;
 }
 
-void Trainer::save_checkpoint(const std::filesystem::path& path) const { write_checkpoint(path, config_, state_); }
+void Trainer::save_checkpoint(const std::filesystem::path& path) const {
+  // The renderer's part first: a checkpoint file never exists without its companion.
+  const std::string own = renderer_->save_own_state();
+  if (!own.empty()) write_file_bytes(renderer_state_path(path), own.data(), own.size());
+  write_checkpoint(path, config_, state_);
+}
 
 namespace {
 

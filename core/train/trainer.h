@@ -17,15 +17,20 @@
 #include "core/train/adam.h"
 #include "core/train/densify.h"
 #include "core/train/differentiable_renderer.h"
+#include "core/train/param_groups.h"
 #include "core/train/train_config.h"
 
 namespace goris {
 
-// One training image with its camera, the image as planar RGB [3][H][W] on the host, at camera's size.
+// One training image with its camera, the image as planar RGB [3][H][W] on the host, at camera's size,
+// and what intrinsic mode uses when the data set has it (empty vectors = not available).
 struct TrainView {
   std::string name;
   Camera camera;
   std::vector<float> image;
+  std::vector<float> glossy_mask;   // [H][W] in [0, 1]: the paper's M_gt
+  std::vector<float> object_mask;   // [H][W] in [0, 1]: the target
+  std::vector<float> normal_prior;  // [3][H][W] unit normals in camera space (OpenCV axes, facing the camera)
 };
 
 // Everything that changes while training; a checkpoint stores exactly this (and the config).
@@ -49,6 +54,8 @@ struct TrainProgress {
 
 struct StepStats {
   double loss = 0, l1 = 0, ssim = 0, depth_normal = 0, psnr = 0;
+  // Intrinsic-mode terms (unweighted; 0 when off).
+  double normal_prior = 0, smoothness = 0, region = 0, label = 0;
   DensifyCounts densify;  // after == 0 when this step did not densify
 };
 
@@ -78,8 +85,16 @@ class Trainer {
   // iterations, at the end and when stopped; appends to run_dir/log.csv every config.log_interval.
   RunResult run(const RunOptions& options);
 
-  // Checkpoint file for the current state, written to a temporary file then renamed.
+  // Checkpoint file for the current state, written to a temporary file then renamed; the renderer's own
+  // parameters (if any) go beside it (renderer_state_path).
   void save_checkpoint(const std::filesystem::path& path) const;
+  // Restores the renderer's own parameters saved beside a checkpoint (no-op when there is no such file and
+  // the renderer owns nothing; an error when the renderer needs one and it is missing).
+  static void load_renderer_state(const std::filesystem::path& checkpoint, DifferentiableRenderer& renderer);
+
+  // The normal-prior weight at an iteration (the 0.5 -> 0.001 decay of S1.5, scaled to the run's length).
+  double normal_prior_weight(int iteration) const;
+  bool intrinsic() const { return config_.mode == "intrinsic"; }
 
   const TrainConfig& config() const { return config_; }
   TrainerState& state() { return state_; }
@@ -97,6 +112,10 @@ class Trainer {
  private:
   void check_finite_gradients() const;
   void check_finite_parameters() const;
+  std::vector<ParamGroup> active_groups() const;
+  // Intrinsic-mode losses on the host images; adds their gradients. Returns the weighted sum.
+  double intrinsic_losses(const TrainView& view, const RenderedImages& fwd, int it, std::vector<float>& g_normal,
+                          std::vector<float>& g_extras, std::vector<float>& g_detached, StepStats& out) const;
   std::vector<Camera> cameras() const;
 
   TrainConfig config_;

@@ -20,6 +20,8 @@ RenderedImages RasterRenderer::forward(const GaussianView& gaussians, const Came
   r.median_depth = g.median_depth.data();
   r.normal = g.normal.data();
   r.radii = last_.state.radii.data();
+  r.extras = g.n_extras > 0 ? g.extras.data() : nullptr;
+  r.n_extras = g.n_extras;
   return r;
 }
 
@@ -30,7 +32,19 @@ void RasterRenderer::backward(const GaussianView& gaussians, const ImageGradient
   go.depth = d.depth;
   go.median_depth = d.median_depth;
   go.normal = d.normal;
+  go.extras = d.extras;
   rasterize_backward(gaussians, last_.state, go, grads);
+  backward_detached_extras(gaussians, last_.state, d.extras_detached, grads);
+}
+
+void backward_detached_extras(const GaussianView& gaussians, const RasterState& state, const float* d_extras,
+                              const GaussianGradView& grads) {
+  if (!d_extras || !grads.extras) return;
+  GBufferGrad go;
+  go.extras = d_extras;
+  GaussianGradView only_extras;
+  only_extras.extras = grads.extras;
+  rasterize_backward(gaussians, state, go, only_extras);
 }
 
 }  // namespace goris

@@ -6,6 +6,11 @@
 
 namespace goris {
 
+// Back-propagates gradients on the extra channels into grads.extras alone (a second backward pass with
+// every other gradient left out): ImageGradients::extras_detached. No-op when either is null.
+void backward_detached_extras(const GaussianView& gaussians, const RasterState& state, const float* d_extras,
+                              const GaussianGradView& grads);
+
 class RasterRenderer final : public DifferentiableRenderer {
  public:
   RasterRenderer(const RasterSettings& settings, Device device) : settings_(settings), device_(device) {}

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/ssf/glossy_filter.h"
-#include "render/ssf/net_optimizer.h"
+#include "core/train/flat_adam.h"
 #include "render/ssf/roughness_net.h"
 #include "tests/support/test_support.h"
 
@@ -65,13 +65,13 @@ TEST(SsfCuda, RoughnessNetMatchesCpu) {
   int i = 0;
   for (Device d : {Device::CPU, Device::CUDA}) {
     RoughnessNet<float> net(NetConfig{}, d, 9);
-    NetAdam adam(net);
+    FlatAdam adam(net.param_count(), net.device());
     net.forward(Buffer<float>(in, d), H, W, rs[i]);
     gin[i] = Buffer<float>(3 * plane, d);
     gin[i].fill_zero();
     net.backward(Buffer<float>(g, d), &gin[i]);
     grads[i] = net.grads().copy_to(d);
-    adam.step(net, 1e-3f);
+    adam.step(net.params(), net.grads(), 1e-3f, "roughness net");
     params[i] = net.params().copy_to(d);
     ++i;
   }

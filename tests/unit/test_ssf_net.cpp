@@ -12,7 +12,7 @@
 
 #include "core/util/error.h"
 #include "render/ssf/conv_passes.h"
-#include "render/ssf/net_optimizer.h"
+#include "core/train/flat_adam.h"
 #include "render/ssf/roughness_net.h"
 
 namespace goris::ssf {
@@ -191,12 +191,12 @@ TEST(SsfNet, HeInitialisationIsSeededAndScaled) {
 
 TEST(SsfNet, AdamStepMovesEveryParameterAgainstItsGradient) {
   RoughnessNet<float> net(NetConfig{}, Device::CPU, 3);
-  NetAdam adam(net);
+  FlatAdam adam(net.param_count(), net.device());
   const std::vector<float> before = net.params().to_host();
   std::vector<float> g(before.size());
   for (std::size_t i = 0; i < g.size(); ++i) g[i] = (i % 2 ? 1.0f : -2.0f) * float(1 + i % 5);
   net.grads().upload(g.data(), g.size());
-  adam.step(net, 1e-3f);
+  adam.step(net.params(), net.grads(), 1e-3f, "roughness net");
   EXPECT_EQ(adam.steps(), 1);
   const std::vector<float> after = net.params().to_host();
   // Adam's first bias-corrected step is lr * sign(g).

@@ -1,0 +1,313 @@
+#include "render/intrinsic/intrinsic_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/compute/memory.h"
+#include "core/scene/gaussians.h"
+#include "core/train/lr_schedule.h"
+#include "core/util/error.h"
+#include "render/intrinsic/own_state_io.h"
+#include "render/train/raster_renderer.h"
+
+namespace goris {
+
+namespace {
+
+constexpr MaterialChannels kChannels{extra::kRegion, extra::kFresnel, extra::kRoughness};
+
+// A gradient plane set from the trainer's (possibly null) image gradients.
+Buffer<float> grad_plane(const float* given, std::size_t n, Device d) {
+  Buffer<float> b(n, d);
+  if (given)
+    device_copy(b.data(), d, given, d, n * sizeof(float));
+  else
+    b.fill_zero();
+  return b;
+}
+
+std::vector<float> download(const float* p, std::size_t n, Device d) {
+  std::vector<float> h(n);
+  device_copy(h.data(), Device::CPU, p, d, n * sizeof(float));
+  return h;
+}
+
+}  // namespace
+
+// What the shading pass keeps for backward().
+struct IntrinsicRenderer::Frame {
+  Camera camera;
+  SurfaceImages surface;
+  ReflectionRays rays;
+  Buffer<float> emit;                           // [N] region weight of each Gaussian (rough ones emit)
+  Buffer<float> ray_color, ray_depth, ray_alpha;  // per ray
+  Buffer<float> L_raw, V_raw;                   // traced_to_images
+  Buffer<float> L, V;                           // what shade() read (filtered or raw)
+  Buffer<float> filtered;                       // [4][H][W] filter output
+  Buffer<float> rs;                             // [H][W] screen roughness
+  bool use_filter = false;
+  ShadeOutputs shaded;
+};
+
+IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, Device device)
+    : config_(config),
+      extent_(extent),
+      device_(device),
+      raster_settings_(RasterRenderer::settings_for(config)),
+      env_(config.intrinsic.env_resolution, device, config.intrinsic.env_initial),
+      env_adam_(env_.param_count(), device),
+      net_(ssf::NetConfig{3, 8, config.intrinsic.net_hidden_layers}, device, config.seed * 7919 + 17),
+      net_adam_(net_.param_count(), device),
+      tracer_(device) {
+  if (!(extent > 0)) throw Error("intrinsic renderer", "the scene extent must be positive");
+  shading_settings_.ray_offset =
+      config.intrinsic.ray_offset > 0 ? config.intrinsic.ray_offset : ShadingSettings::default_ray_offset(extent);
+  traced_settings_.divide_opaque = config.intrinsic.divide_opaque;
+  shading_from_ = config.scaled_iteration(config.intrinsic.warmup);
+  env_.update();
+}
+
+IntrinsicRenderer::~IntrinsicRenderer() = default;
+
+void IntrinsicRenderer::begin_iteration(int iteration) { shading_ = iteration > shading_from_; }
+
+RenderedImages IntrinsicRenderer::forward(const GaussianView& gaussians, const Camera& camera) {
+  if (gaussians.n_extras != extra::kCount)
+    throw Error("intrinsic renderer", "the Gaussians carry " + std::to_string(gaussians.n_extras) +
+                                          " extra channels, shading needs the " + std::to_string(extra::kCount) +
+                                          " material channels");
+  raster_ = rasterize(gaussians, camera, raster_settings_, device_);
+  frame_.reset();
+  const GBuffer& g = raster_.gbuffer;
+  RenderedImages r;
+  r.width = g.width;
+  r.height = g.height;
+  r.color = g.color.data();
+  r.alpha = g.alpha.data();
+  r.depth = g.depth.data();
+  r.median_depth = g.median_depth.data();
+  r.normal = g.normal.data();
+  r.radii = raster_.state.radii.data();
+  r.extras = g.extras.data();
+  r.n_extras = g.n_extras;
+  if (shading_) {
+    shade_forward(gaussians, camera, false);
+    r.color = frame_->shaded.color.data();
+  }
+  return r;
+}
+
+void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps) {
+  auto f = std::make_unique<Frame>();
+  const GBuffer& g = raster_.gbuffer;
+  const int W = g.width, H = g.height;
+  const std::size_t hw = g.pixels();
+  f->camera = camera;
+  f->surface = surface_from_gbuffer(g, kChannels);
+  f->rays = make_reflection_rays(camera, f->surface, shading_settings_, device_);
+  const std::size_t n = f->rays.count;
+
+  // Trace: every Gaussian occludes, rough ones (region weight m) emit. No extras needed on the rays.
+  {
+    const std::vector<float> ex = download(gaussians.extras, std::size_t(gaussians.count) * extra::kCount, device_);
+    std::vector<float> emit(std::size_t(gaussians.count));
+    for (std::size_t i = 0; i < emit.size(); ++i) emit[i] = ex[i * extra::kCount + extra::kRegion];
+    f->emit = Buffer<float>(emit, device_);
+  }
+  f->ray_color = Buffer<float>(3 * n, device_);
+  f->ray_depth = Buffer<float>(n, device_);
+  f->ray_alpha = Buffer<float>(n, device_);
+  if (n > 0) {
+    GaussianView plain = gaussians;
+    plain.extras = nullptr;
+    plain.n_extras = 0;
+    tracer_.build(plain, f->emit.data());
+    TraceOutputs out;
+    out.color = f->ray_color.data();
+    out.depth = f->ray_depth.data();
+    out.alpha = f->ray_alpha.data();
+    tracer_.trace({f->rays.origins.data(), f->rays.directions.data(), n}, out);
+  }
+  traced_to_images(f->rays, W, H, f->ray_color, f->ray_alpha, traced_settings_, f->L_raw, f->V_raw);
+
+  f->use_filter = config_.intrinsic.screen_space_filter;
+  if (f->use_filter) {
+    // The net's input: (roughness, traced hit distance, 1 / view depth), distances in scene extents.
+    const std::vector<float> ex = g.extras.to_host(), depth = g.depth.to_host(), alpha = g.alpha.to_host();
+    const std::vector<std::uint32_t> pix = f->rays.pixels.to_host();
+    const std::vector<float> rd = f->ray_depth.to_host(), ra = f->ray_alpha.to_host();
+    std::vector<float> in(3 * hw, 0.0f);
+    std::copy_n(ex.begin() + std::ptrdiff_t(extra::kRoughness * hw), hw, in.begin());
+    for (std::size_t i = 0; i < n; ++i)
+      in[hw + pix[i]] = ra[i] > 1e-4f ? rd[i] / ra[i] / extent_ : 0.0f;
+    for (std::size_t p = 0; p < hw; ++p)
+      in[2 * hw + p] = depth[p] > 1e-6f && alpha[p] > 1e-4f ? std::min(extent_ * alpha[p] / depth[p], 100.0f) : 0.0f;
+    net_.forward(Buffer<float>(in, device_), H, W, f->rs);
+    Buffer<float> x(4 * hw, device_);
+    device_copy(x.data(), device_, f->L_raw.data(), device_, 3 * hw * sizeof(float));
+    device_copy(x.data() + 3 * hw, device_, f->V_raw.data(), device_, hw * sizeof(float));
+    filter_.forward(x, 4, H, W, g.normal, f->rs, f->filtered);
+    f->L = Buffer<float>(3 * hw, device_);
+    f->V = Buffer<float>(hw, device_);
+    device_copy(f->L.data(), device_, f->filtered.data(), device_, 3 * hw * sizeof(float));
+    device_copy(f->V.data(), device_, f->filtered.data() + 3 * hw, device_, hw * sizeof(float));
+  } else {
+    f->L = f->L_raw.copy_to(device_);
+    f->V = f->V_raw.copy_to(device_);
+  }
+  f->shaded = shade(camera, f->surface, f->L, f->V, env_.mips(), shading_settings_, device_, maps);
+  frame_ = std::move(f);
+}
+
+void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) {
+  const GBuffer& g = raster_.gbuffer;
+  const std::size_t hw = g.pixels();
+  const std::size_t ne = std::size_t(g.n_extras);
+  Buffer<float> g_alpha = grad_plane(d.alpha, hw, device_), g_depth = grad_plane(d.depth, hw, device_),
+                g_normal = grad_plane(d.normal, 3 * hw, device_), g_extras = grad_plane(d.extras, ne * hw, device_);
+  GBufferGrad go;
+  go.alpha = g_alpha.data();
+  go.depth = g_depth.data();
+  go.median_depth = d.median_depth;
+  go.normal = g_normal.data();
+  go.extras = g_extras.data();
+  backward_detached_extras(gaussians, raster_.state, d.extras_detached, grads);
+  if (!frame_) {  // radiance warm-up: the colour is the rasterized one
+    go.color = d.color;
+    rasterize_backward(gaussians, raster_.state, go, grads);
+    return;
+  }
+  Frame& f = *frame_;
+  const std::size_t n = f.rays.count;
+  Buffer<float> g_color(3 * hw, device_);
+  g_color.fill_zero();
+  go.color = g_color.data();
+  SurfaceGrads sg;
+  sg.color = g_color.data();
+  sg.alpha = g_alpha.data();
+  sg.depth = g_depth.data();
+  sg.normal = g_normal.data();
+  sg.region = g_extras.data() + std::size_t(kChannels.region) * hw;
+  sg.f0 = g_extras.data() + std::size_t(kChannels.f0) * hw;
+  sg.roughness = g_extras.data() + std::size_t(kChannels.roughness) * hw;
+  if (!d.color) throw Error("intrinsic renderer", "backward needs dL/dcolour");
+  const Buffer<float> dC = grad_plane(d.color, 3 * hw, device_);
+
+  Buffer<float> dL, dV;
+  shade_backward(f.camera, f.surface, f.L, f.V, env_.mips(), shading_settings_, dC, sg, dL, dV, env_.mip_grads(), device_);
+  env_.backward();
+
+  Buffer<float> dL_raw, dV_raw;
+  if (f.use_filter) {
+    Buffer<float> gout(4 * hw, device_), gx(4 * hw, device_), grs(hw, device_);
+    device_copy(gout.data(), device_, dL.data(), device_, 3 * hw * sizeof(float));
+    if (dV.size() == hw)
+      device_copy(gout.data() + 3 * hw, device_, dV.data(), device_, hw * sizeof(float));
+    else
+      device_memset_zero(device_, gout.data() + 3 * hw, hw * sizeof(float));
+    gx.fill_zero();
+    grs.fill_zero();
+    filter_.backward(gout, &gx, &grs);
+    Buffer<float> gin(3 * hw, device_);
+    gin.fill_zero();
+    net_.backward(grs, &gin);
+    // Only the roughness input is a function of the Gaussians that we differentiate (depths are constants).
+    std::vector<float> ge = g_extras.to_host();
+    const std::vector<float> gr = gin.to_host();
+    for (std::size_t p = 0; p < hw; ++p) ge[std::size_t(extra::kRoughness) * hw + p] += gr[p];
+    g_extras.upload(ge.data(), ge.size());
+    dL_raw = Buffer<float>(3 * hw, device_);
+    dV_raw = Buffer<float>(hw, device_);
+    device_copy(dL_raw.data(), device_, gx.data(), device_, 3 * hw * sizeof(float));
+    device_copy(dV_raw.data(), device_, gx.data() + 3 * hw, device_, hw * sizeof(float));
+  } else {
+    dL_raw = std::move(dL);
+    dV_raw = std::move(dV);
+  }
+
+  if (n > 0) {
+    Buffer<float> dcolor, dalpha;
+    traced_to_images_backward(f.rays, g.width, g.height, f.ray_color, f.ray_alpha, traced_settings_, dL_raw, dV_raw,
+                              dcolor, dalpha);
+    Buffer<float> dorig(3 * n, device_), ddir(3 * n, device_), demit(std::size_t(gaussians.count), device_);
+    demit.fill_zero();
+    TraceOutputGrads tg;
+    tg.color = dcolor.data();
+    tg.alpha = dalpha.data();
+    GaussianGradView tgrads = grads;
+    tgrads.extras = nullptr;
+    tgrads.mean2d_grad_norm = nullptr;
+    tracer_.backward({f.rays.origins.data(), f.rays.directions.data(), n}, tg, tgrads, {dorig.data(), ddir.data()},
+                     demit.data());
+    reflection_rays_backward(f.camera, f.surface, shading_settings_, f.rays, dorig.data(), ddir.data(), sg, device_);
+    // dL/d(emit) is dL/d(region weight) of each Gaussian (activated space, where grads.extras lives).
+    if (grads.extras) {
+      const std::vector<float> de = demit.to_host();
+      std::vector<float> ge = download(grads.extras, de.size() * extra::kCount, device_);
+      for (std::size_t i = 0; i < de.size(); ++i) ge[i * extra::kCount + extra::kRegion] += de[i];
+      device_copy(grads.extras, device_, ge.data(), Device::CPU, ge.size() * sizeof(float));
+    }
+  }
+  rasterize_backward(gaussians, raster_.state, go, grads);
+}
+
+void IntrinsicRenderer::step_own_parameters(int iteration) {
+  if (!frame_) return;  // nothing flowed into them this iteration
+  const int end = std::max(config_.iterations, shading_from_ + 1);
+  const float lr_env = exponential_lr(iteration - shading_from_, config_.intrinsic.lr_env, config_.intrinsic.lr_env_final,
+                                      end - shading_from_);
+  env_adam_.step(env_.params(), env_.grads(), lr_env, "environment map");
+  env_.zero_grad();
+  if (frame_->use_filter) {
+    const int ease_until = std::max(config_.scaled_iteration(config_.intrinsic.net_ease_until), shading_from_ + 1);
+    const float t = std::clamp(float(iteration - shading_from_) / float(ease_until - shading_from_), 0.0f, 1.0f);
+    net_adam_.step(net_.params(), net_.grads(), config_.intrinsic.lr_net * t, "roughness net");
+    net_.zero_grad();
+  }
+  env_.update();  // also checks the parameters are finite
+}
+
+std::string IntrinsicRenderer::save_own_state() const {
+  OwnStateWriter w;
+  w.header(env_.resolution(), int(net_.param_count()));
+  w.buffer(env_.params());
+  w.adam(env_adam_);
+  w.buffer(net_.params());
+  w.adam(net_adam_);
+  return w.bytes();
+}
+
+void IntrinsicRenderer::load_own_state(const std::string& bytes, const std::string& source) {
+  OwnStateReader r(bytes, source);
+  r.header(env_.resolution(), int(net_.param_count()));
+  r.buffer(env_.params());
+  r.adam(env_adam_);
+  r.buffer(net_.params());
+  r.adam(net_adam_);
+  r.finish();
+  env_.update();
+}
+
+IntrinsicMaps IntrinsicRenderer::render_maps(const GaussianView& gaussians, const Camera& camera) {
+  const bool was = shading_;
+  shading_ = false;
+  forward(gaussians, camera);
+  shading_ = was;
+  shade_forward(gaussians, camera, true);
+  const Frame& f = *frame_;
+  IntrinsicMaps m;
+  m.width = raster_.gbuffer.width;
+  m.height = raster_.gbuffer.height;
+  m.color = f.shaded.color.to_host();
+  m.sh_color = raster_.gbuffer.color.to_host();
+  m.glossy = f.shaded.glossy.to_host();
+  m.env = f.shaded.env_radiance.to_host();
+  m.indirect = f.L.to_host();
+  m.visibility = f.V.to_host();
+  if (f.use_filter) m.screen_roughness = f.rs.to_host();
+  m.rays = f.rays.count;
+  return m;
+}
+
+}  // namespace goris

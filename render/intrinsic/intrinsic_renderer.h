@@ -1,0 +1,99 @@
+#pragma once
+// Stage 1 in intrinsic mode behind the trainer's DifferentiableRenderer interface (DESIGN.md §5-§6, paper
+// Sec. 3.2 and S1.1-S1.5). One forward pass:
+//
+//   G-buffer (rasterize with the material extras)
+//   -> reflection rays of the glossy pixels (make_reflection_rays)
+//   -> trace them through the Gaussians, rough ones emitting (GaussianTracer, emit = region weight m)
+//   -> L_ind, V (traced_to_images) -> screen-space filter at R_s = Net(roughness, traced depth, 1 / depth)
+//   -> C = D + (1 - M) F (L_ind' + L_dir' V')  (shade; L_dir' from the environment map)
+//
+// and the backward pass walks it in reverse into the Gaussians (through the G-buffer and the traced hits),
+// the environment map and the roughness net. Until the warm-up ends (config.intrinsic.warmup, scaled to the
+// run's length) forward() returns the plain rasterized colour (radiance only); the material channels are
+// still rendered so that the label and region losses train from the start.
+//
+// The depth inputs of the roughness net are treated as constants (the net steers the blur level; its
+// gradient to roughness is kept). The per-pixel glue between stages (emit weights, the net's input image)
+// runs on the host; on CUDA that costs two small transfers per iteration.
+#include <memory>
+#include <string>
+
+#include "core/train/differentiable_renderer.h"
+#include "core/train/flat_adam.h"
+#include "core/train/train_config.h"
+#include "render/envmap/environment_map.h"
+#include "render/raster/rasterizer.h"
+#include "render/shading/deferred_shading.h"
+#include "render/ssf/glossy_filter.h"
+#include "render/ssf/roughness_net.h"
+#include "render/trace/gaussian_tracer.h"
+
+namespace goris {
+
+// Host images of one intrinsic render, planar, for maps and the editor (empty when not computed).
+struct IntrinsicMaps {
+  int width = 0, height = 0;
+  std::vector<float> color;       // final C [3][H][W]
+  std::vector<float> sh_color;    // D (SH radiance) [3][H][W]
+  std::vector<float> glossy;      // G [3][H][W] (before the (1 - M) weight)
+  std::vector<float> indirect;    // L_ind' [3][H][W] (filtered when the filter is on)
+  std::vector<float> visibility;  // V' [H][W]
+  std::vector<float> env;         // L_dir' [3][H][W]
+  std::vector<float> screen_roughness;  // R_s [H][W] (empty without the filter)
+  std::size_t rays = 0;           // traced rays (glossy pixels)
+};
+
+class IntrinsicRenderer final : public DifferentiableRenderer {
+ public:
+  // `extent`: the scene extent (ray offset default); the config's intrinsic settings, iterations and
+  // background define everything else.
+  IntrinsicRenderer(const TrainConfig& config, float extent, Device device);
+  ~IntrinsicRenderer() override;
+
+  Device device() const override { return device_; }
+  bool wants_extras() const override { return true; }
+  void begin_iteration(int iteration) override;
+  RenderedImages forward(const GaussianView& gaussians, const Camera& camera) override;
+  void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) override;
+  void step_own_parameters(int iteration) override;
+  std::string save_own_state() const override;
+  void load_own_state(const std::string& bytes, const std::string& source) override;
+
+  // Shading on or off regardless of the iteration (rendering a trained run: on).
+  void set_shading(bool on) { shading_ = on; }
+  bool shading() const { return shading_; }
+  int shading_from() const { return shading_from_; }
+
+  // Renders with shading on and returns every intermediate as host images (the G-buffer itself is last()).
+  IntrinsicMaps render_maps(const GaussianView& gaussians, const Camera& camera);
+  const RasterOutput& last() const { return raster_; }
+
+  EnvironmentMap& environment() { return env_; }
+  ssf::RoughnessNet<float>& net() { return net_; }
+
+ private:
+  struct Frame;
+  void shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps);
+
+  TrainConfig config_;
+  float extent_;
+  Device device_;
+  RasterSettings raster_settings_;
+  ShadingSettings shading_settings_;
+  TracedImageSettings traced_settings_;
+  int shading_from_ = 0;
+  bool shading_ = false;
+
+  EnvironmentMap env_;
+  FlatAdam env_adam_;
+  ssf::RoughnessNet<float> net_;
+  FlatAdam net_adam_;
+  ssf::GlossyFilter<float> filter_;
+  GaussianTracer tracer_;
+
+  RasterOutput raster_;
+  std::unique_ptr<Frame> frame_;  // the shading pass's intermediates, kept for backward()
+};
+
+}  // namespace goris

@@ -1,0 +1,366 @@
+// The intrinsic renderer end to end (rasterize -> reflection rays -> trace -> filter -> shade, and back):
+// warm-up behaviour, the composite gradient against finite differences (float; each stage is checked in
+// double precision in its own test), the saved environment map / net state, and a few intrinsic training
+// iterations.
+#include <cmath>
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/scene/gaussians.h"
+#include "core/train/image_losses.h"
+#include "core/train/trainer.h"
+#include "core/util/error.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/raster/rasterizer.h"
+#include "render/train/raster_renderer.h"
+#include "tests/support/test_support.h"
+
+using namespace goris;
+
+namespace {
+
+Camera look_at(glm::vec3 eye, glm::vec3 target, int size, float fov_deg) {
+  Camera c;
+  c.width = c.height = size;
+  c.fx = c.fy = 0.5f * size / std::tan(glm::radians(fov_deg) * 0.5f);
+  c.cx = c.cy = 0.5f * size;
+  const glm::vec3 z = glm::normalize(target - eye);
+  const glm::vec3 x = glm::normalize(glm::cross(z, glm::vec3(0, 0, 1)));
+  const glm::vec3 y = glm::cross(z, x);
+  glm::mat3 R;
+  for (int k = 0; k < 3; ++k) {
+    R[k][0] = x[k];
+    R[k][1] = y[k];
+    R[k][2] = z[k];
+  }
+  c.R = R;
+  c.t = -(R * eye);
+  return c;
+}
+
+// Runs f, expects a goris::Error whose message contains `needle`.
+template <class F>
+void expect_error(F&& f, const std::string& needle) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+float logit(float p) { return std::log(p / (1 - p)); }
+
+// A glossy floor (a grid of flat Gaussians at z = 0, region weight ~0.05) and a rough coloured blob above
+// it (region ~0.95) whose reflection the floor shows.
+GaussianModel floor_and_blob(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const int grid = 8, blob = 12, n = grid * grid + blob;
+  GaussianModel m(Device::CPU);
+  m.allocate(size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const bool is_floor = i < grid * grid;
+    float* p = m.values(Param::Position) + 3 * i;
+    float* s = m.values(Param::LogScale) + 3 * i;
+    if (is_floor) {
+      p[0] = -1.0f + 2.0f * ((i % grid) + 0.5f) / grid;
+      p[1] = -1.0f + 2.0f * ((i / grid) + 0.5f) / grid;
+      p[2] = 0.0f;
+      s[0] = s[1] = std::log(0.16f);
+      s[2] = std::log(0.01f);
+    } else {
+      p[0] = 0.25f * u(rng);
+      p[1] = 0.25f * u(rng);
+      p[2] = 0.45f + 0.15f * u(rng);
+      for (int a = 0; a < 3; ++a) s[a] = std::log(0.12f);
+    }
+    float* q = m.values(Param::Rotation) + 4 * i;
+    q[0] = 1.0f;
+    q[1] = 0.05f * u(rng);
+    q[2] = 0.05f * u(rng);
+    q[3] = 0.05f * u(rng);
+    m.values(Param::OpacityLogit)[i] = is_floor ? 3.0f : 2.0f;
+    float* sh = m.values(Param::Sh) + 48 * i;
+    std::fill(sh, sh + 48, 0.0f);
+    for (int c = 0; c < 3; ++c) sh[c] = is_floor ? -0.8f + 0.1f * u(rng) : 1.2f * u(rng);
+    float* e = m.values(Param::ExtraLogit) + extra::kCount * i;
+    for (int k = 0; k < extra::kCount; ++k) e[k] = 0.3f * u(rng);
+    e[extra::kRegion] = logit(is_floor ? 0.05f : 0.95f);
+    e[extra::kRoughness] = logit(is_floor ? 0.1f : 0.6f);
+    for (int c = 0; c < 3; ++c) e[extra::kFresnel + c] = logit(is_floor ? 0.6f : 0.04f) + 0.2f * u(rng);
+    e[extra::kLabel] = logit(is_floor ? 0.02f : 0.98f);
+  }
+  m.sh_degree = 0;
+  m.max_sh_degree = 0;
+  return m;
+}
+
+TrainConfig intrinsic_config(int iterations) {
+  TrainConfig c;
+  c.mode = "intrinsic";
+  c.iterations = iterations;
+  c.device = "cpu";
+  c.max_sh_degree = 0;
+  c.filter_3d = false;
+  c.intrinsic.env_resolution = 8;
+  c.intrinsic.warmup = 0;
+  c.checkpoint_interval = 0;
+  return c;
+}
+
+Camera test_camera(int size = 40) { return look_at({2.2f, -0.4f, 1.6f}, {0, 0, 0.1f}, size, 55); }
+
+// L = sum_i c_i C_i with fixed random weights c: its gradient is c.
+struct WeightedSum {
+  std::vector<float> c;
+  explicit WeightedSum(size_t n) : c(n) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<float> u(0.2f, 1.0f);
+    for (auto& v : c) v = u(rng);
+  }
+  double operator()(const float* color) const {
+    double s = 0;
+    for (size_t i = 0; i < c.size(); ++i) s += double(c[i]) * color[i];
+    return s;
+  }
+};
+
+}  // namespace
+
+TEST(IntrinsicRenderer, WarmUpRendersTheRasterizedColourAndShadingTracesGlossyPixels) {
+  TrainConfig cfg = intrinsic_config(3000);
+  cfg.intrinsic.warmup = 4000;  // scaled: 400 of 3000
+  GaussianModel m = floor_and_blob(1);
+  IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
+  EXPECT_EQ(r.shading_from(), 400);
+  const Camera cam = test_camera();
+  r.begin_iteration(400);
+  const RenderedImages warm = r.forward(m.view(true), cam);
+  const RasterOutput ref = rasterize(m.view(true), cam, RasterRenderer::settings_for(cfg), Device::CPU);
+  const std::vector<float> ref_color = ref.gbuffer.color.to_host();
+  for (size_t i = 0; i < ref_color.size(); ++i) ASSERT_EQ(warm.color[i], ref_color[i]);
+  ASSERT_EQ(warm.n_extras, extra::kCount);
+
+  r.begin_iteration(401);
+  const IntrinsicMaps maps = r.render_maps(m.view(true), cam);
+  EXPECT_GT(maps.rays, 100u);  // most of the floor is glossy
+  // Background pixels (nothing rasterized) keep the rasterized colour; the floor gains the glossy term.
+  const std::vector<float> alpha = r.last().gbuffer.alpha.to_host();
+  const size_t hw = alpha.size();
+  size_t changed = 0;
+  for (size_t p = 0; p < hw; ++p) {
+    const double d = std::abs(maps.color[p] - ref_color[p]);
+    if (alpha[p] < 1e-3f) EXPECT_LT(d, 1e-6) << p;
+    changed += d > 1e-3;
+  }
+  EXPECT_GT(changed, hw / 10);
+  // The blob's reflection: some floor pixels see it (visibility V' < 1).
+  size_t occluded = 0;
+  for (float v : maps.visibility) occluded += v < 0.5f;
+  EXPECT_GT(occluded, 5u);
+}
+
+TEST(IntrinsicRenderer, CompositeGradientMatchesFiniteDifferences) {
+  const TrainConfig cfg = intrinsic_config(100);
+  GaussianModel m = floor_and_blob(2);
+  IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
+  {  // a non-constant environment, so texels matter differently
+    std::vector<float> p = r.environment().params().to_host();
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<float> u(-0.7f, 0.3f);
+    for (auto& v : p) v = u(rng);
+    r.environment().params().upload(p.data(), p.size());
+    r.environment().update();
+  }
+  const Camera cam = test_camera(32);
+  r.begin_iteration(1);
+  const size_t hw = size_t(cam.width) * cam.height;
+  const WeightedSum loss(3 * hw);
+  auto eval = [&]() {
+    const RenderedImages out = r.forward(m.view(true), cam);
+    return loss(out.color);
+  };
+  eval();
+  m.zero_grad();
+  r.environment().zero_grad();
+  r.net().zero_grad();
+  ImageGradients d;
+  d.color = loss.c.data();
+  r.backward(m.view(true), d, m.grad_view(true));
+  m.backprop_extras();
+  const std::vector<float> env_grad = r.environment().grads().to_host();
+  const std::vector<float> net_grad = r.net().grads().to_host();
+
+  auto check = [&](float* value, double analytic, double h, const char* what) {
+    const float v0 = *value;
+    *value = v0 + float(h);
+    const double fp = eval();
+    *value = v0 - float(h);
+    const double fm = eval();
+    *value = v0;
+    const double fd = (fp - fm) / (2 * h);
+    EXPECT_NEAR(analytic, fd, 0.05 * std::abs(fd) + 2e-3) << what;
+    return fd;
+  };
+  // Environment texels with the largest gradients (smooth in the texel values).
+  std::vector<size_t> order(env_grad.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::partial_sort(order.begin(), order.begin() + 4, order.end(),
+                    [&](size_t a, size_t b) { return std::abs(env_grad[a]) > std::abs(env_grad[b]); });
+  ASSERT_GT(std::abs(env_grad[order[0]]), 1e-3) << "the environment map received no gradient";
+  for (int k = 0; k < 4; ++k) {
+    Buffer<float>& p = r.environment().params();
+    std::vector<float> host = p.to_host();
+    const size_t i = order[size_t(k)];
+    // Perturb through the host copy: the env map owns its buffer.
+    auto eval_env = [&](float delta) {
+      std::vector<float> h2 = host;
+      h2[i] += delta;
+      p.upload(h2.data(), h2.size());
+      r.environment().update();
+      const double f = eval();
+      p.upload(host.data(), host.size());
+      r.environment().update();
+      return f;
+    };
+    const double fd = (eval_env(1e-2f) - eval_env(-1e-2f)) / 2e-2;
+    EXPECT_NEAR(env_grad[i], fd, 0.05 * std::abs(fd) + 2e-3) << "env texel " << i;
+  }
+  // Floor Gaussians' F0 and region logits, the blob's SH DC (reaches the image only through traced rays
+  // where the blob is not itself visible, and through rasterization where it is) and its region weight
+  // (emission into traced rays).
+  const std::vector<float> ge = m.tensor(Param::ExtraLogit).grad.to_host();
+  const std::vector<float> gsh = m.tensor(Param::Sh).grad.to_host();
+  int checked = 0;
+  for (int i : {27, 28, 35, 36}) {  // floor Gaussians near the centre
+    float* e = m.values(Param::ExtraLogit) + extra::kCount * i;
+    check(e + extra::kFresnel, ge[size_t(extra::kCount) * i + extra::kFresnel], 1e-2, "F0 logit");
+    check(e + extra::kRegion, ge[size_t(extra::kCount) * i + extra::kRegion], 1e-2, "floor region logit");
+    ++checked;
+  }
+  for (int i = 64; i < 68; ++i) {
+    float* e = m.values(Param::ExtraLogit) + extra::kCount * i;
+    check(e + extra::kRegion, ge[size_t(extra::kCount) * i + extra::kRegion], 1e-2, "blob region logit (emission)");
+    check(m.values(Param::Sh) + 48 * i + 1, gsh[size_t(48) * i + 1], 1e-2, "blob SH DC");
+    ++checked;
+  }
+  EXPECT_EQ(checked, 8);
+  double net_sum = 0;
+  for (float g : net_grad) net_sum += std::abs(g);
+  EXPECT_GT(net_sum, 0.0) << "the roughness net received no gradient";
+}
+
+TEST(IntrinsicRenderer, OwnStateRoundTripsAndRejectsForeignFiles) {
+  const TrainConfig cfg = intrinsic_config(100);
+  IntrinsicRenderer a(cfg, 3.0f, Device::CPU);
+  std::vector<float> p = a.environment().params().to_host();
+  for (size_t i = 0; i < p.size(); ++i) p[i] = 0.001f * float(i % 97);
+  a.environment().params().upload(p.data(), p.size());
+  const std::string bytes = a.save_own_state();
+  IntrinsicRenderer b(cfg, 3.0f, Device::CPU);
+  b.load_own_state(bytes, "state.bin");
+  EXPECT_EQ(b.environment().params().to_host(), p);
+  EXPECT_EQ(b.net().params().to_host(), a.net().params().to_host());
+
+  TrainConfig other = cfg;
+  other.intrinsic.env_resolution = 16;
+  IntrinsicRenderer c(other, 3.0f, Device::CPU);
+  expect_error([&] { c.load_own_state(bytes, "state.bin"); }, "state.bin");
+  expect_error([&] { b.load_own_state(bytes.substr(0, bytes.size() - 5), "cut.bin"); }, "truncated");
+  expect_error([&] { b.load_own_state(bytes + "x", "long.bin"); }, "trailing");
+  expect_error([&] { b.load_own_state("not a state file at all", "junk.bin"); }, "junk.bin");
+}
+
+TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
+  // Targets rendered by the intrinsic renderer from the scene itself; training starts from a perturbed copy.
+  TrainConfig cfg = intrinsic_config(40);
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  cfg.depth_normal_weight = 0;
+  GaussianModel truth = floor_and_blob(4);
+  auto target_renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
+  target_renderer->set_shading(true);
+  std::vector<TrainView> views;
+  const glm::vec3 eyes[3] = {{2.2f, -0.4f, 1.6f}, {-1.8f, 1.2f, 1.5f}, {0.3f, 2.2f, 1.7f}};
+  for (int k = 0; k < 3; ++k) {
+    TrainView v;
+    v.name = "v" + std::to_string(k);
+    v.camera = look_at(eyes[k], {0, 0, 0.1f}, 32, 55);
+    const RenderedImages r = target_renderer->forward(truth.view(true), v.camera);
+    const size_t hw = 32 * 32;
+    v.image.assign(r.color, r.color + 3 * hw);
+    v.glossy_mask.assign(hw, 0.0f);
+    v.object_mask.assign(hw, 0.0f);
+    for (size_t p = 0; p < hw; ++p) {  // the rendered region / label as masks
+      v.glossy_mask[p] = r.extras[extra::kRegion * hw + p] < 0.5f && r.alpha[p] > 0.5f ? 1.0f : 0.0f;
+      v.object_mask[p] = r.extras[extra::kLabel * hw + p] > 0.5f ? 1.0f : 0.0f;
+    }
+    views.push_back(std::move(v));
+  }
+  GaussianModel start = floor_and_blob(4);
+  for (size_t i = 0; i < start.count(); ++i) {
+    start.values(Param::Sh)[48 * i] += 0.3f;
+    start.values(Param::ExtraLogit)[extra::kCount * i + extra::kLabel] = 0.0f;
+  }
+  auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
+  Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, std::move(start)));
+  auto mean_l1 = [&] {  // over all views, shaded
+    IntrinsicRenderer probe(cfg, 3.0f, Device::CPU);
+    probe.load_own_state(renderer->save_own_state(), "probe");
+    probe.set_shading(true);
+    double s = 0;
+    for (const TrainView& v : views) s += l1_loss<float>(probe.forward(t.model().view(true), v.camera).color, v.image.data(), v.image.size());
+    return s / double(views.size());
+  };
+  const double l1_before = mean_l1();
+  const StepStats first = t.step();
+  EXPECT_GT(first.label, 0.0);
+  EXPECT_GT(first.smoothness, 0.0);
+  StepStats last;
+  while (!t.finished()) last = t.step();
+  EXPECT_TRUE(std::isfinite(last.loss));
+  EXPECT_LT(last.label, first.label);
+  EXPECT_LT(mean_l1(), 0.7 * l1_before);
+}
+
+TEST(IntrinsicRenderer, DetachedExtrasGradientsReachTheExtrasAlone) {
+  // ImageGradients::extras_detached (the label loss's route): the labels get a gradient, the geometry
+  // that blends them does not; the same gradient through `extras` does move the geometry.
+  const TrainConfig cfg = intrinsic_config(10);
+  GaussianModel m = floor_and_blob(6);
+  IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
+  const Camera cam = test_camera(32);
+  r.begin_iteration(1);
+  r.forward(m.view(true), cam);
+  const size_t hw = 32 * 32;
+  std::vector<float> d_extras(size_t(extra::kCount) * hw, 0.0f), d_color(3 * hw, 0.0f);
+  for (size_t p = 0; p < hw; ++p) d_extras[size_t(extra::kLabel) * hw + p] = -1.0f;
+  auto abs_sum = [](const std::vector<float>& v) {
+    double s = 0;
+    for (float x : v) s += std::abs(x);
+    return s;
+  };
+  for (bool detached : {true, false}) {
+    m.zero_grad();
+    ImageGradients d;
+    d.color = d_color.data();
+    (detached ? d.extras_detached : d.extras) = d_extras.data();
+    r.backward(m.view(true), d, m.grad_view(true));
+    m.backprop_extras();
+    const double geometry = abs_sum(m.tensor(Param::Position).grad.to_host()) +
+                            abs_sum(m.tensor(Param::OpacityLogit).grad.to_host()) +
+                            abs_sum(m.tensor(Param::LogScale).grad.to_host());
+    const std::vector<float> ge = m.tensor(Param::ExtraLogit).grad.to_host();
+    double label = 0;
+    for (size_t i = 0; i < m.count(); ++i) label += std::abs(ge[i * extra::kCount + extra::kLabel]);
+    EXPECT_GT(label, 0.0);
+    if (detached)
+      EXPECT_EQ(geometry, 0.0);
+    else
+      EXPECT_GT(geometry, 0.0);
+  }
+}
