@@ -311,3 +311,66 @@ IntrinsicMaps IntrinsicRenderer::render_maps(const GaussianView& gaussians, cons
 }
 
 }  // namespace goris
+
+namespace goris {
+
+std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussians, const Camera& camera) {
+  const bool was = shading_;
+  shading_ = false;
+  forward(gaussians, camera);
+  shading_ = was;
+  shade_forward(gaussians, camera, false);
+  const Frame& f = *frame_;
+  const GBuffer& g = raster_.gbuffer;
+  const int W = g.width, H = g.height;
+  const std::size_t hw = g.pixels(), n = f.rays.count;
+  std::vector<float> label(hw, 0.0f);
+  if (n > 0) {
+    Buffer<float> ray_extras(n * std::size_t(extra::kCount), device_), ray_alpha(n, device_);
+    tracer_.build(gaussians, f.emit.data());
+    TraceOutputs out;
+    out.extras = ray_extras.data();
+    out.alpha = ray_alpha.data();
+    tracer_.trace({f.rays.origins.data(), f.rays.directions.data(), n}, out);
+    const std::vector<float> ex = ray_extras.to_host();
+    const std::vector<std::uint32_t> pix = f.rays.pixels.to_host();
+    for (std::size_t i = 0; i < n; ++i) label[pix[i]] = ex[i * extra::kCount + extra::kLabel];
+  }
+  if (f.use_filter) {
+    ssf::GlossyFilter<float> filter(filter_.config());
+    Buffer<float> filtered;
+    filter.forward(Buffer<float>(label, device_), 1, H, W, g.normal, f.rs, filtered);
+    label = filtered.to_host();
+  }
+  // Weight like the glossy term: (1 - M) F, F = F0 + (1 - F0)(1 - cos)^5 with cos = n . (-view ray).
+  const std::vector<float> ex = g.extras.to_host(), normal = g.normal.to_host(), alpha = g.alpha.to_host();
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const std::size_t p = std::size_t(y) * W + x;
+      if (alpha[p] <= shading_settings_.min_alpha) {
+        label[p] = 0.0f;
+        continue;
+      }
+      const float a = alpha[p];
+      glm::vec3 nn(normal[p], normal[hw + p], normal[2 * hw + p]);
+      const float len = glm::length(nn);
+      if (len < 1e-8f) {
+        label[p] = 0.0f;
+        continue;
+      }
+      nn /= len;
+      const glm::vec3 v = glm::normalize(glm::vec3((x + 0.5f - camera.cx) / camera.fx, (y + 0.5f - camera.cy) / camera.fy, 1.0f));
+      const float c = std::clamp(-glm::dot(nn, v), 0.0f, 1.0f);
+      const float schlick = std::pow(1.0f - c, 5.0f);
+      float fres = 0;
+      for (int k = 0; k < 3; ++k) {
+        const float f0 = std::clamp(ex[std::size_t(extra::kFresnel + k) * hw + p] / a, 0.0f, 1.0f);
+        fres += (f0 + (1 - f0) * schlick) / 3.0f;
+      }
+      const float m = std::clamp(ex[std::size_t(extra::kRegion) * hw + p] / a, 0.0f, 1.0f);
+      label[p] *= (1 - m) * fres;
+    }
+  return label;
+}
+
+}  // namespace goris

@@ -69,6 +69,12 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   IntrinsicMaps render_maps(const GaussianView& gaussians, const Camera& camera);
   const RasterOutput& last() const { return raster_; }
 
+  // E_obj of the lighting-aware mask (paper Sec. 3.3) as a host image [H][W]: the reflection rays of the
+  // glossy pixels carry the object label (sum of w * label along the ray) instead of colour, the result is
+  // filtered like L_ind (same pyramid, same screen roughness) and weighted like the glossy term in the
+  // final colour, by (1 - M) F (F: Schlick, mean over RGB). Needs the label channel in the Gaussians' extras.
+  std::vector<float> reflected_label(const GaussianView& gaussians, const Camera& camera);
+
   EnvironmentMap& environment() { return env_; }
   ssf::RoughnessNet<float>& net() { return net_; }
 

@@ -14,6 +14,7 @@
 #include "core/util/error.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
+#include "render/removal/lighting_aware_mask.h"
 #include "render/train/raster_renderer.h"
 #include "tests/support/test_support.h"
 
@@ -363,4 +364,40 @@ TEST(IntrinsicRenderer, DetachedExtrasGradientsReachTheExtrasAlone) {
     else
       EXPECT_GT(geometry, 0.0);
   }
+}
+
+TEST(IntrinsicRenderer, ReflectedLabelMarksTheBlobsReflection) {
+  // The floor reflects only the blob (label ~1) or the sky (no hit): E_obj is high where the reflection
+  // ray is blocked by the blob and ~0 where it escapes.
+  TrainConfig cfg = intrinsic_config(10);
+  cfg.intrinsic.screen_space_filter = false;  // exact per-pixel correspondence with V
+  GaussianModel m = floor_and_blob(1);
+  IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
+  const Camera cam = test_camera(40);
+  const IntrinsicMaps maps = r.render_maps(m.view(true), cam);
+  const std::vector<float> e = r.reflected_label(m.view(true), cam);
+  ASSERT_EQ(e.size(), maps.visibility.size());
+  // Floor pixels only (the blob's own pixels are traced too: its region weight 0.95 is below the
+  // rough threshold, but its F0 of 0.04 makes their E_obj small).
+  const std::vector<float> ex = r.last().gbuffer.extras.to_host(), alpha = r.last().gbuffer.alpha.to_host();
+  const size_t hw = e.size();
+  size_t blocked = 0, free_rays = 0;
+  for (size_t p = 0; p < e.size(); ++p) {
+    if (!(alpha[p] > 0.5f && ex[extra::kRegion * hw + p] < 0.5f * alpha[p])) continue;
+    if (maps.visibility[p] < 0.2f) {
+      ++blocked;
+      EXPECT_GT(e[p], 0.1f) << p;
+    } else if (maps.visibility[p] > 0.999f) {
+      ++free_rays;
+      EXPECT_LT(e[p], 0.01f) << p;
+    }
+  }
+  EXPECT_GT(blocked, 5u);
+  EXPECT_GT(free_rays, 100u);
+  const Mask mask = lighting_aware_mask(e, cam.width, cam.height, {0.1f, 0});
+  size_t in = 0;
+  for (size_t p = 0; p < e.size(); ++p) in += mask.data[p] != 0;
+  EXPECT_GE(in, blocked);
+  EXPECT_EQ(count_set(lighting_aware_mask(e, cam.width, cam.height, {0.1f, 1})) >= in, true);
+  expect_error([&] { lighting_aware_mask(e, cam.width + 1, cam.height); }, "reflected-label");
 }
