@@ -18,7 +18,7 @@ namespace goris {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'O', 'R', 'I', 'S', 'C', 'K', 'P'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: + learning-rate scale and skipped steps
 
 std::uint64_t fnv1a(const std::string& bytes) {
   std::uint64_t h = 1469598103934665603ull;
@@ -125,6 +125,8 @@ void write_checkpoint(const std::filesystem::path& path, const TrainConfig& conf
   w.floats(st.stats.grad_accum);
   w.floats(st.stats.denom);
   w.floats(st.stats.max_radii);
+  w.pod(st.lr_scale);
+  w.pod(std::int32_t(st.skipped_steps));
   w.pod(fnv1a(w.bytes()));
 
   write_file_bytes(path, w.bytes().data(), w.bytes().size());
@@ -143,7 +145,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
 
   Reader r(data, path);
   const auto version = r.pod<std::uint32_t>();
-  if (version != kVersion)
+  if (version != kVersion && version != 1)
     r.fail("has format version " + std::to_string(version) + " (this build reads " + std::to_string(kVersion) + ")");
   Checkpoint ck;
   try {
@@ -187,6 +189,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
   st.stats.grad_accum = r.floats(n, device, "densification statistics", true);
   st.stats.denom = r.floats(n, device, "densification statistics", true);
   st.stats.max_radii = r.floats(n, device, "densification statistics", true);
+  if (version >= 2) {
+    st.lr_scale = r.pod<double>();
+    st.skipped_steps = r.pod<std::int32_t>();
+    if (!(st.lr_scale > 0 && st.lr_scale <= 1)) r.fail("learning-rate scale is invalid");
+  }
   return ck;
 }
 

@@ -15,6 +15,7 @@ namespace goris {
 struct RenderedImages {
   int width = 0, height = 0;
   const float* color = nullptr;         // [3][H][W], background included
+  const float* base_color = nullptr;    // [3][H][W] D, the rasterized SH colour (== color for radiance)
   const float* alpha = nullptr;         // [H][W]
   const float* depth = nullptr;         // [H][W] alpha-weighted camera z (not divided by alpha)
   const float* median_depth = nullptr;  // [H][W]
@@ -32,6 +33,7 @@ struct ImageGradients {
   const float* median_depth = nullptr;
   const float* normal = nullptr;
   const float* extras = nullptr;  // [n_extras][H][W]
+  const float* base_color = nullptr;  // [3][H][W] dL/dD (only from renderers whose base_color != color)
   // Gradients on the extra channels that train the per-Gaussian extras only, not the geometry that
   // blends them (the object label: a mask must not make Gaussians transparent). [n_extras][H][W]
   const float* extras_detached = nullptr;

@@ -74,6 +74,11 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_region", c.intrinsic.region);
   f("intrinsic_label", c.intrinsic.label);
   f("intrinsic_normals", c.intrinsic.normals);
+  f("inpaint_appearance_weight", c.inpaint_appearance_weight);
+  f("inpaint_material_weight", c.inpaint_material_weight);
+  f("nan_policy", c.nan_policy);
+  f("nan_lr_factor", c.nan_lr_factor);
+  f("nan_max_skips", c.nan_max_skips);
   f("log_interval", c.log_interval);
   f("checkpoint_interval", c.checkpoint_interval);
   f("keep_checkpoints", c.keep_checkpoints);
@@ -109,6 +114,11 @@ void TrainConfig::validate(const std::string& what) const {
   if (log_interval < 1) fail("log_interval must be at least 1");
   if (checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
   if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
+  if (!(inpaint_appearance_weight >= 0) || !(inpaint_material_weight >= 0))
+    fail("inpaint_appearance_weight and inpaint_material_weight must be >= 0");
+  if (nan_policy != "recover" && nan_policy != "stop") fail("nan_policy must be recover or stop");
+  if (!(nan_lr_factor > 0 && nan_lr_factor <= 1)) fail("nan_lr_factor must lie in (0, 1]");
+  if (nan_max_skips < 1) fail("nan_max_skips must be at least 1");
   const IntrinsicSettings& in = intrinsic;
   if (in.warmup < 0) fail("intrinsic_warmup must be >= 0");
   if (in.env_resolution < 1 || in.env_resolution > 4096 || (in.env_resolution & (in.env_resolution - 1)))

@@ -86,6 +86,18 @@ struct TrainConfig {
 
   IntrinsicSettings intrinsic;
 
+  // Stage-2 fine-tune (views with InpaintTargets): appearance loss (L1 + SSIM instead of the paper's LPIPS,
+  // which needs network weights) on the rough part of the hole, material L1 on the glossy part.
+  float inpaint_appearance_weight = 1.0f;
+  float inpaint_material_weight = 1.0f;
+
+  // Non-finite losses or gradients: "recover" skips the step and multiplies every learning rate by
+  // nan_lr_factor (stopping after nan_max_skips skipped steps in a row), "stop" stops at once. Either way
+  // the message names the iteration, the view, the loss term or parameter group; checkpoints stay intact.
+  std::string nan_policy = "recover";
+  float nan_lr_factor = 0.5f;
+  int nan_max_skips = 10;
+
   // Bookkeeping.
   int log_interval = 100;         // log.csv line every this many iterations
   int checkpoint_interval = 2000; // 0 = only at the end / on interruption

@@ -1,6 +1,7 @@
 #include "core/train/trainer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +63,45 @@ class DeviceGrad {
 
 constexpr ParamGroup kRadianceGroups[] = {ParamGroup::Position, ParamGroup::Scale,   ParamGroup::Rotation,
                                           ParamGroup::Opacity,  ParamGroup::ShDc,    ParamGroup::ShRest};
+
+// The colour loss on the pixels a weight image selects: L(w pred + (1 - w) target, target), so pixels of
+// weight 0 contribute neither loss nor gradient and SSIM windows see the target there; dL/dpred = w dL/dpred'
+// (exact chain rule), scaled by `scale` and accumulated into grad.
+ColorLossParts weighted_color_loss(const float* pred, const float* target, const float* weight, int w, int h,
+                                   float* grad, float lambda_ssim, float scale) {
+  const size_t hw = size_t(w) * size_t(h);
+  std::vector<float> mixed(3 * hw), g(3 * hw, 0.0f);
+  for (int c = 0; c < 3; ++c)
+    for (size_t p = 0; p < hw; ++p) {
+      const size_t i = c * hw + p;
+      mixed[i] = weight[p] * pred[i] + (1 - weight[p]) * target[i];
+    }
+  const ColorLossParts parts = color_loss<float>(mixed.data(), target, 3, w, h, g.data(), lambda_ssim);
+  for (int c = 0; c < 3; ++c)
+    for (size_t p = 0; p < hw; ++p) grad[c * hw + p] += scale * weight[p] * g[c * hw + p];
+  return parts;
+}
+
+// Every loss term of a step by name (for messages about a bad step).
+std::array<std::pair<const char*, double>, 9> loss_term_list(const StepStats& s) {
+  return {{{"l1", s.l1}, {"ssim", s.ssim}, {"depth_normal", s.depth_normal}, {"normal_prior", s.normal_prior},
+           {"smoothness", s.smoothness}, {"region", s.region}, {"label", s.label}, {"appearance", s.appearance},
+           {"material", s.material}}};
+}
+
+std::string loss_terms(const StepStats& s) {
+  std::string out;
+  for (const auto& [name, v] : loss_term_list(s)) out += (out.empty() ? "" : ", ") + std::string(name) + "=" + std::to_string(v);
+  return out;
+}
+
+// The loss terms that are not finite, by name.
+std::string non_finite_terms(const StepStats& s) {
+  std::string out;
+  for (const auto& [name, v] : loss_term_list(s))
+    if (!std::isfinite(v)) out += (out.empty() ? "term " : ", ") + std::string(name) + "=" + std::to_string(v);
+  return out.empty() ? "total " + std::to_string(s.loss) : out;
+}
 
 std::string format_iteration_problem(int it, const std::string& what) {
   return "iteration " + std::to_string(it) + ": " + what;
@@ -141,13 +181,16 @@ StepStats Trainer::step() {
   // Losses and their gradients on the host.
   const HostView color(fwd.color, 3 * hw, device_);
   std::vector<float> g_color(3 * hw, 0.0f);
-  const ColorLossParts cl = color_loss<float>(color.data(), view.image.data(), 3, w, h, g_color.data(), config_.lambda_ssim);
+  const ColorLossParts cl = view.loss_weight.empty()
+                                ? color_loss<float>(color.data(), view.image.data(), 3, w, h, g_color.data(), config_.lambda_ssim)
+                                : weighted_color_loss(color.data(), view.image.data(), view.loss_weight.data(), w, h,
+                                                      g_color.data(), config_.lambda_ssim, 1.0f);
   out.l1 = cl.l1;
   out.ssim = cl.ssim;
   out.loss = cl.total;
   out.psnr = psnr_from_mse(mse<float>(color.data(), view.image.data(), 3 * hw));
 
-  std::vector<float> g_depth, g_alpha, g_median, g_normal, g_extras, g_detached;
+  std::vector<float> g_depth, g_alpha, g_median, g_normal, g_extras, g_detached, g_base;
   const bool use_dn = config_.depth_normal_weight > 0 && it > config_.depth_normal_from;
   if (use_dn) {
     const HostView depth(fwd.depth, hw, device_), alpha(fwd.alpha, hw, device_),
@@ -163,9 +206,15 @@ StepStats Trainer::step() {
     out.loss += config_.depth_normal_weight * out.depth_normal;
   }
   if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g_normal, g_extras, g_detached, out);
-  if (!std::isfinite(out.loss))
-    throw Error(format_iteration_problem(it, "the loss is not finite (" + std::to_string(out.loss) + ") on view " +
-                                                 view.name + "; stopping, the checkpoints on disk are intact"));
+  if (view.inpaint) out.loss += inpaint_losses(view, fwd, g_color, g_base, g_normal, g_detached, out);
+  if (!g_base.empty() && fwd.base_color == fwd.color) {  // D is the colour: one gradient
+    for (size_t i = 0; i < g_base.size(); ++i) g_color[i] += g_base[i];
+    g_base.clear();
+  }
+  if (!std::isfinite(out.loss)) {
+    skip_step(it, "the loss is not finite (" + non_finite_terms(out) + ") on view " + view.name, out);
+    return out;
+  }
 
   // Backward.
   m.zero_grad();
@@ -177,7 +226,7 @@ StepStats Trainer::step() {
   const DeviceGrad dg_color(g_color, device_);
   ImageGradients go;
   go.color = dg_color.data();
-  std::optional<DeviceGrad> dg_depth, dg_alpha, dg_median, dg_normal, dg_extras, dg_detached;
+  std::optional<DeviceGrad> dg_depth, dg_alpha, dg_median, dg_normal, dg_extras, dg_detached, dg_base;
   auto upload = [&](const std::vector<float>& host, std::optional<DeviceGrad>& dev, const float*& ptr) {
     if (host.empty()) return;
     dev.emplace(host, device_);
@@ -189,13 +238,18 @@ StepStats Trainer::step() {
   upload(g_normal, dg_normal, go.normal);
   upload(g_extras, dg_extras, go.extras);
   upload(g_detached, dg_detached, go.extras_detached);
+  upload(g_base, dg_base, go.base_color);
   renderer_->backward(gv, go, gg);
   if (with_extras) m.backprop_extras();
   if (it <= densify_until())
     state_.stats.add_view(view_grad_norm_.data(), fwd.radii, ndc_gradient_scale(w, h), m.count(), device_);
-  check_finite_gradients();
+  if (const std::string bad = non_finite_gradient(); !bad.empty()) {
+    skip_step(it, "non-finite gradient in " + bad + " on view " + view.name + " (loss terms: " + loss_terms(out) + ")", out);
+    return out;
+  }
+  consecutive_skips_ = 0;
 
-  // Adam.
+  // Adam (learning rates scaled down after skipped steps).
   const int decay_steps = config_.lr.position_max_steps > 0 ? config_.lr.position_max_steps : config_.iterations;
   for (ParamGroup g : active_groups()) {
     float lr = 0;
@@ -212,9 +266,10 @@ StepStats Trainer::step() {
       case ParamGroup::Region: lr = config_.lr.region; break;
       case ParamGroup::Label: lr = config_.lr.label; break;
     }
-    state_.adam.step(m, g, lr, g == ParamGroup::ShRest ? 3 * (m.sh_degree + 1) * (m.sh_degree + 1) : 0);
+    state_.adam.step(m, g, float(lr * state_.lr_scale), g == ParamGroup::ShRest ? 3 * (m.sh_degree + 1) * (m.sh_degree + 1) : 0);
   }
-  check_finite_parameters();
+  if (const std::string bad = non_finite_parameter(); !bad.empty())  // an update cannot be undone: stop
+    throw Error(format_iteration_problem(it, bad + " became non-finite; stopping, the checkpoints on disk are intact"));
   renderer_->step_own_parameters(it);
 
   // Density control and the 3D filter. An opacity reset only happens when a pruning step follows it inside
@@ -246,7 +301,7 @@ StepStats Trainer::step() {
   return out;
 }
 
-void Trainer::check_finite_gradients() const {
+std::string Trainer::non_finite_gradient() const {
   const GaussianModel& m = state_.model;
   for (ParamGroup g : active_groups()) {
     const GroupSpan span = group_span(g);
@@ -255,14 +310,12 @@ void Trainer::check_finite_gradients() const {
     if (bad == t.grad.size()) continue;
     const size_t col = bad % size_t(t.width);
     if (int(col) < span.col_begin || int(col) >= span.col_end) continue;  // another group of the tensor
-    throw Error(format_iteration_problem(
-        state_.iteration + 1, std::string("non-finite gradient in parameter group '") + group_name(g) +
-                                  "' (Gaussian " + std::to_string(bad / t.width) +
-                                  "); stopping, the checkpoints on disk are intact"));
+    return std::string("parameter group '") + group_name(g) + "' (Gaussian " + std::to_string(bad / t.width) + ")";
   }
+  return {};
 }
 
-void Trainer::check_finite_parameters() const {
+std::string Trainer::non_finite_parameter() const {
   const GaussianModel& m = state_.model;
   for (ParamGroup g : active_groups()) {
     const GroupSpan span = group_span(g);
@@ -271,10 +324,27 @@ void Trainer::check_finite_parameters() const {
     if (bad == t.value.size()) continue;
     const size_t col = bad % size_t(t.width);
     if (int(col) < span.col_begin || int(col) >= span.col_end) continue;
-    throw Error(format_iteration_problem(
-        state_.iteration + 1, std::string("parameter group '") + group_name(g) + "' became non-finite (Gaussian " +
-                                  std::to_string(bad / t.width) + "); stopping, the checkpoints on disk are intact"));
+    return std::string("parameter group '") + group_name(g) + "' (Gaussian " + std::to_string(bad / t.width) + ")";
   }
+  return {};
+}
+
+void Trainer::skip_step(int it, const std::string& problem, StepStats& out) {
+  if (config_.nan_policy == "stop")
+    throw Error(format_iteration_problem(it, problem + "; stopping (nan_policy stop), the checkpoints on disk are intact"));
+  ++consecutive_skips_;
+  if (consecutive_skips_ > config_.nan_max_skips)
+    throw Error(format_iteration_problem(
+        it, problem + "; " + std::to_string(consecutive_skips_) +
+                " steps in a row were not finite even with the learning rates lowered to " +
+                std::to_string(state_.lr_scale) + "x; stopping, the checkpoints on disk are intact"));
+  state_.model.zero_grad();
+  state_.lr_scale *= config_.nan_lr_factor;
+  ++state_.skipped_steps;
+  out.skipped = true;
+  out.problem = format_iteration_problem(it, problem) + "; step skipped, learning rates now " +
+                std::to_string(state_.lr_scale) + "x";
+  state_.iteration = it;
 }
 
 std::vector<ParamGroup> Trainer::active_groups() const {
@@ -302,22 +372,24 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   const size_t hw = size_t(w) * size_t(h);
   const HostView extras(fwd.extras, size_t(extra::kCount) * hw, device_), normal(fwd.normal, 3 * hw, device_);
   if (g_normal.empty()) g_normal.assign(3 * hw, 0.0f);
-  g_extras.assign(size_t(extra::kCount) * hw, 0.0f);
   auto plane = [&](int c) { return extras.data() + size_t(c) * hw; };
-  auto gplane = [&](int c) { return g_extras.data() + size_t(c) * hw; };
   double total = 0;
   const bool glossy = !view.glossy_mask.empty();
+  // Losses on material maps train the materials alone (detached from the geometry that blends them: a
+  // material loss must not be lowered by making the surface transparent); normal losses train geometry.
+  if (g_detached.empty()) g_detached.assign(size_t(extra::kCount) * hw, 0.0f);
+  auto dplane = [&](int c) { return g_detached.data() + size_t(c) * hw; };
   if (glossy && in.region > 0) {
-    out.region = region_loss<float>(plane(extra::kRegion), view.glossy_mask.data(), w, h, gplane(extra::kRegion), in.region);
+    out.region = region_loss<float>(plane(extra::kRegion), view.glossy_mask.data(), w, h, dplane(extra::kRegion), in.region);
     total += in.region * out.region;
   }
   if (glossy && in.smoothness > 0) {
     const float s = in.smoothness;
     out.smoothness =
         edge_aware_smoothness<float>(plane(extra::kFresnel), 3, view.image.data(), view.glossy_mask.data(), w, h,
-                                     gplane(extra::kFresnel), s) +
+                                     dplane(extra::kFresnel), s) +
         edge_aware_smoothness<float>(plane(extra::kRoughness), 1, view.image.data(), view.glossy_mask.data(), w, h,
-                                     gplane(extra::kRoughness), s) +
+                                     dplane(extra::kRoughness), s) +
         edge_aware_smoothness<float>(normal.data(), 3, view.image.data(), view.glossy_mask.data(), w, h,
                                      g_normal.data(), s, /*normalize_x=*/true);
     total += s * out.smoothness;
@@ -330,10 +402,69 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   }
   if (!view.object_mask.empty() && in.label > 0) {
     // The label learns from the masks without moving geometry (see ImageGradients::extras_detached).
-    g_detached.assign(size_t(extra::kCount) * hw, 0.0f);
-    out.label = label_bce_loss<float>(plane(extra::kLabel), view.object_mask.data(), w, h,
-                                      g_detached.data() + size_t(extra::kLabel) * hw, in.label);
+    out.label = label_bce_loss<float>(plane(extra::kLabel), view.object_mask.data(), w, h, dplane(extra::kLabel), in.label);
     total += in.label * out.label;
+  }
+  return total;
+}
+
+double Trainer::inpaint_losses(const TrainView& view, const RenderedImages& fwd, std::vector<float>& g_color,
+                               std::vector<float>& g_base, std::vector<float>& g_normal, std::vector<float>& g_extras,
+                               StepStats& out) const {
+  // F0 and roughness targets train the materials alone, like the stage-1 material losses (g_extras here is
+  // the detached gradient set).
+  const InpaintTargets& t = *view.inpaint;
+  const int w = fwd.width, h = fwd.height;
+  const size_t hw = size_t(w) * size_t(h);
+  auto sized = [&](const std::vector<float>& v, size_t n, const char* what) {
+    if (!v.empty() && v.size() != n)
+      throw Error(view.name, std::string("inpainting target '") + what + "' has the wrong size");
+    return !v.empty();
+  };
+  double total = 0;
+  const float wa = config_.inpaint_appearance_weight, wm = config_.inpaint_material_weight;
+  if (wa > 0 && sized(t.appearance_weight, hw, "appearance weight") && sized(t.color, 3 * hw, "colour")) {
+    const HostView color(fwd.color, 3 * hw, device_);
+    out.appearance = weighted_color_loss(color.data(), t.color.data(), t.appearance_weight.data(), w, h, g_color.data(),
+                                         config_.lambda_ssim, wa).total;
+    total += wa * out.appearance;
+  }
+  if (wm > 0 && sized(t.material_weight, hw, "material weight")) {
+    const float* mw = t.material_weight.data();
+    const float norm = 1.0f / float(hw);
+    auto l1 = [&](const float* x, const float* target, int channels, float* grad) {
+      double l = 0;
+      for (int c = 0; c < channels; ++c)
+        for (size_t p = 0; p < hw; ++p) {
+          if (mw[p] == 0) continue;
+          const float d = x[c * hw + p] - target[c * hw + p];
+          l += mw[p] * std::abs(d);
+          grad[c * hw + p] += wm * norm * mw[p] * (d > 0 ? 1.0f : (d < 0 ? -1.0f : 0.0f));
+        }
+      return l * norm;
+    };
+    double m = 0;
+    if (sized(t.base_color, 3 * hw, "base colour")) {
+      const HostView base(fwd.base_color, 3 * hw, device_);
+      if (g_base.empty()) g_base.assign(3 * hw, 0.0f);
+      m += l1(base.data(), t.base_color.data(), 3, g_base.data());
+    }
+    if (fwd.extras && fwd.n_extras == extra::kCount) {
+      const HostView extras(fwd.extras, size_t(extra::kCount) * hw, device_);
+      if (g_extras.empty()) g_extras.assign(size_t(extra::kCount) * hw, 0.0f);
+      if (sized(t.f0, 3 * hw, "F0"))
+        m += l1(extras.data() + size_t(extra::kFresnel) * hw, t.f0.data(), 3, g_extras.data() + size_t(extra::kFresnel) * hw);
+      if (sized(t.roughness, hw, "roughness"))
+        m += l1(extras.data() + size_t(extra::kRoughness) * hw, t.roughness.data(), 1,
+                g_extras.data() + size_t(extra::kRoughness) * hw);
+    }
+    if (sized(t.normal, 3 * hw, "normal")) {
+      const HostView normal(fwd.normal, 3 * hw, device_);
+      if (g_normal.empty()) g_normal.assign(3 * hw, 0.0f);
+      m += normal_prior_loss<float>(normal.data(), t.normal.data(), mw, w, h, g_normal.data(), wm);
+    }
+    out.material = m;
+    total += wm * m;
   }
   return total;
 }
@@ -436,6 +567,14 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
       return RunResult::Stopped;
     }
     const StepStats s = step();
+    if (s.skipped) {
+      if (o.on_skip)
+        o.on_skip(s.problem);
+      else
+        std::fprintf(stderr, "\nwarning: %s\n", s.problem.c_str());
+      last = clock::now();
+      continue;
+    }
     const auto now = clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;

@@ -22,6 +22,19 @@
 
 namespace goris {
 
+// Stage-2 targets of one view inside the inpainting hole (paper Sec. 3.4, S1.4-S1.5): an appearance
+// target on the rough part, material targets on the glossy part. Planar host images at the camera's size;
+// weights in [0, 1] select the pixels (0 = no target there).
+struct InpaintTargets {
+  std::vector<float> color;              // [3][H][W] inpainted colour
+  std::vector<float> appearance_weight;  // [H][W]
+  std::vector<float> base_color;         // [3][H][W] D (the SH colour) target
+  std::vector<float> f0;                 // [3][H][W]
+  std::vector<float> roughness;          // [H][W]
+  std::vector<float> normal;             // [3][H][W] unit, camera space (zero = no target)
+  std::vector<float> material_weight;    // [H][W]
+};
+
 // One training image with its camera, the image as planar RGB [3][H][W] on the host, at camera's size,
 // and what intrinsic mode uses when the data set has it (empty vectors = not available).
 struct TrainView {
@@ -31,6 +44,10 @@ struct TrainView {
   std::vector<float> glossy_mask;   // [H][W] in [0, 1]: the paper's M_gt
   std::vector<float> object_mask;   // [H][W] in [0, 1]: the target
   std::vector<float> normal_prior;  // [3][H][W] unit normals in camera space (OpenCV axes, facing the camera)
+  // Stage 2: weight of the photo losses per pixel ([H][W], empty = 1 everywhere; 0 under the target and
+  // its reflections), and the inpainting targets (null = none for this view).
+  std::vector<float> loss_weight;
+  std::shared_ptr<const InpaintTargets> inpaint;
 };
 
 // Everything that changes while training; a checkpoint stores exactly this (and the config).
@@ -43,6 +60,8 @@ struct TrainerState {
   std::vector<std::uint32_t> view_stack; // views left in this epoch (taken from the back)
   double ema_loss = 0, ema_psnr = 0;     // training loss / PSNR smoothed over ~20 iterations, for display
   double elapsed_s = 0;                  // training time so far, over all sessions
+  double lr_scale = 1.0;                 // lowered by each step skipped for non-finite values
+  int skipped_steps = 0;                 // in all; consecutive ones are counted in the trainer
 };
 
 struct TrainProgress {
@@ -56,7 +75,11 @@ struct StepStats {
   double loss = 0, l1 = 0, ssim = 0, depth_normal = 0, psnr = 0;
   // Intrinsic-mode terms (unweighted; 0 when off).
   double normal_prior = 0, smoothness = 0, region = 0, label = 0;
+  double appearance = 0, material = 0;  // stage 2 (0 when off)
   DensifyCounts densify;  // after == 0 when this step did not densify
+  // A step skipped for non-finite values (nan_policy recover): what was found, where; nothing was updated.
+  bool skipped = false;
+  std::string problem;
 };
 
 class Trainer {
@@ -80,6 +103,7 @@ class Trainer {
     const std::atomic<bool>* stop = nullptr;       // raised (e.g. by SIGINT): finish the step, checkpoint, return
     std::function<void(const TrainProgress&)> on_progress;  // called every progress_every iterations and at the end
     int progress_every = 10;
+    std::function<void(const std::string&)> on_skip;  // a step skipped for non-finite values (default: stderr)
   };
   // Steps until config.iterations or until *stop. Writes a checkpoint every config.checkpoint_interval
   // iterations, at the end and when stopped; appends to run_dir/log.csv every config.log_interval.
@@ -110,12 +134,22 @@ class Trainer {
   int densify_until() const;
 
  private:
-  void check_finite_gradients() const;
-  void check_finite_parameters() const;
+  // The first parameter group whose gradient / value holds a NaN or Inf, as "group 'x' (Gaussian i)"; empty
+  // when all are finite.
+  std::string non_finite_gradient() const;
+  std::string non_finite_parameter() const;
+  // Handles a non-finite loss or gradient at iteration `it` (see TrainConfig::nan_policy): throws, or marks
+  // `out` skipped, lowers the learning rates and completes the iteration without an update.
+  void skip_step(int it, const std::string& problem, StepStats& out);
+  int consecutive_skips_ = 0;
   std::vector<ParamGroup> active_groups() const;
   // Intrinsic-mode losses on the host images; adds their gradients. Returns the weighted sum.
   double intrinsic_losses(const TrainView& view, const RenderedImages& fwd, int it, std::vector<float>& g_normal,
                           std::vector<float>& g_extras, std::vector<float>& g_detached, StepStats& out) const;
+  // Stage-2 inpainting losses of views with targets; adds their gradients. Returns the weighted sum.
+  double inpaint_losses(const TrainView& view, const RenderedImages& fwd, std::vector<float>& g_color,
+                        std::vector<float>& g_base, std::vector<float>& g_normal, std::vector<float>& g_extras,
+                        StepStats& out) const;
   std::vector<Camera> cameras() const;
 
   TrainConfig config_;

@@ -1,8 +1,10 @@
 #include "render/intrinsic/intrinsic_renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "core/compute/memory.h"
 #include "core/scene/gaussians.h"
@@ -32,6 +34,27 @@ std::vector<float> download(const float* p, std::size_t n, Device d) {
   device_copy(h.data(), Device::CPU, p, d, n * sizeof(float));
   return h;
 }
+
+// Adds the wall time of its scope to `slot` when profiling (synchronising the device first and last).
+class StageTimer {
+ public:
+  StageTimer(bool on, Device d, double& slot) : on_(on), d_(d), slot_(slot) {
+    if (!on_) return;
+    device_synchronize(d_);
+    t0_ = std::chrono::steady_clock::now();
+  }
+  ~StageTimer() {
+    if (!on_) return;
+    device_synchronize(d_);
+    slot_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+  }
+
+ private:
+  bool on_;
+  Device d_;
+  double& slot_;
+  std::chrono::steady_clock::time_point t0_;
+};
 
 }  // namespace
 
@@ -77,20 +100,13 @@ RenderedImages IntrinsicRenderer::forward(const GaussianView& gaussians, const C
     throw Error("intrinsic renderer", "the Gaussians carry " + std::to_string(gaussians.n_extras) +
                                           " extra channels, shading needs the " + std::to_string(extra::kCount) +
                                           " material channels");
-  raster_ = rasterize(gaussians, camera, raster_settings_, device_);
+  times_ = IntrinsicTimes{};
+  {
+    StageTimer t(profile_, device_, times_.raster);
+    raster_ = rasterize(gaussians, camera, raster_settings_, device_);
+  }
   frame_.reset();
-  const GBuffer& g = raster_.gbuffer;
-  RenderedImages r;
-  r.width = g.width;
-  r.height = g.height;
-  r.color = g.color.data();
-  r.alpha = g.alpha.data();
-  r.depth = g.depth.data();
-  r.median_depth = g.median_depth.data();
-  r.normal = g.normal.data();
-  r.radii = raster_.state.radii.data();
-  r.extras = g.extras.data();
-  r.n_extras = g.n_extras;
+  RenderedImages r = rendered_from_raster(raster_);
   if (shading_) {
     shade_forward(gaussians, camera, false);
     r.color = frame_->shaded.color.data();
@@ -105,8 +121,13 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
   const std::size_t hw = g.pixels();
   f->camera = camera;
   f->surface = surface_from_gbuffer(g, kChannels);
-  f->rays = make_reflection_rays(camera, f->surface, shading_settings_, device_);
+  {
+    StageTimer t(profile_, device_, times_.rays);
+    f->rays = make_reflection_rays(camera, f->surface, shading_settings_, device_);
+  }
   const std::size_t n = f->rays.count;
+  times_.rays_traced = n;
+  std::optional<StageTimer> trace_timer(std::in_place, profile_, device_, times_.trace);
 
   // Trace: every Gaussian occludes, rough ones (region weight m) emit. No extras needed on the rays.
   {
@@ -130,7 +151,9 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
     tracer_.trace({f->rays.origins.data(), f->rays.directions.data(), n}, out);
   }
   traced_to_images(f->rays, W, H, f->ray_color, f->ray_alpha, traced_settings_, f->L_raw, f->V_raw);
+  trace_timer.reset();
 
+  std::optional<StageTimer> filter_timer(std::in_place, profile_, device_, times_.filter);
   f->use_filter = config_.intrinsic.screen_space_filter;
   if (f->use_filter) {
     // The net's input: (roughness, traced hit distance, 1 / view depth), distances in scene extents.
@@ -156,7 +179,11 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
     f->L = f->L_raw.copy_to(device_);
     f->V = f->V_raw.copy_to(device_);
   }
-  f->shaded = shade(camera, f->surface, f->L, f->V, env_.mips(), shading_settings_, device_, maps);
+  filter_timer.reset();
+  {
+    StageTimer t(profile_, device_, times_.shade);
+    f->shaded = shade(camera, f->surface, f->L, f->V, env_.mips(), shading_settings_, device_, maps);
+  }
   frame_ = std::move(f);
 }
 
@@ -172,16 +199,21 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
   go.median_depth = d.median_depth;
   go.normal = g_normal.data();
   go.extras = g_extras.data();
-  backward_detached_extras(gaussians, raster_.state, d.extras_detached, grads);
+  times_.shade_back = times_.filter_back = times_.trace_back = times_.raster_back = 0;
+  {
+    StageTimer t(profile_, device_, times_.raster_back);
+    backward_detached_extras(gaussians, raster_.state, d.extras_detached, grads);
+  }
   if (!frame_) {  // radiance warm-up: the colour is the rasterized one
+    if (d.base_color) throw Error("intrinsic renderer", "dL/dD given while D is the colour (warm-up): add it to dL/dcolour");
     go.color = d.color;
+    StageTimer t(profile_, device_, times_.raster_back);
     rasterize_backward(gaussians, raster_.state, go, grads);
     return;
   }
   Frame& f = *frame_;
   const std::size_t n = f.rays.count;
-  Buffer<float> g_color(3 * hw, device_);
-  g_color.fill_zero();
+  Buffer<float> g_color = grad_plane(d.base_color, 3 * hw, device_);  // dL/dD from losses on D itself
   go.color = g_color.data();
   SurfaceGrads sg;
   sg.color = g_color.data();
@@ -195,8 +227,12 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
   const Buffer<float> dC = grad_plane(d.color, 3 * hw, device_);
 
   Buffer<float> dL, dV;
-  shade_backward(f.camera, f.surface, f.L, f.V, env_.mips(), shading_settings_, dC, sg, dL, dV, env_.mip_grads(), device_);
-  env_.backward();
+  {
+    StageTimer t(profile_, device_, times_.shade_back);
+    shade_backward(f.camera, f.surface, f.L, f.V, env_.mips(), shading_settings_, dC, sg, dL, dV, env_.mip_grads(), device_);
+    env_.backward();
+  }
+  std::optional<StageTimer> filter_timer(std::in_place, profile_, device_, times_.filter_back);
 
   Buffer<float> dL_raw, dV_raw;
   if (f.use_filter) {
@@ -226,6 +262,8 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
     dV_raw = std::move(dV);
   }
 
+  filter_timer.reset();
+  std::optional<StageTimer> trace_timer(std::in_place, profile_, device_, times_.trace_back);
   if (n > 0) {
     Buffer<float> dcolor, dalpha;
     traced_to_images_backward(f.rays, g.width, g.height, f.ray_color, f.ray_alpha, traced_settings_, dL_raw, dV_raw,
@@ -249,11 +287,18 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
       device_copy(grads.extras, device_, ge.data(), Device::CPU, ge.size() * sizeof(float));
     }
   }
+  trace_timer.reset();
+  StageTimer t(profile_, device_, times_.raster_back);
   rasterize_backward(gaussians, raster_.state, go, grads);
 }
 
 void IntrinsicRenderer::step_own_parameters(int iteration) {
   if (!frame_) return;  // nothing flowed into them this iteration
+  if (config_.intrinsic.lr_env == 0 && config_.intrinsic.lr_net == 0) {  // frozen (stage 2)
+    env_.zero_grad();
+    net_.zero_grad();
+    return;
+  }
   const int end = std::max(config_.iterations, shading_from_ + 1);
   const float lr_env = exponential_lr(iteration - shading_from_, config_.intrinsic.lr_env, config_.intrinsic.lr_env_final,
                                       end - shading_from_);

@@ -44,6 +44,16 @@ struct IntrinsicMaps {
   std::size_t rays = 0;           // traced rays (glossy pixels)
 };
 
+// Wall time of each stage of the last forward / backward (ms), when profiling is on (CUDA is synchronised
+// around each stage, which costs a little).
+struct IntrinsicTimes {
+  double raster = 0, rays = 0, trace = 0, filter = 0, shade = 0;                        // forward
+  double shade_back = 0, filter_back = 0, trace_back = 0, raster_back = 0;              // backward
+  std::size_t rays_traced = 0;
+  double forward_total() const { return raster + rays + trace + filter + shade; }
+  double backward_total() const { return shade_back + filter_back + trace_back + raster_back; }
+};
+
 class IntrinsicRenderer final : public DifferentiableRenderer {
  public:
   // `extent`: the scene extent (ray offset default); the config's intrinsic settings, iterations and
@@ -75,6 +85,9 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   // final colour, by (1 - M) F (F: Schlick, mean over RGB). Needs the label channel in the Gaussians' extras.
   std::vector<float> reflected_label(const GaussianView& gaussians, const Camera& camera);
 
+  void set_profile(bool on) { profile_ = on; }
+  const IntrinsicTimes& times() const { return times_; }
+
   EnvironmentMap& environment() { return env_; }
   ssf::RoughnessNet<float>& net() { return net_; }
 
@@ -98,6 +111,8 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   ssf::GlossyFilter<float> filter_;
   GaussianTracer tracer_;
 
+  bool profile_ = false;
+  IntrinsicTimes times_;
   RasterOutput raster_;
   std::unique_ptr<Frame> frame_;  // the shading pass's intermediates, kept for backward()
 };

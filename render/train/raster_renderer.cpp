@@ -8,21 +8,26 @@ RasterSettings RasterRenderer::settings_for(const TrainConfig& config) {
   return s;
 }
 
-RenderedImages RasterRenderer::forward(const GaussianView& gaussians, const Camera& camera) {
-  last_ = rasterize(gaussians, camera, settings_, device_);
-  const GBuffer& g = last_.gbuffer;
+RenderedImages rendered_from_raster(const RasterOutput& raster) {
+  const GBuffer& g = raster.gbuffer;
   RenderedImages r;
   r.width = g.width;
   r.height = g.height;
   r.color = g.color.data();
+  r.base_color = r.color;
   r.alpha = g.alpha.data();
   r.depth = g.depth.data();
   r.median_depth = g.median_depth.data();
   r.normal = g.normal.data();
-  r.radii = last_.state.radii.data();
+  r.radii = raster.state.radii.data();
   r.extras = g.n_extras > 0 ? g.extras.data() : nullptr;
   r.n_extras = g.n_extras;
   return r;
+}
+
+RenderedImages RasterRenderer::forward(const GaussianView& gaussians, const Camera& camera) {
+  last_ = rasterize(gaussians, camera, settings_, device_);
+  return rendered_from_raster(last_);
 }
 
 void RasterRenderer::backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) {

@@ -6,6 +6,9 @@
 
 namespace goris {
 
+// The trainer's view of a rasterizer output (colour = base colour = the rasterized SH colour).
+RenderedImages rendered_from_raster(const RasterOutput& raster);
+
 // Back-propagates gradients on the extra channels into grads.extras alone (a second backward pass with
 // every other gradient left out): ImageGradients::extras_detached. No-op when either is null.
 void backward_detached_extras(const GaussianView& gaussians, const RasterState& state, const float* d_extras,

@@ -6,9 +6,12 @@
 #include <vector>
 
 #include "core/train/intrinsic_losses.h"
+#include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
+using goris::test::expect_gradient;
+using goris::test::look_at;
 
 namespace {
 
@@ -28,23 +31,6 @@ std::vector<double> random_mask(std::mt19937_64& rng) {
   return m;
 }
 
-void expect_gradient(const std::function<double(const std::vector<double>&)>& f, std::vector<double> x,
-                     const std::vector<double>& grad, double h = 1e-6, double tol = 1e-6) {
-  ASSERT_EQ(x.size(), grad.size());
-  double max_g = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    const double x0 = x[i];
-    x[i] = x0 + h;
-    const double fp = f(x);
-    x[i] = x0 - h;
-    const double fm = f(x);
-    x[i] = x0;
-    const double fd = (fp - fm) / (2 * h);
-    max_g = std::max(max_g, std::abs(fd));
-    ASSERT_NEAR(grad[i], fd, tol * (1.0 + std::abs(fd))) << "element " << i;
-  }
-  EXPECT_GT(max_g, 0.0) << "the gradient check saw only zeros";
-}
 
 std::vector<double> unit_normals(std::mt19937_64& rng) {
   auto n = random_image(3 * HW, rng, -1.0, 1.0);

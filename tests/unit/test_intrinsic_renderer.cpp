@@ -16,30 +16,15 @@
 #include "render/raster/rasterizer.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/train/raster_renderer.h"
+#include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
+using goris::test::expect_gradient;
+using goris::test::look_at;
 
 namespace {
 
-Camera look_at(glm::vec3 eye, glm::vec3 target, int size, float fov_deg) {
-  Camera c;
-  c.width = c.height = size;
-  c.fx = c.fy = 0.5f * size / std::tan(glm::radians(fov_deg) * 0.5f);
-  c.cx = c.cy = 0.5f * size;
-  const glm::vec3 z = glm::normalize(target - eye);
-  const glm::vec3 x = glm::normalize(glm::cross(z, glm::vec3(0, 0, 1)));
-  const glm::vec3 y = glm::cross(z, x);
-  glm::mat3 R;
-  for (int k = 0; k < 3; ++k) {
-    R[k][0] = x[k];
-    R[k][1] = y[k];
-    R[k][2] = z[k];
-  }
-  c.R = R;
-  c.t = -(R * eye);
-  return c;
-}
 
 // Runs f, expects a goris::Error whose message contains `needle`.
 template <class F>

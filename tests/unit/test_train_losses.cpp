@@ -7,9 +7,12 @@
 
 #include "core/train/depth_normal_loss.h"
 #include "core/train/image_losses.h"
+#include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
+using goris::test::expect_gradient;
+using goris::test::look_at;
 
 namespace {
 
@@ -20,24 +23,6 @@ std::vector<double> random_image(size_t n, std::mt19937_64& rng, double lo = 0.0
   return v;
 }
 
-// Checks grad against central differences of f at every element of x (relative + absolute tolerance).
-void expect_gradient(const std::function<double(const std::vector<double>&)>& f, std::vector<double> x,
-                     const std::vector<double>& grad, double h, double tol) {
-  ASSERT_EQ(x.size(), grad.size());
-  double max_g = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    const double x0 = x[i];
-    x[i] = x0 + h;
-    const double fp = f(x);
-    x[i] = x0 - h;
-    const double fm = f(x);
-    x[i] = x0;
-    const double fd = (fp - fm) / (2 * h);
-    max_g = std::max(max_g, std::abs(fd));
-    ASSERT_NEAR(grad[i], fd, tol * (1.0 + std::abs(fd))) << "element " << i;
-  }
-  EXPECT_GT(max_g, 0.0) << "the gradient check saw only zeros";
-}
 
 }  // namespace
 

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <random>
+#include <set>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -16,30 +18,14 @@
 #include "core/train/trainer.h"
 #include "core/util/error.h"
 #include "render/train/raster_renderer.h"
+#include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
 
 namespace {
 
-Camera look_at(glm::vec3 eye, int size, float fov_deg) {
-  Camera c;
-  c.width = c.height = size;
-  c.fx = c.fy = 0.5f * size / std::tan(glm::radians(fov_deg) * 0.5f);
-  c.cx = c.cy = 0.5f * size;
-  const glm::vec3 z = glm::normalize(-eye);
-  const glm::vec3 x = glm::normalize(glm::cross(z, glm::vec3(0, 0, 1)));
-  const glm::vec3 y = glm::cross(z, x);
-  glm::mat3 R;
-  for (int k = 0; k < 3; ++k) {
-    R[k][0] = x[k];
-    R[k][1] = y[k];
-    R[k][2] = z[k];
-  }
-  c.R = R;
-  c.t = -(R * eye);
-  return c;
-}
+Camera look_at(glm::vec3 eye, int size, float fov_deg) { return goris::test::look_at(eye, glm::vec3(0.0f), size, fov_deg); }
 
 // A few dozen coloured Gaussians around the origin (SH degree 0).
 GaussianModel ground_truth_scene(int n, std::uint64_t seed) {
@@ -246,6 +232,97 @@ TEST(Trainer, NonFiniteParameterNamesItsGroup) {
     EXPECT_NE(msg.find("iteration 1"), std::string::npos) << msg;
     EXPECT_NE(msg.find("'scale'"), std::string::npos) << msg;
   }
+}
+
+// A renderer that breaks one chosen iteration: NaN in the image (a loss term becomes NaN) or in one
+// Gaussian's position gradient (the loss is fine, a gradient is not).
+class BreakingRenderer final : public DifferentiableRenderer {
+ public:
+  enum class Break { Image, Gradient };
+  BreakingRenderer(std::shared_ptr<DifferentiableRenderer> inner, Break what, std::set<int> at)
+      : inner_(std::move(inner)), what_(what), at_(std::move(at)) {}
+  Device device() const override { return inner_->device(); }
+  void begin_iteration(int it) override { it_ = it; }
+  RenderedImages forward(const GaussianView& g, const Camera& c) override {
+    RenderedImages r = inner_->forward(g, c);
+    if (what_ == Break::Image && at_.count(it_)) {
+      broken_.assign(r.color, r.color + 3 * size_t(r.width) * r.height);
+      broken_[5] = std::numeric_limits<float>::quiet_NaN();
+      r.color = broken_.data();
+    }
+    return r;
+  }
+  void backward(const GaussianView& g, const ImageGradients& d, const GaussianGradView& grads) override {
+    inner_->backward(g, d, grads);
+    if (what_ == Break::Gradient && at_.count(it_)) grads.positions[4] = std::numeric_limits<float>::infinity();
+  }
+
+ private:
+  std::shared_ptr<DifferentiableRenderer> inner_;
+  Break what_;
+  std::set<int> at_;
+  int it_ = 0;
+  std::vector<float> broken_;
+};
+
+TEST(Trainer, NonFiniteLossIsSkippedNamingTheTermAndLowersTheLearningRates) {
+  const TrainConfig config = refit_config(6);
+  Scene s = make_scene(config, 32);
+  auto r = std::make_shared<BreakingRenderer>(s.renderer, BreakingRenderer::Break::Image, std::set<int>{3});
+  Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
+  t.step();
+  t.step();
+  const std::vector<float> before = all_values(t.model());
+  const StepStats bad = t.step();
+  ASSERT_TRUE(bad.skipped);
+  EXPECT_NE(bad.problem.find("iteration 3"), std::string::npos) << bad.problem;
+  EXPECT_NE(bad.problem.find("term l1=nan"), std::string::npos) << bad.problem;
+  EXPECT_NE(bad.problem.find("view"), std::string::npos) << bad.problem;
+  EXPECT_EQ(all_values(t.model()), before) << "a skipped step must not update anything";
+  EXPECT_EQ(t.state().iteration, 3);
+  EXPECT_DOUBLE_EQ(t.state().lr_scale, 0.5);
+  EXPECT_EQ(t.state().skipped_steps, 1);
+  const StepStats next = t.step();
+  EXPECT_FALSE(next.skipped);
+  EXPECT_NE(all_values(t.model()), before);
+}
+
+TEST(Trainer, NonFiniteGradientIsSkippedNamingTheGroupOrStopsOnRequest) {
+  TrainConfig config = refit_config(6);
+  Scene s = make_scene(config, 32);
+  auto r = std::make_shared<BreakingRenderer>(s.renderer, BreakingRenderer::Break::Gradient, std::set<int>{2});
+  {
+    Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
+    t.step();
+    const StepStats bad = t.step();
+    ASSERT_TRUE(bad.skipped);
+    EXPECT_NE(bad.problem.find("'position' (Gaussian 1)"), std::string::npos) << bad.problem;
+    EXPECT_NE(bad.problem.find("l1="), std::string::npos) << "the loss terms are listed: " << bad.problem;
+  }
+  config.nan_policy = "stop";
+  Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
+  t.step();
+  try {
+    t.step();
+    FAIL() << "nan_policy stop must stop";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("iteration 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'position'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Trainer, PersistentNonFiniteStepsStopAfterTheLimitAndTheScaleSurvivesACheckpoint) {
+  TrainConfig config = refit_config(20);
+  config.nan_max_skips = 3;
+  Scene s = make_scene(config, 32);
+  auto r = std::make_shared<BreakingRenderer>(s.renderer, BreakingRenderer::Break::Image, std::set<int>{2, 3, 4, 5, 6});
+  Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
+  t.step();
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(t.step().skipped);
+  const auto dir = goris::test::scratch_dir("trainer_nan_checkpoint");
+  t.save_checkpoint(dir / "c.ckpt");
+  EXPECT_DOUBLE_EQ(read_checkpoint(dir / "c.ckpt", Device::CPU).state.lr_scale, 0.125);
+  EXPECT_THROW(t.step(), Error);  // the 4th in a row
 }
 
 TEST(Checkpoint, BadFilesAreRejectedWithTheirName) {

@@ -1,0 +1,123 @@
+// `goris bench intrinsic RUN`: the time split of one intrinsic training iteration (rasterize, reflection
+// rays, trace, screen-space filter + net, shading; and the backward of each) on a real training view of a
+// trained intrinsic run, with the rays traced per second, the Gaussian count, the resolution, the threads
+// and the machine. Medians over --repeats iterations (after one warm-up), stages timed with the device
+// synchronised around each; "cpu ms" is the process CPU time of the whole iteration (all threads).
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/goris/command.h"
+#include "core/compute/memory.h"
+#include "core/io/dataset.h"
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/util/bench.h"
+#include "core/util/error.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/run_renderer.h"
+
+namespace {
+using namespace goris;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+
+void run_bench_intrinsic(const std::string& run, int view_index, int repeats, int threads, const std::string& dev) {
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const std::filesystem::path run_dir = std::filesystem::absolute(run);
+  const TrainConfig config = read_run_config(run_dir);
+  if (config.mode != "intrinsic") throw Error(run_dir.string(), "is a " + config.mode + " run; train with --mode intrinsic");
+  const Device device = resolve_device(dev);
+  const DatasetOptions dopt = dataset_options(config);
+  const Dataset ds = load_dataset(config.data, dopt);
+  if (view_index < 0 || size_t(view_index) >= ds.train.size())
+    throw Error(config.data, "has " + std::to_string(ds.train.size()) + " training views; --view " +
+                                 std::to_string(view_index) + " does not exist");
+  const std::vector<TrainView> views = load_train_views({ds.train[size_t(view_index)]}, dopt);
+  const TrainView& v = views[0];
+  GaussianModel model = load_run_model(run_dir, device);
+  const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
+  IntrinsicRenderer& ir = *as_intrinsic(renderer.get());
+  const size_t hw = size_t(v.camera.width) * v.camera.height;
+
+  std::vector<double> raster, rays, trace, filter, shade, shade_b, filter_b, trace_b, raster_b, total, cpu;
+  std::size_t n_rays = 0;
+  for (int r = 0; r <= repeats; ++r) {
+    ir.set_profile(r > 0);
+    const double c0 = cpu_seconds();
+    const auto t0 = std::chrono::steady_clock::now();
+    const RenderedImages out = ir.forward(model.view(true), v.camera);
+    std::vector<float> color(3 * hw), g(3 * hw);
+    device_copy(color.data(), Device::CPU, out.color, device, color.size() * sizeof(float));
+    for (size_t i = 0; i < g.size(); ++i) g[i] = (color[i] > v.image[i] ? 1.0f : -1.0f) / float(g.size());
+    Buffer<float> dg(g, device);
+    model.zero_grad();
+    ImageGradients d;
+    d.color = dg.data();
+    ir.backward(model.view(true), d, model.grad_view(true));
+    model.backprop_extras();
+    device_synchronize(device);
+    if (r == 0) continue;  // warm-up (allocations, BVH build)
+    const IntrinsicTimes& t = ir.times();
+    total.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    cpu.push_back(1000 * (cpu_seconds() - c0));
+    raster.push_back(t.raster);
+    rays.push_back(t.rays);
+    trace.push_back(t.trace);
+    filter.push_back(t.filter);
+    shade.push_back(t.shade);
+    shade_b.push_back(t.shade_back);
+    filter_b.push_back(t.filter_back);
+    trace_b.push_back(t.trace_back);
+    raster_b.push_back(t.raster_back);
+    n_rays = t.rays_traced;
+  }
+  std::printf("# goris bench intrinsic: one stage-1 iteration with shading (forward + backward)\n");
+  std::printf("machine: %s; device %s; threads %d\n", cpu_description().c_str(), device_name(device),
+              int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+  std::printf("run %s: %zu Gaussians, view %s at %dx%d, %zu glossy pixels traced, env map %d^2, filter %s; %d repeats\n\n",
+              run_dir.string().c_str(), model.count(), v.name.c_str(), v.camera.width, v.camera.height, n_rays,
+              config.intrinsic.env_resolution, config.intrinsic.screen_space_filter ? "on" : "off", repeats);
+  std::printf("| stage | forward ms | backward ms |\n|---|---|---|\n");
+  std::printf("| rasterize (G-buffer) | %.2f | %.2f |\n", median(raster), median(raster_b));
+  std::printf("| reflection rays | %.2f | (in trace) |\n", median(rays));
+  std::printf("| trace | %.2f | %.2f |\n", median(trace), median(trace_b));
+  std::printf("| filter + net | %.2f | %.2f |\n", median(filter), median(filter_b));
+  std::printf("| shading | %.2f | %.2f |\n", median(shade), median(shade_b));
+  const double tr = median(trace);
+  std::printf("\niteration (renderer only, wall): median %.1f ms; process CPU %.1f ms; trace %.3f Mrays/s forward\n",
+              median(total), median(cpu), tr > 0 ? double(n_rays) / tr * 1e-3 : 0.0);
+}
+
+void setup_bench_intrinsic(CLI::App& root) {
+  auto& bench = cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto* c = bench.add_subcommand("intrinsic", "Time split of one intrinsic iteration on a trained run's training view");
+  auto run = std::make_shared<std::string>();
+  auto view = std::make_shared<int>(0);
+  auto repeats = std::make_shared<int>(5);
+  auto threads = std::make_shared<int>(0);
+  auto device = std::make_shared<std::string>("auto");
+  c->add_option("run", *run, "An intrinsic run folder (goris train --mode intrinsic)")->required();
+  c->add_option("--view", *view, "Training view index")->capture_default_str();
+  c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
+  c->add_option("--threads", *threads, "CPU threads (0 = all)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  c->add_option("--device", *device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->callback([=] { run_bench_intrinsic(*run, *view, *repeats, *threads, *device); });
+}
+
+}  // namespace
+GORIS_COMMAND(84, setup_bench_intrinsic);
