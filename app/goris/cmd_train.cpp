@@ -17,18 +17,13 @@
 
 #include "app/goris/command.h"
 #include "core/compute/device.h"
-#include "core/io/dataset.h"
-#include "core/io/image.h"
-#include "core/io/ply.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
-#include "core/train/train_setup.h"
 #include "core/train/trainer.h"
 #include "core/util/bench.h"
+#include "core/util/duration_text.h"
 #include "core/util/error.h"
-#include "core/train/normal_prior.h"
-#include "render/intrinsic/intrinsic_renderer.h"
-#include "render/train/run_renderer.h"
+#include "render/train/training_setup.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -68,19 +63,6 @@ void apply_overrides(const std::vector<std::string>& sets, TrainConfig& config) 
   }
 }
 
-std::string duration_text(double s) {
-  if (!(s >= 0) || s > 1e8) return "--";
-  const long t = long(s + 0.5);
-  char b[32];
-  if (t >= 3600)
-    std::snprintf(b, sizeof b, "%ldh%02ldm", t / 3600, (t / 60) % 60);
-  else if (t >= 60)
-    std::snprintf(b, sizeof b, "%ldm%02lds", t / 60, t % 60);
-  else
-    std::snprintf(b, sizeof b, "%lds", t);
-  return b;
-}
-
 std::string shell_quote(const std::string& s) {
   if (s.find_first_of(" \t'\"$\\") == std::string::npos) return s;
   std::string q = "'";
@@ -105,18 +87,17 @@ void reject_changes_on_resume(const Options& o) {
 void run_train(const Options& o) {
   const fs::path run_dir = fs::absolute(o.out);
   const fs::path data = fs::weakly_canonical(fs::absolute(o.data));
-  std::optional<Checkpoint> resumed;
+  std::optional<ResumePoint> resumed;
   TrainConfig config;
   if (o.resume) {
     reject_changes_on_resume(o);
-    const auto ck = latest_checkpoint(run_dir);
-    if (!ck) throw Error(run_dir.string(), "no checkpoint in checkpoints/ to resume from");
-    resumed = read_checkpoint(*ck, Device::CPU);
-    config = resumed->config;
+    resumed = read_latest_checkpoint(run_dir);
+    if (!resumed) throw Error(run_dir.string(), "no checkpoint in checkpoints/ to resume from");
+    config = resumed->checkpoint.config;
     if (fs::weakly_canonical(fs::path(config.data)) != fs::weakly_canonical(data))
       throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
-    std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->state.iteration,
-                ck->filename().string().c_str());
+    std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->checkpoint.state.iteration,
+                resumed->file.filename().string().c_str());
   } else {
     if (fs::exists(run_config_path(run_dir)) || latest_checkpoint(run_dir))
       throw Error(run_dir.string(), "already holds a training run: add --resume to continue it, or choose another --out");
@@ -133,61 +114,33 @@ void run_train(const Options& o) {
   if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;
   config.device = o.device;
   config.validate("training options");
-  if (resumed && resumed->state.iteration >= config.iterations)
-    throw Error(run_dir.string(), "already trained for " + std::to_string(resumed->state.iteration) +
+  if (resumed && resumed->checkpoint.state.iteration >= config.iterations)
+    throw Error(run_dir.string(), "already trained for " + std::to_string(resumed->checkpoint.state.iteration) +
                                       " iterations; pass a larger --iters to train further");
-  const Device device = resolve_device(config.device);
 
-  const DatasetOptions dopt = dataset_options(config);
-  const Dataset ds = load_dataset(data, dopt);
-  for (const auto& w : ds.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (ds.train.empty()) throw Error(data.string(), "the data set has no training views");
-  if (config.mode == "auto") {
-    // Later issues add detection from the data; today: intrinsic when the data set has glossy masks.
-    const bool glossy = std::any_of(ds.train.begin(), ds.train.end(), [](const View& v) { return v.glossy_mask.has_value(); });
-    config.mode = glossy ? "intrinsic" : "radiance";
-    std::printf("--mode auto: %s (%s)\n", config.mode.c_str(),
-                glossy ? "the data set has glossy masks" : "no glossy masks in the data set");
-    config.validate("training options");
-  }
-  const float extent = scene_extent(ds);
-  std::vector<TrainView> views = load_train_views(ds.train, dopt, [](size_t i, size_t n) {
+  // The shared set-up (render/train/training_setup.h, also the editor's): data, auto mode, images, state,
+  // renderer, trainer.
+  PreparedTraining prep = prepare_training(run_dir, config, std::move(resumed), [](size_t i, size_t n) {
     if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\rloading images %zu/%zu", i + 1, n);
   });
   if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
-  if (config.mode == "intrinsic") {
-    size_t glossy = 0, masks = 0;
-    for (const TrainView& v : views) {
-      glossy += !v.glossy_mask.empty();
-      masks += !v.object_mask.empty();
-    }
-    if (!config.intrinsic.normals.empty()) load_normal_priors(config.intrinsic.normals, views);
+  config = prep.config;
+  for (const auto& w : prep.dataset.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (!prep.auto_mode_reason.empty())
+    std::printf("--mode auto: %s (%s)\n", config.mode.c_str(), prep.auto_mode_reason.c_str());
+  Trainer& trainer = *prep.trainer;
+  const std::vector<TrainView>& views = trainer.views();
+  if (config.mode == "intrinsic")
     std::printf("intrinsic mode: %zu/%zu views with glossy masks, %zu with object masks, normal prior %s; shading "
                 "from iteration %d\n",
-                glossy, views.size(), masks, config.intrinsic.normals.empty() ? "none" : config.intrinsic.normals.c_str(),
+                prep.glossy_views, views.size(), prep.mask_views,
+                config.intrinsic.normals.empty() ? "none" : config.intrinsic.normals.c_str(),
                 config.scaled_iteration(config.intrinsic.warmup) + 1);
-  }
-
-  TrainerState state;
-  if (resumed) {
-    state = std::move(resumed->state);
-    if (device != Device::CPU) state.model = state.model.copy_to(device);
-    for (Buffer<float>* b : {&state.stats.grad_accum, &state.stats.denom, &state.stats.max_radii})
-      *b = b->copy_to(device);
-  } else {
-    std::string how;
-    state = Trainer::initial_state(config, initial_model(ds, config, device, &how));
-    std::printf("initial model: %s\n", how.c_str());
-  }
-  fs::create_directories(run_dir / "checkpoints");
+  if (!prep.initial_model.empty()) std::printf("initial model: %s\n", prep.initial_model.c_str());
   write_run_config(run_dir, config);
   std::printf("training %s (%s, %zu views at %dx%d, extent %.3g) on %s for %d iterations -> %s\n", data.string().c_str(),
-              ds.format.c_str(), views.size(), views[0].camera.width, views[0].camera.height, double(extent),
-              device_name(device), config.iterations, run_dir.string().c_str());
-
-  auto renderer = make_renderer(config, extent, device);
-  if (resumed) Trainer::load_renderer_state(*latest_checkpoint(run_dir), *renderer);
-  Trainer trainer(config, std::move(views), extent, renderer, std::move(state));
+              prep.dataset.format.c_str(), views.size(), views[0].camera.width, views[0].camera.height,
+              double(prep.extent), device_name(trainer.device()), config.iterations, run_dir.string().c_str());
 
   const bool tty = isatty(STDERR_FILENO);
   Trainer::RunOptions ro;
@@ -220,15 +173,7 @@ void run_train(const Options& o) {
                 shell_quote(data.string()).c_str(), shell_quote(run_dir.string()).c_str());
     return;
   }
-  write_ply(run_ply_path(run_dir), st.model.to_ply(/*bake_3d_filter=*/true));
-  if (IntrinsicRenderer* ir = as_intrinsic(renderer.get())) {
-    // The environment map as a picture (the run's checkpoints keep it with the net for resuming).
-    const int ew = 4 * ir->environment().resolution();
-    const std::vector<float> eq = ir->environment().equirect_image(ew);
-    Image img(ew, ew / 2, 3);
-    img.pixels.upload(eq.data(), eq.size());
-    save_png(run_dir / "environment.png", img);
-  }
+  write_trained_run(run_dir, trainer, *prep.renderer);
   std::printf("done: %d iterations in %s, %zu Gaussians, training PSNR %.2f dB (smoothed), peak memory %.0f MiB\n"
               "model: %s\n",
               st.iteration, duration_text(st.elapsed_s).c_str(), st.model.count(), st.ema_psnr, peak_host_memory_mib(),

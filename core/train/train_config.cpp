@@ -70,6 +70,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_normal_prior", c.intrinsic.normal_prior);
   f("intrinsic_normal_prior_final", c.intrinsic.normal_prior_final);
   f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
+  f("intrinsic_region_rough", c.intrinsic.region_rough);
   f("intrinsic_smoothness", c.intrinsic.smoothness);
   f("intrinsic_region", c.intrinsic.region);
   f("intrinsic_label", c.intrinsic.label);
@@ -127,7 +128,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.net_hidden_layers < 0 || in.net_hidden_layers > 16) fail("intrinsic_net_hidden_layers must lie in 0..16");
   if (!(in.ray_offset >= 0)) fail("intrinsic_ray_offset must be >= 0");
   for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
-                  in.region, in.label})
+                  in.region, in.region_rough, in.label})
     if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");
   for (float lr : {lr.position_init, lr.position_final, lr.sh_dc, lr.sh_rest, lr.opacity, lr.scale, lr.rotation,
                    lr.materials, lr.region, lr.label})

@@ -375,28 +375,50 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   auto plane = [&](int c) { return extras.data() + size_t(c) * hw; };
   double total = 0;
   const bool glossy = !view.glossy_mask.empty();
+  // Mask-driven losses only count where the photo losses do (stage 2: not under the target or its
+  // reflections): glossy' = glossy w, and for the rough side 1 - glossy'' = (1 - glossy) w.
+  std::vector<float> gl_w, gl_rough;
+  const float* gmask = glossy ? view.glossy_mask.data() : nullptr;
+  const float* gmask_rough = gmask;
+  if (glossy && !view.loss_weight.empty()) {
+    gl_w.resize(hw);
+    gl_rough.resize(hw);
+    for (size_t p = 0; p < hw; ++p) {
+      gl_w[p] = view.glossy_mask[p] * view.loss_weight[p];
+      gl_rough[p] = 1 - (1 - view.glossy_mask[p]) * view.loss_weight[p];
+    }
+    gmask = gl_w.data();
+    gmask_rough = gl_rough.data();
+  }
   // Losses on material maps train the materials alone (detached from the geometry that blends them: a
   // material loss must not be lowered by making the surface transparent); normal losses train geometry.
   if (g_detached.empty()) g_detached.assign(size_t(extra::kCount) * hw, 0.0f);
   auto dplane = [&](int c) { return g_detached.data() + size_t(c) * hw; };
   if (glossy && in.region > 0) {
-    out.region = region_loss<float>(plane(extra::kRegion), view.glossy_mask.data(), w, h, dplane(extra::kRegion), in.region);
+    out.region = region_loss<float>(plane(extra::kRegion), gmask, w, h, dplane(extra::kRegion), in.region);
     total += in.region * out.region;
+  }
+  if (glossy && in.region_rough > 0) {
+    const HostView alpha(fwd.alpha, hw, device_);
+    const double r = rough_region_loss<float>(plane(extra::kRegion), alpha.data(), gmask_rough, w, h,
+                                              dplane(extra::kRegion), in.region_rough);
+    out.region += r;
+    total += in.region_rough * r;
   }
   if (glossy && in.smoothness > 0) {
     const float s = in.smoothness;
     out.smoothness =
-        edge_aware_smoothness<float>(plane(extra::kFresnel), 3, view.image.data(), view.glossy_mask.data(), w, h,
+        edge_aware_smoothness<float>(plane(extra::kFresnel), 3, view.image.data(), gmask, w, h,
                                      dplane(extra::kFresnel), s) +
-        edge_aware_smoothness<float>(plane(extra::kRoughness), 1, view.image.data(), view.glossy_mask.data(), w, h,
+        edge_aware_smoothness<float>(plane(extra::kRoughness), 1, view.image.data(), gmask, w, h,
                                      dplane(extra::kRoughness), s) +
-        edge_aware_smoothness<float>(normal.data(), 3, view.image.data(), view.glossy_mask.data(), w, h,
+        edge_aware_smoothness<float>(normal.data(), 3, view.image.data(), gmask, w, h,
                                      g_normal.data(), s, /*normalize_x=*/true);
     total += s * out.smoothness;
   }
   const double wn = normal_prior_weight(it);
   if (glossy && !view.normal_prior.empty() && wn > 0) {
-    out.normal_prior = normal_prior_loss<float>(normal.data(), view.normal_prior.data(), view.glossy_mask.data(), w, h,
+    out.normal_prior = normal_prior_loss<float>(normal.data(), view.normal_prior.data(), gmask, w, h,
                                                 g_normal.data(), float(wn));
     total += wn * out.normal_prior;
   }

@@ -81,21 +81,32 @@ struct Splat {
   Vec3<T> normal;
 };
 
-// Intermediates shared by the forward and the VJP.
+// Intermediates shared by the forward and the VJP. The camera-space covariance M diag(v) M^T and precision
+// M diag(1/v) M^T (M = W R: the Gaussian's axes in camera space) are never formed: A, h and their VJPs
+// need only M's columns against a few vectors.
 template <class T>
 struct ProjectionInternals {
   Mat3<T> R;
+  Mat3<T> M;      // W R
   Vec3<T> v;      // axis variances
-  Mat3<T> Sc;     // camera-space covariance
-  Mat3<T> Pc;     // camera-space precision
   Vec3<T> tc;     // camera-space centre
   T ux, uy;       // clamped x/z, y/z
   bool clamp_x, clamp_y;
-  Mat2<T> A;      // undilated 2D covariance (full, symmetric)
-  Vec3<T> h;
+  Vec3<T> u0, u1; // M^T j0, M^T j1 (j0, j1: the rows of the EWA Jacobian J)
+  Mat2<T> A;      // undilated 2D covariance J M diag(v) M^T J^T (full, symmetric)
+  Vec3<T> mr;     // M^T r
+  Vec3<T> h;      // precision times r: M (mr / v)
   T rh;           // r . h
   T sig, comp3, comp2, det_dil, det_raw;
 };
+
+// The rows j0, j1 of J = [[fx/z, 0, -fx ux/z], [0, fy/z, -fy uy/z]].
+template <class T>
+GORIS_HDI void ewa_jacobian(const ProjectionParams<T>& P, const ProjectionInternals<T>& in, Vec3<T>& j0, Vec3<T>& j1) {
+  const T z = in.tc.z;
+  j0 = Vec3<T>(P.fx / z, T(0), -P.fx * in.ux / z);
+  j1 = Vec3<T>(T(0), P.fy / z, -P.fy * in.uy / z);
+}
 
 // Computes the splat; returns false when the Gaussian is culled (near plane, degenerate covariance).
 template <class T>
@@ -106,18 +117,20 @@ GORIS_HDI bool project_gaussian(const GaussianParams<T>& g, const ProjectionPara
   if (!(z > P.near_plane)) return false;
   in.R = quat_to_rotation(g.quat);
   in.v = axis_variances(g.log_scale, g.filter3d_var);
-  const Mat3<T> Wt = glm::transpose(P.W);
-  in.Sc = P.W * covariance(in.R, in.v) * Wt;
-  in.Pc = P.W * precision(in.R, in.v) * Wt;
+  in.M = P.W * in.R;
+  const Mat3<T> Mt = glm::transpose(in.M);
   const T rx = in.tc.x / z, ry = in.tc.y / z;
   in.clamp_x = rx < -P.lim_x_neg || rx > P.lim_x_pos;
   in.clamp_y = ry < -P.lim_y_neg || ry > P.lim_y_pos;
   in.ux = min(max(rx, -P.lim_x_neg), P.lim_x_pos);
   in.uy = min(max(ry, -P.lim_y_neg), P.lim_y_pos);
-  // J = [[fx/z, 0, -fx ux/z], [0, fy/z, -fy uy/z]]; A = J Sc J^T.
-  const Vec3<T> j0(P.fx / z, T(0), -P.fx * in.ux / z), j1(T(0), P.fy / z, -P.fy * in.uy / z);
-  const Vec3<T> Sj0 = in.Sc * j0, Sj1 = in.Sc * j1;
-  const T a00 = glm::dot(j0, Sj0), a01 = glm::dot(j0, Sj1), a11 = glm::dot(j1, Sj1);
+  // A = J Sc J^T = (J M) diag(v) (J M)^T, the rows of J M being u0, u1.
+  Vec3<T> j0, j1;
+  ewa_jacobian(P, in, j0, j1);
+  in.u0 = Mt * j0;
+  in.u1 = Mt * j1;
+  const Vec3<T> vu0 = in.v * in.u0, vu1 = in.v * in.u1;
+  const T a00 = glm::dot(in.u0, vu0), a01 = glm::dot(in.u0, vu1), a11 = glm::dot(in.u1, vu1);
   in.A = Mat2<T>(a00, a01, a01, a11);
   const T d00 = a00 + P.filter2d_var, d11 = a11 + P.filter2d_var;
   in.det_dil = d00 * d11 - a01 * a01;
@@ -130,10 +143,12 @@ GORIS_HDI bool project_gaussian(const GaussianParams<T>& g, const ProjectionPara
   out.opacity = in.sig * in.comp3 * in.comp2;
   out.mean2d = Vec2<T>(P.fx * in.tc.x / z + P.cx, P.fy * in.tc.y / z + P.cy);
   out.depth = z;
-  // Depth plane and normal from the precision along r.
+  // Depth plane and normal from the precision along r: h = M diag(1/v) M^T r, r . h = sum mr^2 / v.
   const Vec3<T> r(in.ux, in.uy, T(1));
-  in.h = in.Pc * r;
-  in.rh = glm::dot(r, in.h);
+  in.mr = Mt * r;
+  const Vec3<T> mr_v = in.mr / in.v;
+  in.h = in.M * mr_v;
+  in.rh = glm::dot(in.mr, mr_v);
   out.plane = Vec2<T>(-z / P.fx * in.h.x, -z / P.fy * in.h.y) / in.rh;
   out.normal = -glm::normalize(in.h);
   return true;
@@ -193,18 +208,22 @@ GORIS_HDI GaussianParamGrad<T> project_gaussian_vjp(const GaussianParams<T>& g, 
       dA[0][1] -= (ddet_raw + ddet_dil) * a01;
     }
   }
-  // A = J Sc J^T with J rows j0, j1.
-  const Vec3<T> j0(P.fx / z, T(0), -P.fx * in.ux / z), j1(T(0), P.fy / z, -P.fy * in.uy / z);
-  const Vec3<T> Sj0 = in.Sc * j0, Sj1 = in.Sc * j1;
-  // dJ row i = sum_k (dA[i][k] + dA[k][i]) (Sc J^T)[:, k]
+  // A = J Sc J^T with J rows j0, j1 and Sc = M diag(v) M^T. Only dA + dA^T matters (A is symmetric):
+  // sym = [[s00, s01], [s01, s11]].
+  Vec3<T> j0, j1;
+  ewa_jacobian(P, in, j0, j1);
   const T s00 = T(2) * dA[0][0], s11 = T(2) * dA[1][1], s01 = dA[1][0] + dA[0][1];
+  // dJ row i = sum_k sym[i][k] (Sc J^T)[:, k], with Sc j_k = M (v u_k).
+  const Vec3<T> Sj0 = in.M * (in.v * in.u0), Sj1 = in.M * (in.v * in.u1);
   const Vec3<T> dj0 = Sj0 * s00 + Sj1 * s01;
   const Vec3<T> dj1 = Sj0 * s01 + Sj1 * s11;
-  Mat3<T> dSc(T(0));
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      at(dSc, a, b) = j0[a] * (at(dA, 0, 0) * j0[b] + at(dA, 0, 1) * j1[b]) +
-                      j1[a] * (at(dA, 1, 0) * j0[b] + at(dA, 1, 1) * j1[b]);
+  // Through Sc = M diag(v) M^T: with e_k = (sym U)_k (U: the rows u0, u1 of J M),
+  //   dM[:, i] += v_i (j0 e0_i + j1 e1_i)   ((dSc + dSc^T) M diag(v), dSc = J^T dA J)
+  //   dv_i = m_i^T dSc m_i = (u0_i e0_i + u1_i e1_i) / 2.
+  const Vec3<T> e0 = in.u0 * s00 + in.u1 * s01, e1 = in.u0 * s01 + in.u1 * s11;
+  Mat3<T> dM;
+  for (int i = 0; i < 3; ++i) dM[i] = (j0 * e0[i] + j1 * e1[i]) * in.v[i];
+  Vec3<T> dv = (in.u0 * e0 + in.u1 * e1) * T(0.5);
   // Depth plane and normal.
   const Vec3<T> r(in.ux, in.uy, T(1));
   Vec3<T> dh = normalize_vjp(in.h, -d.normal);
@@ -215,10 +234,13 @@ GORIS_HDI GaussianParamGrad<T> project_gaussian_vjp(const GaussianParams<T>& g, 
   const T drh = (d.plane.x * z / P.fx * in.h.x + d.plane.y * z / P.fy * in.h.y) / (in.rh * in.rh);
   Vec3<T> dr = in.h * drh;
   dh += r * drh;
-  Mat3<T> dPc(T(0));
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) at(dPc, a, b) = dh[a] * r[b];
-  dr += glm::transpose(in.Pc) * dh;
+  // h = Pc r with Pc = M diag(1/v) M^T (symmetric), dPc = dh r^T:
+  //   dr += Pc dh;  dM[:, i] += (dh mr_i + r mdh_i) / v_i;  d(1/v_i) = mdh_i mr_i   (mdh = M^T dh).
+  const Vec3<T> mdh = glm::transpose(in.M) * dh;
+  const Vec3<T> inv_v = T(1) / in.v;
+  dr += in.M * (mdh * inv_v);
+  for (int i = 0; i < 3; ++i) dM[i] += (dh * in.mr[i] + r * mdh[i]) * inv_v[i];
+  dv -= mdh * in.mr * inv_v * inv_v;
   // J entries -> z, ux, uy.
   T dux = dr.x - P.fx / z * dj0.z;
   T duy = dr.y - P.fy / z * dj1.z;
@@ -240,13 +262,8 @@ GORIS_HDI GaussianParamGrad<T> project_gaussian_vjp(const GaussianParams<T>& g, 
   dtc.z += dz;
   const Mat3<T> Wt = glm::transpose(P.W);
   out.mean = Wt * dtc;
-  // Sc = W Sigma W^T, Pc = W Sigma^-1 W^T.
-  const Mat3<T> dSigma = Wt * dSc * P.W, dPrec = Wt * dPc * P.W;
-  Mat3<T> dR(T(0));
-  Vec3<T> dv = rdrt_vjp(in.R, in.v, dSigma, dR);
-  const Vec3<T> inv_v(T(1) / in.v.x, T(1) / in.v.y, T(1) / in.v.z);
-  const Vec3<T> dinv_v = rdrt_vjp(in.R, inv_v, dPrec, dR);
-  dv -= dinv_v * inv_v * inv_v;
+  // M = W R.
+  const Mat3<T> dR = Wt * dM;
   const Vec3<T> s2 = in.v - Vec3<T>(g.filter3d_var);  // exp(2 log_scale)
   out.log_scale = dv * s2 * T(2) + filter3d_compensation_vjp(g.log_scale, g.filter3d_var, dcomp3);
   out.quat = quat_to_rotation_vjp(g.quat, dR);

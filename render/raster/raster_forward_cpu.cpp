@@ -1,11 +1,14 @@
 // CPU forward pass: the shared preprocess and tile binning (raster_pipeline.h), then every 16x16 tile
 // blended in parallel. Inside a tile the loop runs Gaussian-outer, pixel-inner over the part of the tile
-// where the Gaussian can reach alpha >= 1/255; the per-pixel maths (blend.h) is the one the CUDA kernel uses.
+// where the Gaussian can reach alpha >= 1/255 and whose pixels are not yet saturated (bit masks per row),
+// a few pixels of a row at a time in SIMD lanes; the per-pixel maths (blend.h) is the one the CUDA kernel
+// uses.
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <vector>
 
+#include "render/raster/lanes_cpu.h"
 #include "render/raster/raster_cpu.h"
 #include "render/raster/raster_pipeline.h"
 #include "render/raster/stage_timer.h"
@@ -15,85 +18,125 @@ namespace goris::raster {
 
 namespace {
 
+// Per-pixel state of a tile, channel-major so that a row of pixels is contiguous.
+template <class T>
+struct ForwardTile {
+  std::vector<T> trans, acc, med_depth;
+  std::vector<std::uint32_t> last, median;
+  std::uint32_t live[kTileSize] = {};  // columns of each row still taking Gaussians (T above T_min)
+  int live_rows = 0;
+  T* channel(int c) { return &acc[std::size_t(c) * kTilePixels]; }
+};
+
+// One Gaussian over one group of N pixels of a row (lanes = columns lx0 .. lx0 + N - 1, `cols` the ones in
+// its alpha span): the rule of eval_hit and the blend of the scalar 3DGS loop, lane by lane.
+template <class T>
+void blend_lanes(const SplatView<T>& s, const T* val, int K, std::uint32_t k, int ly, int lx0, unsigned cols, T px0,
+                 T py, ForwardTile<T>& t) {
+  using V = LaneV<T>;
+  using M = LaneM<T>;
+  const int p = ly * kTileSize + lx0;
+  const V dx = s.mean.x - lane_iota(px0);
+  const V dy = lane_splat(s.mean.y - py);
+  const V power = hit_power(s.conic, dx, dy);
+  M m = lane_mask<T>(cols) & ~(power > T(0));
+  const V G = lane_exp(lane_select(m, power, V{}));
+  const V oG = s.opacity * G;
+  const V alpha = lane_select(oG < BlendConst<T>::alpha_max, oG, lane_splat(BlendConst<T>::alpha_max));
+  m &= ~(alpha < BlendConst<T>::alpha_min);
+  if (!lane_bits<T>(m)) return;
+  const V Tp = lane_load(&t.trans[p]);
+  const V test_T = Tp * (T(1) - alpha);
+  const unsigned stop = lane_bits<T>(m & (test_T < BlendConst<T>::T_min));
+  if (stop) {
+    t.live[ly] &= ~(stop << lx0);
+    if (!t.live[ly]) --t.live_rows;
+    m &= ~lane_mask<T>(stop);
+  }
+  const unsigned blend = lane_bits<T>(m);
+  if (!blend) return;
+  const V w = lane_select(m, alpha * Tp, V{});
+  const V z = plane_depth(s.depth, s.plane, dx, dy);
+  auto add = [&](int c, T v) {
+    T* a = t.channel(c) + p;
+    lane_store(a, lane_load(a) + w * v);
+  };
+  add(0, val[0]);
+  add(1, val[1]);
+  add(2, val[2]);
+  {
+    T* a = t.channel(kChDepth) + p;
+    lane_store(a, lane_load(a) + w * z);
+  }
+  add(kChNormal, val[kChNormal]);
+  add(kChNormal + 1, val[kChNormal + 1]);
+  add(kChNormal + 2, val[kChNormal + 2]);
+  for (int e = 0; e < K; ++e) add(kChExtras + e, val[kChExtras + e]);
+  lane_store(&t.trans[p], lane_select(m, test_T, Tp));
+  const M med = m & (Tp > T(0.5));
+  lane_store(&t.med_depth[p], lane_select(med, z, lane_load(&t.med_depth[p])));
+  lane_store_where<T>(&t.median[p], med, k);
+  lane_store_where<T>(&t.last[p], m, k + 1);
+}
+
 template <class T>
 void blend_tile(int tile, const GaussiansT<T>& g, RasterStateT<T>& st, GBufferT<T>& out) {
+  constexpr int N = Lanes<T>::N;
   const TileBox box = tile_box(tile, st.tiles_x, st.camera.width, st.camera.height);
-  const int K = st.n_extras, C = kBaseChannels + K, np = box.w * box.h;
+  const int K = st.n_extras, C = kBaseChannels + K;
   const std::uint32_t begin = st.tile_ranges[2 * tile], end = st.tile_ranges[2 * tile + 1];
-  // Per-pixel state, channel-major so that a row of pixels is contiguous.
-  std::vector<T> trans(np, T(1)), acc(std::size_t(C) * np, T(0)), med_depth(np, T(0));
-  std::vector<std::uint32_t> last(np, begin), median(np, kNoContributor);
-  std::vector<unsigned char> done(np, 0);
-  auto channel = [&](int c) { return &acc[std::size_t(c) * np]; };
-  T* const a_c0 = channel(0);
-  T* const a_c1 = channel(1);
-  T* const a_c2 = channel(2);
-  T* const a_z = channel(kChDepth);
-  T* const a_n0 = channel(kChNormal);
-  T* const a_n1 = channel(kChNormal + 1);
-  T* const a_n2 = channel(kChNormal + 2);
-  int n_done = 0;
+  const T* const packed = st.packed.data();
+  const std::uint32_t* const sorted = st.sorted_gauss.data();
+  ForwardTile<T> t;
+  t.trans.assign(kTilePixels, T(1));
+  t.acc.assign(std::size_t(C) * kTilePixels, T(0));
+  t.med_depth.assign(kTilePixels, T(0));
+  t.last.assign(kTilePixels, begin);
+  t.median.assign(kTilePixels, kNoContributor);
+  for (int y = 0; y < box.h; ++y) t.live[y] = bit_range(0, box.w - 1);
+  t.live_rows = box.h;
   T val[kMaxChannels];
-  for (std::uint32_t k = begin; k < end && n_done < np; ++k) {
-    const SplatView<T> s = load_splat(st, st.sorted_gauss[k]);
+  using Groups = GroupList<N>;
+  Groups groups;
+  for (std::uint32_t k = begin; k < std::min(end, begin + kPrefetchAhead); ++k) prefetch_splat(packed, g, K, sorted[k]);
+  for (std::uint32_t k = begin; k < end && t.live_rows > 0; ++k) {
+    if (k + kPrefetchAhead < end) prefetch_splat(packed, g, K, sorted[k + kPrefetchAhead]);
+    const SplatView<T> s = load_splat(packed, sorted[k]);
     PixelRange pr;
     AlphaEllipse<T> ell;
     if (!pixel_rows(s, box, ell, pr)) continue;
+    std::uint32_t live = 0;  // every pixel of its rows saturated: skip the spans
+    for (int ly = pr.y0 - box.y0; ly <= pr.y1 - box.y0; ++ly) live |= t.live[ly];
+    if (!live) continue;
     splat_values(s, g, K, val);
-    const T c0 = val[0], c1 = val[1], c2 = val[2], n0 = val[kChNormal], n1 = val[kChNormal + 1],
-            n2 = val[kChNormal + 2];
-    for (int y = pr.y0; y <= pr.y1; ++y) {
-      const T py = T(y) + T(0.5);
-      int x0, x1;
-      if (!pixel_span(s, box, ell, py, x0, x1)) continue;
-      const int row = (y - box.y0) * box.w - box.x0;
-      for (int x = x0; x <= x1; ++x) {
-        const int p = row + x;
-        if (done[p]) continue;
-        const PixelHit<T> h = eval_hit(s.mean, s.conic, s.opacity, T(x) + T(0.5), py);
-        const T alpha = h.alpha;
-        if (alpha == T(0)) continue;
-        const T Tp = trans[p];
-        const T test_T = Tp * (T(1) - alpha);
-        if (test_T < BlendConst<T>::T_min) {
-          done[p] = 1;
-          ++n_done;
-          continue;
-        }
-        const T w = alpha * Tp;
-        const T z = plane_depth(s.depth, s.plane, h.dx, h.dy);
-        a_c0[p] += w * c0;
-        a_c1[p] += w * c1;
-        a_c2[p] += w * c2;
-        a_z[p] += w * z;
-        a_n0[p] += w * n0;
-        a_n1[p] += w * n1;
-        a_n2[p] += w * n2;
-        for (int e = 0; e < K; ++e) channel(kChExtras + e)[p] += w * val[kChExtras + e];
-        if (Tp > T(0.5)) {
-          median[p] = k;
-          med_depth[p] = z;
-        }
-        trans[p] = test_T;
-        last[p] = k + 1;
-      }
+    RowMasks cols;
+    span_masks(s, box, ell, pr, cols);
+    groups.clear();
+    for (int ly = pr.y0 - box.y0; ly <= pr.y1 - box.y0; ++ly) {
+      cols[ly] &= t.live[ly];
+      groups.add_row(ly, cols[ly]);
+    }
+    for (int i = 0; i < groups.size; ++i) {
+      const int ly = groups.entry[i] / Groups::kGroups, lx = groups.entry[i] % Groups::kGroups * N;
+      const unsigned lanes = (cols[ly] >> lx) & ((1u << N) - 1);
+      blend_lanes(s, val, K, k, ly, lx, lanes, T(box.x0 + lx) + T(0.5), T(box.y0 + ly) + T(0.5), t);
     }
   }
   const std::size_t P = out.pixels();
   const T bg[3] = {T(st.settings.background.x), T(st.settings.background.y), T(st.settings.background.z)};
   for (int y = 0; y < box.h; ++y)
     for (int x = 0; x < box.w; ++x) {
-      const int p = y * box.w + x;
+      const int p = y * kTileSize + x;
       const std::size_t q = std::size_t(box.y0 + y) * std::size_t(st.camera.width) + std::size_t(box.x0 + x);
-      for (int c = 0; c < 3; ++c) out.color[c * P + q] = channel(c)[p] + trans[p] * bg[c];
-      out.alpha[q] = T(1) - trans[p];
-      out.depth[q] = a_z[p];
-      out.median_depth[q] = med_depth[p];
-      for (int c = 0; c < 3; ++c) out.normal[c * P + q] = channel(kChNormal + c)[p];
-      for (int e = 0; e < K; ++e) out.extras[e * P + q] = channel(kChExtras + e)[p];
-      st.final_T[q] = trans[p];
-      st.n_contrib[q] = last[p];
-      st.median_index[q] = median[p];
+      for (int c = 0; c < 3; ++c) out.color[c * P + q] = t.channel(c)[p] + t.trans[p] * bg[c];
+      out.alpha[q] = T(1) - t.trans[p];
+      out.depth[q] = t.channel(kChDepth)[p];
+      out.median_depth[q] = t.med_depth[p];
+      for (int c = 0; c < 3; ++c) out.normal[c * P + q] = t.channel(kChNormal + c)[p];
+      for (int e = 0; e < K; ++e) out.extras[e * P + q] = t.channel(kChExtras + e)[p];
+      st.final_T[q] = t.trans[p];
+      st.n_contrib[q] = t.last[p];
+      st.median_index[q] = t.median[p];
     }
 }
 

@@ -27,8 +27,11 @@ T read_element(const Buffer<T>& b, std::size_t i) {
   return v;
 }
 
-// Bit pattern of a positive depth, increasing with the depth (the low half of the sort key).
+// Bit pattern of a depth, increasing with the depth (the low 31 bits of the sort key): positive floats
+// order as their bits, and bit 31 (the sign) is 0. Depths <= 0 (only with a near plane <= 0) sort first.
+constexpr int kDepthKeyBits = 31;
 GORIS_HDI std::uint32_t depth_key(float z) {
+  if (!(z > 0.f)) return 0u;
 #if defined(__CUDA_ARCH__)
   return __float_as_uint(z);
 #else
@@ -124,7 +127,7 @@ void preprocess(const GaussiansT<T>& g, const Camera& cam, const RasterSettings&
     q[kPkPlane] = s.plane.x, q[kPkPlane + 1] = s.plane.y;
     q[kPkColor] = c.x, q[kPkColor + 1] = c.y, q[kPkColor + 2] = c.z;
     q[kPkNormal] = s.normal.x, q[kPkNormal + 1] = s.normal.y, q[kPkNormal + 2] = s.normal.z;
-    q[kPkNormal + 3] = T(0);
+    q[kPkTwoL] = alpha_two_L(s.opacity);
   });
 }
 
@@ -158,13 +161,14 @@ void bin_tiles(RasterStateT<T>& st, const Buffer<std::uint32_t>& counts) {
       const std::uint64_t zbits = depth_key(float(dep[i]));
       for (int ty = rects[4 * i + 1]; ty < rects[4 * i + 3]; ++ty)
         for (int tx = rects[4 * i]; tx < rects[4 * i + 2]; ++tx, ++o) {
-          k[o] = (std::uint64_t(ty * tiles_x + tx) << 32) | zbits;
+          k[o] = (std::uint64_t(ty * tiles_x + tx) << kDepthKeyBits) | zbits;
           sl[o] = o;
           sg[o] = std::uint32_t(i);
         }
     });
   }
-  sort_by_key(keys, slots, 32 + int(std::bit_width(n_tiles)));
+  // Only the bits the keys use: tile indices < n_tiles, 31 depth bits (e.g. 39 bits, 5 passes, for 256 tiles).
+  sort_by_key(keys, slots, kDepthKeyBits + int(std::bit_width(n_tiles - 1)));
   st.sorted_slot = std::move(slots);
   {
     const std::uint64_t* k = keys.data();
@@ -172,9 +176,9 @@ void bin_tiles(RasterStateT<T>& st, const Buffer<std::uint32_t>& counts) {
     std::uint32_t *out = st.sorted_gauss.data(), *ranges = st.tile_ranges.data();
     parallel_for(dev, m, [=] GORIS_HD(std::size_t j) {
       out[j] = sg[sl[j]];
-      const std::uint32_t tile = std::uint32_t(k[j] >> 32);
-      if (j == 0 || std::uint32_t(k[j - 1] >> 32) != tile) ranges[2 * tile] = std::uint32_t(j);
-      if (j + 1 == m || std::uint32_t(k[j + 1] >> 32) != tile) ranges[2 * tile + 1] = std::uint32_t(j + 1);
+      const std::uint32_t tile = std::uint32_t(k[j] >> kDepthKeyBits);
+      if (j == 0 || std::uint32_t(k[j - 1] >> kDepthKeyBits) != tile) ranges[2 * tile] = std::uint32_t(j);
+      if (j + 1 == m || std::uint32_t(k[j + 1] >> kDepthKeyBits) != tile) ranges[2 * tile + 1] = std::uint32_t(j + 1);
     });
   }
 }
@@ -199,6 +203,11 @@ void backward_gaussians(const GaussiansT<T>& g, const RasterStateT<T>& st, const
       const T* p = part + (std::size_t(off[i]) + s) * std::size_t(stride);
       for (int c = 0; c < stride; ++c) sum[c] += p[c];
     }
+    // A Gaussian no pixel passed a gradient to (hidden behind others, or outside every pixel's alpha
+    // threshold: often a large share of them) adds nothing: skip its projection VJP.
+    bool zero = true;
+    for (int c = 0; c < stride; ++c) zero = zero && sum[c] == T(0);
+    if (zero) return;
     if (out.extras)
       for (int e = 0; e < K; ++e) out.extras[std::size_t(i) * K + e] += sum[kGExtras + e];
     if (out.mean2d_grad_norm) out.mean2d_grad_norm[i] += sqrt(sum[kGMean] * sum[kGMean] + sum[kGMean + 1] * sum[kGMean + 1]);

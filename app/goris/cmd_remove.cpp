@@ -1,0 +1,104 @@
+// `goris remove RUN [--inpainter NAME | --inpainted DIR] [--ablate material|lamask] [--iters N]`: stage 2 on a
+// trained run (render/removal/removal_pipeline.h): each step with its progress, every intermediate in
+// RUN/removal/, the cleaned scene as the run folder RUN/removal (render / eval / export take it). Ctrl-C
+// stops at the next safe point; running the command again resumes.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/goris/command.h"
+#include "core/compute/device.h"
+#include "core/util/error.h"
+#include "render/removal/removal_pipeline.h"
+
+namespace {
+using namespace goris;
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_remove_sigint(int) {
+  g_stop = true;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+struct Options {
+  std::string run, inpainter = "telea", inpainted, device = "auto";
+  std::vector<std::string> ablate;
+  int iters = 0;
+};
+
+void run_remove(const Options& o) {
+  RemovalOptions ro;
+  ro.inpainter = o.inpainted.empty() ? o.inpainter : "dir:" + o.inpainted;
+  for (const std::string& a : o.ablate) {
+    std::stringstream ss(a);
+    std::string item;
+    while (std::getline(ss, item, ',')) ro.ablate.insert(item);
+  }
+  ro.finetune_iterations = o.iters;
+  ro.device = o.device;
+  const bool tty = isatty(STDERR_FILENO);
+  int last_step = -1;
+  auto progress = [&](const RemovalProgress& p) {
+    const int step = int(p.step);
+    if (step != last_step && last_step >= 0 && tty) std::fprintf(stderr, "\n");
+    last_step = step;
+    const double f = double(p.done) / double(p.total);
+    if (!tty && !(p.done == p.total || p.done == 0)) return;  // logs: start and end of each step
+    char bar[21];
+    const int filled = int(f * 20 + 0.5);
+    for (int i = 0; i < 20; ++i) bar[i] = i < filled ? '#' : '.';
+    bar[20] = 0;
+    std::fprintf(stderr, "%s[%d/%d] %-16s [%s] %3.0f%%  %s%s", tty ? "\r" : "", step + 1, kRemovalStepCount,
+                 removal_step_name(p.step), bar, 100 * f, p.detail.c_str(), tty ? "\033[K" : "\n");
+    std::fflush(stderr);
+  };
+  g_stop = false;
+  auto previous = std::signal(SIGINT, on_remove_sigint);
+  RemovalReport r;
+  try {
+    r = run_removal(o.run, ro, progress, &g_stop);
+  } catch (...) {
+    std::signal(SIGINT, previous);
+    if (tty) std::fprintf(stderr, "\n");
+    throw;
+  }
+  std::signal(SIGINT, previous);
+  if (tty) std::fprintf(stderr, "\n");
+  if (r.cancelled) {
+    std::printf("interrupted; run the same command again to resume (%s)\n", r.out_dir.string().c_str());
+    return;
+  }
+  double total = 0;
+  for (double s : r.seconds) total += s;
+  std::string refs;
+  for (const auto& v : r.reference_views) refs += (refs.empty() ? "" : ", ") + v;
+  std::printf("removed %zu of %zu Gaussians; lighting-aware masks %zu px, inpainting masks %zu px; reference views %s; "
+              "lift added %zu; fine-tuned %d iterations; %zu Gaussians, %.0f s\n"
+              "result: %s (evaluate with: goris eval %s --split test)\n",
+              r.selected, r.gaussians_before, r.lighting_pixels, r.inpaint_pixels, refs.empty() ? "none" : refs.c_str(),
+              r.added, r.finetune_iterations, r.gaussians_after, total, r.out_dir.string().c_str(),
+              r.out_dir.string().c_str());
+}
+
+void setup_remove(CLI::App& root) {
+  auto o = std::make_shared<Options>();
+  auto* c = root.add_subcommand("remove", "Remove the selected object and its reflections from a trained run (stage 2)");
+  c->add_option("run", o->run, "Run folder of stage 1 (goris train)")->required();
+  auto* inp = c->add_option("--inpainter", o->inpainter,
+                            "2D inpainter: telea, ns, harmonic, fsr (OpenCV contrib), or \"cmd:COMMAND {image} {mask} "
+                            "{out}\" to run your own per map");
+  c->add_option("--inpainted", o->inpainted, "Folder of ready-made inpainted maps (VIEW_MAP.png)")->excludes(inp);
+  c->add_option("--ablate", o->ablate, "Switch off a part: material (RGB-only inpainting), lamask (no lighting-aware mask)");
+  c->add_option("--iters", o->iters, "Fine-tune iterations (default: 4000 scaled like stage 1)")->check(CLI::PositiveNumber);
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->callback([o] { run_remove(*o); });
+}
+
+}  // namespace
+GORIS_COMMAND(35, setup_remove);

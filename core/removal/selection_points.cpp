@@ -1,0 +1,47 @@
+#include "core/removal/selection_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/scene/gaussians.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+std::size_t count_selected(const SelectionMask& mask) {
+  return std::size_t(std::count_if(mask.begin(), mask.end(), [](std::uint8_t m) { return m != 0; }));
+}
+
+SelectionPoints selection_points(const GaussianModel& model) {
+  const std::size_t n = model.count();
+  const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
+  const std::vector<float> ls = model.tensor(Param::LogScale).value.to_host();
+  const std::vector<float> sh = model.tensor(Param::Sh).value.to_host();
+  const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
+  const int sh_width = param_width(Param::Sh);
+  const int ex_width = model.tensor(Param::ExtraLogit).width;
+  if (n > 0 && (pos.size() != 3 * n || ls.size() != 3 * n || sh.size() != std::size_t(sh_width) * n ||
+                ex_width != extra::kCount || ex.size() != std::size_t(ex_width) * n))
+    throw Error("selection", "the Gaussian model's arrays do not match its count of " + std::to_string(n));
+
+  constexpr float kC0 = 0.28209479177387814f;  // SH band-0 basis (render/math/sh.h)
+  SelectionPoints p;
+  p.position.resize(n);
+  p.scale.resize(n);
+  p.color.resize(n);
+  p.label.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    p.position[i] = glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    p.scale[i] = std::exp(std::max({ls[3 * i], ls[3 * i + 1], ls[3 * i + 2]}));
+    if (!std::isfinite(p.position[i].x) || !std::isfinite(p.position[i].y) || !std::isfinite(p.position[i].z) ||
+        !std::isfinite(p.scale[i]))
+      throw Error("selection", "Gaussian " + std::to_string(i) + " has a non-finite centre or scale");
+    const float* dc = &sh[std::size_t(sh_width) * i];
+    p.color[i] = glm::max(glm::vec3(0.5f) + kC0 * glm::vec3(dc[0], dc[1], dc[2]), glm::vec3(0.0f));
+    p.label[i] = 1.0f / (1.0f + std::exp(-ex[std::size_t(ex_width) * i + extra::kLabel]));
+  }
+  return p;
+}
+
+}  // namespace goris

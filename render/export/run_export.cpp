@@ -1,0 +1,254 @@
+#include "render/export/run_export.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "core/compute/memory.h"
+#include "core/io/file_bytes.h"
+#include "core/io/image.h"
+#include "core/io/ply.h"
+#include "core/train/image_losses.h"
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/util/error.h"
+#include "render/export/camera_path.h"
+#include "render/export/frame_grid.h"
+#include "render/train/run_renderer.h"
+
+namespace goris {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kHoldoutOrbitFrames = 16;  // held-out cameras when the data set has no test split
+
+std::vector<Camera> cameras_of(const std::vector<View>& views) {
+  std::vector<Camera> c;
+  c.reserve(views.size());
+  for (const View& v : views) c.push_back(v.camera);
+  return c;
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+void write_json(const fs::path& path, const nlohmann::json& j) {
+  const std::string text = j.dump(2) + "\n";
+  write_file_bytes(path, text.data(), text.size());
+}
+
+void create_folder(const fs::path& dir, const fs::path& for_what) {
+  if (dir.empty()) return;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw Error(for_what.string(), "cannot create the folder " + dir.string() + (ec ? " (" + ec.message() + ")" : ""));
+}
+
+// A file can be created (and removed again) in `dir`.
+void probe_writable(const fs::path& dir, const fs::path& for_what) {
+  const fs::path probe = dir / ".goris_export_probe";
+  {
+    std::ofstream f(probe, std::ios::binary);
+    if (!f) throw Error(for_what.string(), "cannot write into " + dir.string() + " (permissions?)");
+  }
+  std::error_code ec;
+  fs::remove(probe, ec);
+}
+
+}  // namespace
+
+RenderPath parse_render_path(const std::string& name) {
+  if (name == "test") return RenderPath::Test;
+  if (name == "train") return RenderPath::Train;
+  if (name == "orbit") return RenderPath::Orbit;
+  throw Error("--path", "unknown render path '" + name + "' (expected test, train or orbit)");
+}
+
+const char* render_path_name(RenderPath path) {
+  switch (path) {
+    case RenderPath::Test: return "test";
+    case RenderPath::Train: return "train";
+    case RenderPath::Orbit: return "orbit";
+  }
+  return "?";
+}
+
+fs::path baked_json_path(const fs::path& ply) {
+  fs::path j = ply;
+  return j.replace_extension(".json");
+}
+
+void check_output_file(const fs::path& path) {
+  const fs::path abs = fs::absolute(path);
+  if (abs.filename().empty()) throw Error(path.string(), "an output file name is needed, not a folder");
+  if (fs::is_directory(abs)) throw Error(path.string(), "is a folder; an output file name is needed");
+  create_folder(abs.parent_path(), path);
+  probe_writable(abs.parent_path(), path);
+}
+
+void check_output_dir(const fs::path& dir) {
+  const fs::path abs = fs::absolute(dir);
+  if (fs::exists(abs) && !fs::is_directory(abs)) throw Error(dir.string(), "exists and is not a folder");
+  create_folder(abs, dir);
+  probe_writable(abs, dir);
+}
+
+RunExport::RunExport(const fs::path& run_dir, Device device)
+    : run_dir_(fs::absolute(run_dir)), device_(device), config_(read_run_config(run_dir_)) {
+  dataset_ = load_dataset(config_.data, dataset_options(config_));
+  if (dataset_.train.empty()) throw Error(config_.data, "the data set has no training views");
+  extent_ = scene_extent(dataset_);
+  model_ = load_run_model(run_dir_, device_, &model_source_);
+  renderer_ = load_run_renderer(run_dir_, config_, extent_, device_);
+}
+
+std::vector<float> RunExport::render(const Camera& camera) {
+  const RenderedImages r = renderer_->forward(model_.view(renderer_->wants_extras()), camera);
+  std::vector<float> color(size_t(3) * size_t(camera.width) * size_t(camera.height));
+  device_copy(color.data(), Device::CPU, r.color, device_, color.size() * sizeof(float));
+  return color;
+}
+
+void RunExport::write_ply(const fs::path& out) const {
+  create_folder(fs::absolute(out).parent_path(), out);
+  goris::write_ply(out, model_.to_ply(/*bake_3d_filter=*/true));
+}
+
+std::vector<Camera> RunExport::path_cameras(RenderPath path, int frames, std::vector<std::string>* names) const {
+  std::vector<Camera> cams;
+  if (names) names->clear();
+  if (path == RenderPath::Orbit) {
+    const int n = frames > 0 ? frames : kDefaultOrbitFrames;
+    cams = orbit_cameras(orbit_from_cameras(cameras_of(dataset_.train)), n);
+    if (names)
+      for (int k = 0; k < n; ++k) {
+        char b[32];
+        std::snprintf(b, sizeof b, "frame_%03d", k);
+        names->push_back(b);
+      }
+    return cams;
+  }
+  const std::vector<View>& views = path == RenderPath::Test ? dataset_.test : dataset_.train;
+  if (views.empty())
+    throw Error(config_.data, std::string("the data set has no ") + render_path_name(path) +
+                                  " views; use --path train or --path orbit");
+  for (size_t i : evenly_spaced(views.size(), frames)) {
+    cams.push_back(views[i].camera);
+    if (names) names->push_back(views[i].name);
+  }
+  return cams;
+}
+
+BakedReport RunExport::write_baked(const fs::path& out, const DistillSettings& settings,
+                                   const std::function<void(const DistillProgress&)>& on_progress,
+                                   const std::atomic<bool>* stop) {
+  BakedReport rep;
+  rep.ply = out;
+  rep.json = baked_json_path(out);
+  rep.distilled = intrinsic();
+  const std::vector<Camera> train = cameras_of(dataset_.train);
+  std::vector<Camera> holdout = cameras_of(dataset_.test);
+  rep.holdout = "test";
+  if (holdout.empty()) {
+    holdout = orbit_cameras(orbit_from_cameras(train), kHoldoutOrbitFrames);
+    rep.holdout = "orbit";
+  }
+  DistillSettings s = settings;
+  if (!rep.distilled) s.iterations = 0;  // plain SH already: bake the model as it is
+  const DistillTeacher teacher = [this](const Camera& c) { return render(c); };
+  rep.distill = distill_to_sh(model_, teacher, config_, train, holdout, extent_, s, on_progress, stop);
+
+  // Both against the data set's own test images, as `goris eval` scores the run.
+  rep.gt_psnr_run = rep.gt_psnr_baked = std::numeric_limits<double>::quiet_NaN();
+  if (rep.holdout == "test") {
+    const DatasetOptions dopt = dataset_options(config_);
+    std::vector<std::vector<float>> gt;
+    for (const View& v : dataset_.test) gt.push_back(to_planar_rgb(load_view_image(v, dopt)));
+    double sum = 0;
+    for (size_t i = 0; i < gt.size(); ++i)
+      sum += psnr_from_mse(mse<float>(rep.distill.holdout_images[i].data(), gt[i].data(), gt[i].size()));
+    rep.gt_psnr_run = sum / double(gt.size());
+    GaussianModel baked = GaussianModel::from_ply(rep.distill.ply, device_);
+    rep.gt_psnr_baked = raster_psnr(baked, distill_config(config_, s), holdout, gt);
+  }
+
+  create_folder(fs::absolute(out).parent_path(), out);
+  goris::write_ply(out, rep.distill.ply);
+  const DistillResult& d = rep.distill;
+  nlohmann::json per_view = nlohmann::json::array();
+  for (double p : d.psnr_per_view) per_view.push_back(number_or_null(p));
+  const nlohmann::json j = {
+      {"run", run_dir_.string()}, {"model", model_source_}, {"mode", config_.mode},
+      {"ply", fs::absolute(out).string()}, {"distilled", rep.distilled},
+      {"note", rep.distilled ? "SH distilled from the run's shaded renders (paper S1.6)"
+                             : "radiance run: the model is plain SH already; the baked PLY is the --ply export without "
+                               "the extra properties (psnr checks the baked 3D filter against the run's own renders)"},
+      {"psnr", number_or_null(d.psnr)}, {"psnr_start", number_or_null(d.psnr_start)}, {"psnr_per_view", per_view},
+      {"psnr_against", "the run's renderer (clamped to [0, 1]) from the held-out cameras"},
+      {"holdout", rep.holdout}, {"holdout_views", d.holdout_views},
+      {"iterations", d.iterations}, {"stopped", d.stopped},
+      {"target_views", d.target_views}, {"extra_views", d.extra_views}, {"geometry_lr_scale", s.geometry_lr_scale},
+      {"gaussians", d.ply.count}, {"sh_degree", d.ply.sh_degree},
+      {"resolution", {holdout.front().width, holdout.front().height}}, {"device", device_name(device_)},
+      {"time_s", d.seconds_total},
+      {"seconds", {{"targets", d.seconds_targets}, {"train", d.seconds_train}, {"holdout", d.seconds_holdout}}},
+      {"gt", {{"images", "the data set's test images (GOR-IS scenes: after removal)"},
+              {"psnr_run", number_or_null(rep.gt_psnr_run)}, {"psnr_baked", number_or_null(rep.gt_psnr_baked)}}}};
+  write_json(rep.json, j);
+  return rep;
+}
+
+RendersReport RunExport::write_renders(const fs::path& dir, RenderPath path, int frames,
+                                       const std::function<void(size_t, size_t)>& on_frame) {
+  RendersReport rep;
+  rep.dir = fs::absolute(dir);
+  create_folder(rep.dir, dir);
+  const std::vector<Camera> cams = path_cameras(path, frames, &rep.frames);
+  rep.width = cams.front().width;
+  rep.height = cams.front().height;
+  const FrameGrid grid = frame_grid_layout(int(cams.size()), rep.width, rep.height);
+  std::vector<Image> cells;
+  nlohmann::json jc = nlohmann::json::array();
+  double ms = 0;
+  for (size_t i = 0; i < cams.size(); ++i) {
+    const Camera& c = cams[i];
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<float> color = render(c);
+    ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const Image img = from_planar(color.data(), 3, c.width, c.height);
+    save_png(rep.dir / (rep.frames[i] + ".png"), img);
+    cells.push_back(resize_image(img, grid.cell_width, grid.cell_height));
+    const nlohmann::json cam_json = {{"name", rep.frames[i]}, {"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy},
+                  {"cx", c.cx}, {"cy", c.cy}, {"position", vec_json(c.center())}, {"forward", vec_json(c.forward())},
+                  {"R", {vec_json(glm::vec3(c.R[0][0], c.R[1][0], c.R[2][0])), vec_json(glm::vec3(c.R[0][1], c.R[1][1], c.R[2][1])),
+                         vec_json(glm::vec3(c.R[0][2], c.R[1][2], c.R[2][2]))}},
+                  {"t", vec_json(c.t)}};
+    jc.push_back(cam_json);
+    if (on_frame) on_frame(i + 1, cams.size());
+  }
+  rep.ms_per_frame = ms / double(cams.size());
+  rep.contact_sheet = rep.dir / "contact_sheet.png";
+  save_png(rep.contact_sheet, compose_frame_grid(grid, cells));
+  nlohmann::json j = {{"run", run_dir_.string()},
+                      {"path", render_path_name(path)},
+                      {"convention", "world-to-camera x_cam = R x_world + t, OpenCV axes (x right, y down, z forward)"},
+                      {"cameras", jc}};
+  if (path == RenderPath::Orbit) {
+    const OrbitPath o = orbit_from_cameras(cameras_of(dataset_.train));
+    j["orbit"] = {{"center", vec_json(o.center)}, {"up", vec_json(o.up)}, {"radius", o.radius}, {"height", o.height},
+                  {"rule", "circle about the cameras' mean up through the point nearest to their optical axes, at "
+                           "their mean height and horizontal distance; frame 0 towards the first training camera, "
+                           "counter-clockwise seen from above, every frame looking at that point"}};
+  }
+  write_json(rep.dir / "cameras.json", j);
+  return rep;
+}
+
+}  // namespace goris

@@ -1,0 +1,428 @@
+#include "render/removal/removal_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "core/inpaint/harmonic_inpainter.h"
+#include "core/inpaint/inpainter.h"
+#include "core/io/dataset.h"
+#include "core/io/file_bytes.h"
+#include "core/io/image.h"
+#include "core/io/npy.h"
+#include "core/io/npy_write.h"
+#include "core/io/ply.h"
+#include "core/removal/selection_file.h"
+#include "core/removal/selection_labels.h"
+#include "core/removal/selection_points.h"
+#include "core/train/checkpoint.h"
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/train/trainer.h"
+#include "core/util/error.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/maps/gbuffer_maps.h"
+#include "render/removal/finetune_views.h"
+#include "render/removal/inpaint_mask.h"
+#include "render/removal/inpaint_mask_scene.h"
+#include "render/removal/lift.h"
+#include "render/removal/lighting_aware_mask.h"
+#include "render/removal/reference_views.h"
+#include "render/train/raster_renderer.h"
+#include "render/train/run_renderer.h"
+
+namespace goris {
+
+namespace fs = std::filesystem;
+
+const char* removal_step_name(RemovalStep s) {
+  static const char* names[kRemovalStepCount] = {"selection",       "lighting masks", "inpaint masks", "reference views",
+                                                 "2D inpainting", "3D lift",        "fine-tune"};
+  return names[int(s)];
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct StepScope {
+  RemovalReport& report;
+  RemovalStep step;
+  const std::function<void(const RemovalProgress&)>& cb;
+  Clock::time_point t0 = Clock::now();
+  StepScope(RemovalReport& r, RemovalStep s, const std::function<void(const RemovalProgress&)>& c)
+      : report(r), step(s), cb(c) {
+    tell(0, 1, "");
+  }
+  void tell(std::size_t done, std::size_t total, const std::string& detail) const {
+    if (cb) cb({step, done, std::max<std::size_t>(total, 1), detail});
+  }
+  // Marks the step complete (100 %) and records its time.
+  void finish(const std::string& detail = "") {
+    report.seconds[int(step)] += std::chrono::duration<double>(Clock::now() - t0).count();
+    tell(1, 1, detail);
+  }
+};
+
+std::string step_error(RemovalStep s, const std::string& problem) {
+  return std::string("goris remove (") + removal_step_name(s) + "): " + problem;
+}
+
+// Float maps cached as .npy [H][W][C] for resuming, with a PNG preview beside each.
+void save_map(const fs::path& dir, const std::string& stem, const Image& im) {
+  const std::vector<float> px = im.pixels.to_host();
+  save_npy(dir / (stem + ".npy"), px, {std::size_t(im.height), std::size_t(im.width), std::size_t(im.channels)});
+}
+
+Image load_map(const fs::path& path) {
+  const NpyArray a = load_npy(path);
+  if (a.shape.size() != 3) throw Error(path.string(), "expected an [H][W][C] array");
+  Image im(int(a.shape[1]), int(a.shape[0]), int(a.shape[2]));
+  std::vector<float> px(a.data.begin(), a.data.end());
+  im.pixels.upload(px.data(), px.size());
+  return im;
+}
+
+void save_preview(const fs::path& path, const Image& im, const std::string& map) {
+  if (im.pixels.size() == 0) return;
+  const std::vector<float> px = im.pixels.to_host();
+  const int w = im.width, h = im.height;
+  const std::size_t hw = std::size_t(w) * h;
+  if (map == "depth") {
+    std::vector<float> alpha(hw);
+    for (std::size_t p = 0; p < hw; ++p) alpha[p] = px[p] > 0 ? 1.0f : 0.0f;
+    save_png(path, depth_to_turbo(px.data(), alpha.data(), w, h, false));
+  } else if (map == "normal") {
+    std::vector<float> planar(3 * hw), alpha(hw);
+    for (std::size_t p = 0; p < hw; ++p) {
+      for (int c = 0; c < 3; ++c) planar[c * hw + p] = px[p * 3 + c];
+      alpha[p] = (px[p * 3] != 0 || px[p * 3 + 1] != 0 || px[p * 3 + 2] != 0) ? 1.0f : 0.0f;
+    }
+    save_png(path, normals_to_rgb(planar.data(), alpha.data(), w, h));
+  } else {
+    save_png(path, im);
+  }
+}
+
+Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold) {
+  Mask m(w, h);
+  for (std::size_t p = 0; p < v.size(); ++p) m.data[p] = v[p] > threshold ? 255 : 0;
+  return m;
+}
+
+// Stage 2's training configuration from stage 1's.
+TrainConfig finetune_config(const TrainConfig& s1, int iterations) {
+  TrainConfig c = s1;
+  c.iterations = iterations;
+  c.densify.from_iter = 1 << 30;  // the lift placed the new Gaussians; no density control
+  c.densify.until_iter = 0;
+  c.densify.opacity_reset_interval = 1 << 30;
+  c.lr.position_init = s1.lr.position_final * 10;  // late-stage learning rates: refine, do not rebuild
+  c.lr.position_final = s1.lr.position_final;
+  c.lr.label = 0;  // labels are frozen: the target is gone
+  c.intrinsic.warmup = 0;
+  c.intrinsic.lr_env = c.intrinsic.lr_env_final = c.intrinsic.lr_net = 0;  // environment and net frozen
+  c.intrinsic.smoothness = 0;  // the paper drops smoothness and the label BCE in stage 2
+  c.intrinsic.label = 0;
+  c.intrinsic.normal_prior = c.intrinsic.normal_prior_final;
+  c.depth_normal_from = s1.iterations > s1.depth_normal_from ? 0 : 1 << 30;
+  c.checkpoint_interval = std::max(100, iterations / 4);
+  c.log_interval = std::max(10, std::min(100, iterations / 20));
+  return c;
+}
+
+nlohmann::json options_json(const RemovalOptions& o) {
+  nlohmann::json j;
+  j["inpainter"] = o.inpainter;
+  j["ablate"] = std::vector<std::string>(o.ablate.begin(), o.ablate.end());
+  j["label_threshold"] = o.label_threshold;
+  j["lighting_tau"] = o.lighting_tau;
+  return j;
+}
+
+}  // namespace
+
+RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
+                          const std::function<void(const RemovalProgress&)>& on_progress, const std::atomic<bool>* stop) {
+  for (const std::string& a : o.ablate) {
+    if (a == "elt" || a == "ssf")
+      throw Error(step_error(RemovalStep::Selection,
+                             "--ablate " + a + " is a stage-1 choice: train the run with " +
+                                 (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
+                                 " and remove from that run"));
+    if (a != "material" && a != "lamask")
+      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a + "' (expected material or lamask)"));
+  }
+  const fs::path run_dir = fs::absolute(run_dir_in);
+  const TrainConfig config = read_run_config(run_dir);
+  const Device device = resolve_device(o.device);
+  const DatasetOptions dopt = dataset_options(config);
+  const Dataset ds = load_dataset(config.data, dopt);
+  if (ds.train.empty()) throw Error(config.data, "the data set has no training views");
+  const float extent = scene_extent(ds);
+  std::vector<Camera> cameras;
+  for (const View& v : ds.train) cameras.push_back(v.camera);
+  const bool intrinsic = config.mode == "intrinsic";
+  const bool materials = intrinsic && !o.ablate.count("material");
+
+  RemovalReport report;
+  const fs::path out = run_dir / "removal";
+  report.out_dir = out;
+  fs::create_directories(out);
+  GaussianModel model = load_run_model(run_dir, device);
+  report.gaussians_before = model.count();
+  const RasterSettings raster = RasterRenderer::settings_for(config);
+  auto cancelled = [&] { return stop && stop->load(); };
+
+  // 1. Selection.
+  SelectionMask selected;
+  {
+    StepScope s(report, RemovalStep::Selection, on_progress);
+    SelectionRecord record;
+    if (fs::exists(selection_json_path(run_dir))) {
+      StoredSelection st = read_selection(run_dir, model);
+      selected = std::move(st.mask);
+      record = st.record;
+    } else {
+      const SelectionResult r = select_by_label(selection_points(model), {o.label_threshold, {}});
+      selected = r.mask;
+      record.method = "labels";
+      record.parameters = {{"threshold", o.label_threshold}};
+    }
+    report.selected = count_selected(selected);
+    if (report.selected == 0)
+      throw Error(step_error(RemovalStep::Selection,
+                             "nothing is selected: no Gaussian has a label above " + std::to_string(o.label_threshold) +
+                                 " (train in intrinsic mode on a data set with object masks), and no RUN/selection.json "
+                                 "(make one with `goris select RUN --click VIEW X Y` or `--masks`)"));
+    if (report.selected * 2 > model.count())
+      throw Error(step_error(RemovalStep::Selection,
+                             std::to_string(report.selected) + " of " + std::to_string(model.count()) +
+                                 " Gaussians are selected (more than half the scene): the labels are not learned well "
+                                 "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
+    record.model_fingerprint = model_fingerprint(model);
+    write_selection(out / "selection.json", record, selected);
+    apply_selection_to_labels(model, selected);
+    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians");
+  }
+
+  // 2. Lighting-aware masks.
+  std::vector<Mask> lighting(cameras.size());
+  {
+    StepScope s(report, RemovalStep::LightingMasks, on_progress);
+    if (intrinsic && !o.ablate.count("lamask")) {
+      const auto renderer = load_run_renderer(run_dir, config, extent, device);
+      IntrinsicRenderer* ir = as_intrinsic(renderer.get());
+      fs::create_directories(out / "lighting_masks");
+      for (std::size_t i = 0; i < cameras.size(); ++i) {
+        if (cancelled()) break;
+        s.tell(i, cameras.size(), ds.train[i].name);
+        const std::vector<float> e = ir->reflected_label(model.view(true), cameras[i]);
+        lighting[i] = lighting_aware_mask(e, cameras[i].width, cameras[i].height, {o.lighting_tau, -1});
+        report.lighting_pixels += count_set(lighting[i]);
+        save_mask_png(out / "lighting_masks" / (ds.train[i].name + ".png"), lighting[i]);
+      }
+    }
+    s.finish(std::to_string(report.lighting_pixels) + " pixels");
+  }
+  if (cancelled()) return report.cancelled = true, report;
+
+  // 3. Inpainting masks.
+  std::vector<InpaintMaskView> holes;
+  {
+    StepScope s(report, RemovalStep::InpaintMasks, on_progress);
+    InpaintMaskSettings ms;
+    ms.raster = raster;
+    holes = compute_inpaint_masks(model, selected, cameras, ms,
+                                  [&](std::size_t i, std::size_t n) { s.tell(i, n, i < ds.train.size() ? ds.train[i].name : ""); });
+    fs::create_directories(out / "inpaint_masks");
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      report.inpaint_pixels += count_set(holes[i].mask);
+      save_mask_png(out / "inpaint_masks" / (ds.train[i].name + ".png"), holes[i].mask);
+    }
+    s.finish(std::to_string(report.inpaint_pixels) + " pixels");
+  }
+
+  // 4. Reference views.
+  ReferenceChoice choice;
+  {
+    StepScope s(report, RemovalStep::ReferenceViews, on_progress);
+    choice = choose_reference_views(holes, cameras);
+    nlohmann::json j = nlohmann::json::array();
+    for (std::size_t k = 0; k < choice.views.size(); ++k) {
+      const int v = choice.views[k];
+      report.reference_views.push_back(ds.train[std::size_t(v)].name);
+      j.push_back({{"view", ds.train[std::size_t(v)].name},
+                   {"mask_pixels", count_set(holes[std::size_t(v)].mask)},
+                   {"angle_threshold_deg", choice.angle_threshold[k]}});
+    }
+    const std::string text = j.dump(2) + "\n";
+    write_file_bytes(out / "reference.json", text.data(), text.size());
+    s.finish(std::to_string(choice.views.size()) + " views");
+  }
+
+  // 5. 2D inpainting (cached for resuming).
+  SplitScene split = split_removed(model, selected);
+  std::vector<MapSet> inpainted(choice.views.size());
+  {
+    StepScope s(report, RemovalStep::Inpaint2D, on_progress);
+    const fs::path dir = out / "inpainted";
+    fs::create_directories(dir);
+    nlohmann::json opts = options_json(o);
+    opts["materials"] = materials;
+    opts["views"] = report.reference_views;
+    const fs::path opts_path = dir / "options.json";
+    const bool cached = fs::exists(opts_path) && nlohmann::json::parse(read_text_file(opts_path), nullptr, false) == opts;
+    std::unique_ptr<Inpainter> inp;
+    const HarmonicInpainter harmonic;
+    const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
+    const std::size_t maps_per_view = materials ? 6 : 2;
+    const std::size_t total = choice.views.size() * maps_per_view;
+    std::size_t done = 0;
+    for (std::size_t k = 0; k < choice.views.size(); ++k) {
+      const std::size_t v = std::size_t(choice.views[k]);
+      const std::string& name = ds.train[v].name;
+      MapSet& m = inpainted[k];
+      if (cached) {
+        for (const MapSlot& slot : map_slots()) {
+          const fs::path p = dir / (name + "_" + slot.name + ".npy");
+          if (fs::exists(p)) m.*slot.member = load_map(p);
+        }
+        done += maps_per_view;
+        s.tell(done, total, name + " (cached)");
+        continue;
+      }
+      if (!inp) {
+        fs::remove(opts_path);  // the cache is being rewritten
+        inp = make_inpainter(o.inpainter);
+      }
+      MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
+      maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
+      if (!materials) {
+        maps.normal = Image();
+        maps.fresnel = Image();
+        maps.roughness = Image();
+        maps.region = Image();
+      }
+      MapSetInpaintOptions mo;
+      if (own_depth) mo.depth_inpainter = &harmonic;
+      mo.on_map = [&](const std::string& map) {
+        if (cancelled()) throw Error(step_error(RemovalStep::Inpaint2D, "cancelled"));
+        s.tell(done++, total, name + " " + map);
+      };
+      m = inpaint_map_set(*inp, maps, holes[v].mask, name, mo);
+      for (const MapSlot& slot : map_slots()) {
+        const Image& im = m.*slot.member;
+        if (im.pixels.size() == 0) continue;
+        save_map(dir, name + "_" + slot.name, im);
+        save_preview(dir / (name + "_" + slot.name + ".png"), im, slot.name);
+      }
+    }
+    if (!cached) {
+      const std::string text = opts.dump(2) + "\n";
+      write_file_bytes(opts_path, text.data(), text.size());
+    }
+    s.finish();
+  }
+
+  // 6. 3D lift.
+  LiftResult lift;
+  GaussianModel lifted = split.kept.copy_to(device);
+  {
+    StepScope s(report, RemovalStep::Lift, on_progress);
+    std::vector<LiftView> lv;
+    for (std::size_t k = 0; k < choice.views.size(); ++k) {
+      const std::size_t v = std::size_t(choice.views[k]);
+      lv.push_back({int(v), cameras[v], &holes[v].mask, &inpainted[k]});
+    }
+    if (!lv.empty()) lift = lift_reference_views(lifted, lv);
+    report.added = lift.added;
+    s.finish(std::to_string(lift.added) + " Gaussians added");
+  }
+
+  // 7. Fine-tune.
+  {
+    StepScope s(report, RemovalStep::FineTune, on_progress);
+    const int iters = o.finetune_iterations > 0 ? o.finetune_iterations
+                                                : std::max(100, config.scaled_iteration(4000));
+    const TrainConfig ft = finetune_config(config, iters);
+    std::vector<TrainView> views = load_train_views(ds.train, dopt);
+    std::vector<Mask> exclude(views.size());
+    std::vector<FinetuneViewInputs> inputs(views.size());
+    std::vector<ReferenceTargets> refs;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const int w = cameras[i].width, h = cameras[i].height;
+      // Object mask of the data set (when given) U what the selection covers (dilated: soft edges) U reflections.
+      Mask ex = dilate_mask(holes[i].covered, std::max(1, int(std::lround(w / 128.0))));
+      if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
+      if (lighting[i].width == w) ex = mask_or(ex, lighting[i]);
+      exclude[i] = std::move(ex);
+      inputs[i].exclude = &exclude[i];
+      inputs[i].removed_depth = &holes[i].removed_depth;
+    }
+    for (std::size_t k = 0; k < choice.views.size(); ++k) {
+      const std::size_t v = std::size_t(choice.views[k]);
+      inputs[v].reference = int(k);
+      refs.push_back({&holes[v].mask, &inpainted[k]});
+    }
+    const FinetuneViewStats fs_stats = prepare_finetune_views(views, inputs, refs, lift.points);
+
+    TrainerState state;
+    auto renderer = make_renderer(ft, extent, device);
+    const auto resume = latest_checkpoint(out);
+    if (resume && fs::exists(run_config_path(out))) {
+      Checkpoint ck = read_checkpoint(*resume, Device::CPU);
+      state = std::move(ck.state);
+      if (device != Device::CPU) state.model = state.model.copy_to(device);
+      Trainer::load_renderer_state(*resume, *renderer);
+    } else {
+      state.model = std::move(lifted);
+      state.rng.seed(ft.seed + 2);
+      if (const auto s1 = latest_checkpoint(run_dir)) Trainer::load_renderer_state(*s1, *renderer);
+    }
+    write_run_config(out, ft);
+    Trainer trainer(ft, std::move(views), extent, renderer, std::move(state));
+    Trainer::RunOptions ro;
+    ro.run_dir = out;
+    ro.stop = stop;
+    ro.progress_every = 10;
+    ro.on_progress = [&](const TrainProgress& p) {
+      char b[160];
+      std::snprintf(b, sizeof b, "loss %.4f  PSNR %.2f dB  %.1f it/s", p.loss, p.psnr, p.it_per_s);
+      s.tell(std::size_t(p.iteration), std::size_t(p.total), b);
+    };
+    const Trainer::RunResult rr = trainer.run(ro);
+    report.finetune_iterations = trainer.state().iteration;
+    report.gaussians_after = trainer.model().count();
+    if (rr == Trainer::RunResult::Stopped) {
+      report.cancelled = true;
+      return report;
+    }
+    write_ply(run_ply_path(out), trainer.model().to_ply(/*bake_3d_filter=*/true));
+    nlohmann::json j;
+    j["selected"] = report.selected;
+    j["gaussians_before"] = report.gaussians_before;
+    j["gaussians_after"] = report.gaussians_after;
+    j["added_by_lift"] = report.added;
+    j["lighting_mask_pixels"] = report.lighting_pixels;
+    j["inpaint_mask_pixels"] = report.inpaint_pixels;
+    j["reference_views"] = report.reference_views;
+    j["finetune_iterations"] = report.finetune_iterations;
+    j["finetune_targets"] = {{"excluded_pixels", fs_stats.excluded_pixels},
+                             {"appearance_pixels", fs_stats.appearance_pixels},
+                             {"material_pixels", fs_stats.material_pixels},
+                             {"projected_points", fs_stats.projected_points}};
+    j["options"] = options_json(o);
+    s.finish("done");
+    for (int k = 0; k < kRemovalStepCount; ++k) j["seconds"][removal_step_name(RemovalStep(k))] = report.seconds[k];
+    const std::string text = j.dump(2) + "\n";
+    write_file_bytes(out / "report.json", text.data(), text.size());
+  }
+  return report;
+}
+
+}  // namespace goris

@@ -1,0 +1,67 @@
+#pragma once
+// Stage 2 end to end (paper Sec. 3.3-3.4, S1.4-S1.6; DESIGN.md §6): `goris remove RUN` and the editor's
+// Remove button call run_removal(). Every step reports progress and writes what it made into RUN/removal/
+// so a person can look at it:
+//
+//   selection        RUN/selection.json if present (goris select / the editor), else label > 0.3 closed by
+//                    the hull of the selected centres          -> removal/selection.json (+ .npy)
+//   lighting masks   reflections of the target per training view (intrinsic runs; not with --ablate lamask)
+//                                                              -> removal/lighting_masks/VIEW.png
+//   inpaint masks    pixels no view sees once the target is gone -> removal/inpaint_masks/VIEW.png
+//   reference views  3 views with the largest holes, seen from different directions -> removal/reference.json
+//   2D inpainting    colour, depth, normal, F0, roughness, region of each reference view (colour and depth
+//                    only with --ablate material or for radiance runs)
+//                                                              -> removal/inpainted/VIEW_MAP.png|.npy
+//   3D lift          new Gaussians on the inpainted depth       (count in removal/report.json)
+//   fine-tune        environment map and net frozen; photo losses outside object U lighting masks,
+//                    appearance / material losses in the hole   -> removal/ as a run folder: config.json,
+//                                                                 checkpoints/, log.csv, point_cloud.ply
+//
+// The result is itself a run folder (render / eval / export take RUN/removal). Cancelling (the stop flag)
+// leaves the folder consistent: a rerun skips the 2D inpainting when its maps are there for the same
+// options, and resumes the fine-tune from its last checkpoint.
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace goris {
+
+enum class RemovalStep : int { Selection, LightingMasks, InpaintMasks, ReferenceViews, Inpaint2D, Lift, FineTune };
+constexpr int kRemovalStepCount = 7;
+const char* removal_step_name(RemovalStep step);  // "selection", "lighting masks", ...
+
+struct RemovalOptions {
+  std::string inpainter = "telea";  // core/inpaint/inpainter.h make_inpainter(): telea, ns, harmonic, fsr, cmd:..., dir:...
+  std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask)
+  int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
+  float label_threshold = 0.3f;
+  float lighting_tau = 0.1f;
+  std::string device = "auto";
+};
+
+struct RemovalProgress {
+  RemovalStep step = RemovalStep::Selection;
+  std::size_t done = 0, total = 1;  // within the step
+  std::string detail;               // e.g. the view or map being processed, loss / PSNR in the fine-tune
+};
+
+struct RemovalReport {
+  std::filesystem::path out_dir;            // RUN/removal
+  double seconds[kRemovalStepCount] = {};   // per step
+  std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
+  std::size_t lighting_pixels = 0, inpaint_pixels = 0;
+  std::vector<std::string> reference_views;
+  int finetune_iterations = 0;
+  bool cancelled = false;
+};
+
+// Runs (or resumes) stage 2 on a trained run. Throws goris::Error with the step and the problem (no
+// selection, nothing to inpaint in any view, an inpainter that fails, ...).
+RemovalReport run_removal(const std::filesystem::path& run_dir, const RemovalOptions& options,
+                          const std::function<void(const RemovalProgress&)>& on_progress = {},
+                          const std::atomic<bool>* stop = nullptr);
+
+}  // namespace goris

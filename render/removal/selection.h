@@ -1,0 +1,31 @@
+#pragma once
+// Target selection for object removal (DESIGN.md §6 stage 2, paper Sec. 3.3): the one header the editor and
+// the CLI include. A selection is a SelectionMask, one byte per Gaussian of the model (1 = target).
+//
+// Seeds (pick one of):
+//   select_by_label(pts, {threshold})      learned label > 0.3, closed by the hull of the selected centres
+//                                          (core/removal/selection_labels.h)
+//   labels_from_masks(model, views, ...)   2D object masks, depth-tested votes  (selection_masks.h)
+//   GaussianPicker / pick_gaussian(...)    the Gaussian under a pixel           (selection_pick.h)
+// Editing:
+//   close_selection(pts, seeds, ...)       outliers out, then everything inside the hull / box added
+//   grow_selection / shrink_selection      over the centres' kNN graph, slider 0..1, bounded
+//                                          (core/removal/selection_grow.h)
+// Storing:
+//   write_selection / read_selection       RUN/selection.json + selection.npy, stale-model checks
+//                                          (core/removal/selection_file.h)
+//   apply_selection_to_labels(model, m)    the selection as the model's label channel
+// Showing:
+//   render_selection_preview(...)          tinted | removed side by side       (selection_preview.h)
+//
+// Typical editor flow: pts = selection_points(model); graph = build_selection_graph(pts); picker =
+// GaussianPicker(model); on click: p = picker.pick(cam, u, v); seeds = {p.gaussian}; on slider g:
+// grow_selection(pts, graph, seeds, {.grow = g}); on save: write_selection(selection_json_path(run), ...).
+#include "core/removal/select_hull.h"
+#include "core/removal/selection_file.h"
+#include "core/removal/selection_grow.h"
+#include "core/removal/selection_labels.h"
+#include "core/removal/selection_points.h"
+#include "render/removal/selection_masks.h"
+#include "render/removal/selection_pick.h"
+#include "render/removal/selection_preview.h"

@@ -1,0 +1,56 @@
+#include "render/removal/selection_preview.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/scene/gaussians.h"
+#include "core/util/error.h"
+#include "render/raster/rasterizer.h"
+#include "render/removal/select_view.h"
+
+namespace goris {
+
+Image render_selection_preview(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
+                               const RasterSettings& raster, const PreviewSettings& ps) {
+  const std::size_t n = model.count();
+  if (mask.size() != n)
+    throw Error("preview", "mask has " + std::to_string(mask.size()) + " entries for " + std::to_string(n) +
+                               " Gaussians");
+  const Device dev = model.device();
+  // The selection as one extra channel: the rasterizer blends it into its coverage per pixel.
+  std::vector<float> sel(n), opacity = model.tensor(Param::OpacityLogit).value.to_host();
+  for (std::size_t i = 0; i < n; ++i) {
+    sel[i] = mask[i] ? 1.0f : 0.0f;
+    if (mask[i]) opacity[i] = -30.0f;  // opacity ~1e-13: below the 1/255 cut, so the Gaussian is skipped
+  }
+  const Buffer<float> sel_buf(sel, dev), removed_opacity(opacity, dev);
+
+  GaussianView tinted_view = plain_gaussian_view(model);
+  tinted_view.extras = sel_buf.data();
+  tinted_view.n_extras = 1;
+  GaussianView removed_view = plain_gaussian_view(model);
+  removed_view.opacity_logits = removed_opacity.data();
+
+  const RasterOutput a = rasterize(tinted_view, camera, raster, dev);
+  const RasterOutput b = rasterize(removed_view, camera, raster, dev);
+  const std::vector<float> ca = a.gbuffer.color.to_host(), cov = a.gbuffer.extras.to_host(),
+                           cb = b.gbuffer.color.to_host();
+  const int w = camera.width, h = camera.height;
+  const std::size_t hw = std::size_t(w) * std::size_t(h);
+  Image out(2 * w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = std::size_t(y) * w + x;
+      const float s = std::min(1.0f, std::max(0.0f, cov[p])) * ps.strength;
+      float* left = &out.pixels[(std::size_t(y) * 2 * w + x) * 3];
+      float* right = &out.pixels[(std::size_t(y) * 2 * w + w + x) * 3];
+      for (int c = 0; c < 3; ++c) {
+        left[c] = ca[c * hw + p] * (1.0f - s) + ps.tint[c] * s;
+        right[c] = cb[c * hw + p];
+      }
+    }
+  return out;
+}
+
+}  // namespace goris

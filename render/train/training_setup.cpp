@@ -1,0 +1,79 @@
+#include "render/train/training_setup.h"
+
+#include <algorithm>
+
+#include "core/compute/device.h"
+#include "core/io/image.h"
+#include "core/io/ply.h"
+#include "core/train/run_folder.h"
+#include "core/train/normal_prior.h"
+#include "core/train/train_setup.h"
+#include "core/util/error.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/run_renderer.h"
+
+namespace goris {
+
+namespace fs = std::filesystem;
+
+std::optional<ResumePoint> read_latest_checkpoint(const fs::path& run_dir) {
+  const auto ck = latest_checkpoint(run_dir);
+  if (!ck) return std::nullopt;
+  return ResumePoint{*ck, read_checkpoint(*ck, Device::CPU)};
+}
+
+PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, std::optional<ResumePoint> resumed,
+                                  const std::function<void(std::size_t, std::size_t)>& on_view) {
+  config.validate("training options");
+  const Device device = resolve_device(config.device);
+  PreparedTraining p;
+  const DatasetOptions dopt = dataset_options(config);
+  p.dataset = load_dataset(config.data, dopt);
+  if (p.dataset.train.empty()) throw Error(config.data, "the data set has no training views");
+  if (config.mode == "auto") {
+    // Intrinsic when the data set has glossy masks (what the intrinsic losses need).
+    const bool glossy = std::any_of(p.dataset.train.begin(), p.dataset.train.end(),
+                                    [](const View& v) { return v.glossy_mask.has_value(); });
+    config.mode = glossy ? "intrinsic" : "radiance";
+    p.auto_mode_reason = glossy ? "the data set has glossy masks" : "no glossy masks in the data set";
+    config.validate("training options");
+  }
+  p.extent = scene_extent(p.dataset);
+  std::vector<TrainView> views = load_train_views(p.dataset.train, dopt, on_view);
+  for (const TrainView& v : views) {
+    p.glossy_views += !v.glossy_mask.empty();
+    p.mask_views += !v.object_mask.empty();
+  }
+  if (config.mode == "intrinsic" && !config.intrinsic.normals.empty())
+    load_normal_priors(config.intrinsic.normals, views);
+
+  TrainerState state;
+  if (resumed) {
+    state = std::move(resumed->checkpoint.state);
+    if (device != Device::CPU) state.model = state.model.copy_to(device);
+    for (Buffer<float>* b : {&state.stats.grad_accum, &state.stats.denom, &state.stats.max_radii})
+      *b = b->copy_to(device);
+  } else {
+    state = Trainer::initial_state(config, initial_model(p.dataset, config, device, &p.initial_model));
+  }
+  fs::create_directories(run_dir / "checkpoints");
+  p.renderer = make_renderer(config, p.extent, device);
+  if (resumed) Trainer::load_renderer_state(resumed->file, *p.renderer);
+  p.trainer = std::make_unique<Trainer>(config, std::move(views), p.extent, p.renderer, std::move(state));
+  p.config = std::move(config);
+  return p;
+}
+
+void write_trained_run(const fs::path& run_dir, const Trainer& trainer, DifferentiableRenderer& renderer) {
+  write_ply(run_ply_path(run_dir), trainer.state().model.to_ply(/*bake_3d_filter=*/true));
+  if (IntrinsicRenderer* ir = as_intrinsic(&renderer)) {
+    // The checkpoints keep the map with the net for resuming; this is for people.
+    const int ew = 4 * ir->environment().resolution();
+    const std::vector<float> eq = ir->environment().equirect_image(ew);
+    Image img(ew, ew / 2, 3);
+    img.pixels.upload(eq.data(), eq.size());
+    save_png(run_dir / "environment.png", img);
+  }
+}
+
+}  // namespace goris

@@ -1,0 +1,57 @@
+#pragma once
+// A run folder and a training configuration turned into a Trainer ready to run: shared by `goris train`
+// (app/goris/cmd_train.cpp) and the editor's training session (ui/trainer_session.h), so both train the
+// same way. It loads the data set, resolves mode "auto", loads the training images (and normal priors in
+// intrinsic mode), builds the initial model or takes a checkpoint's state, and makes the differentiable
+// renderer the configuration asks for (render/train/run_renderer.h) with its own parameters restored when
+// resuming. What differs between the callers (new or resumed run, how the iteration target is given, what
+// is printed) stays with them.
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/io/dataset.h"
+#include "core/train/checkpoint.h"
+#include "core/train/differentiable_renderer.h"
+#include "core/train/train_config.h"
+#include "core/train/trainer.h"
+
+namespace goris {
+
+// A checkpoint to continue from, with the file it came from (its renderer state lies beside it).
+struct ResumePoint {
+  std::filesystem::path file;
+  Checkpoint checkpoint;
+};
+// The latest checkpoint of a run folder, read onto the CPU; nullopt when the folder has none.
+std::optional<ResumePoint> read_latest_checkpoint(const std::filesystem::path& run_dir);
+
+struct PreparedTraining {
+  TrainConfig config;  // as trained: mode "auto" resolved
+  Dataset dataset;
+  float extent = 1.0f;
+  std::shared_ptr<DifferentiableRenderer> renderer;
+  std::unique_ptr<Trainer> trainer;
+  // For the user: how "auto" decided (empty when the mode was given), the intrinsic inputs found, and how
+  // the initial model was made (empty when resumed).
+  std::string auto_mode_reason;
+  std::size_t glossy_views = 0, mask_views = 0;
+  std::string initial_model;
+};
+
+// `config` names the data set and the iteration target (it is validated here); `resumed` continues from a
+// checkpoint (its state moves into the trainer, placed on the configured device) instead of initialising.
+// Creates RUN/checkpoints. `on_view` is told (index, count) as each training image loads. Throws
+// goris::Error naming the file and the problem (no training views, unreadable images or priors, ...).
+PreparedTraining prepare_training(const std::filesystem::path& run_dir, TrainConfig config,
+                                  std::optional<ResumePoint> resumed,
+                                  const std::function<void(std::size_t, std::size_t)>& on_view = {});
+
+// What a finished stage-1 run leaves beside its checkpoints: RUN/point_cloud.ply (3D filter baked in, for
+// standard viewers) and, for intrinsic runs, RUN/environment.png (the environment map as a picture).
+void write_trained_run(const std::filesystem::path& run_dir, const Trainer& trainer, DifferentiableRenderer& renderer);
+
+}  // namespace goris

@@ -1,0 +1,175 @@
+#pragma once
+// The editor's document: what is open, what the viewports show and from where, the training session, the
+// selection, the removal and the last click. Every user action (panels, mouse, keys, script lines) goes
+// through these members, so the GUI and the scripted mode share one code path. No OpenGL or ImGui here.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/io/camera.h"
+#include "ui/channels.h"
+#include "ui/display_frame.h"
+#include "ui/model_snapshot.h"
+#include "ui/orbit_camera.h"
+#include "ui/removal_session.h"
+#include "ui/scene_loader.h"
+#include "ui/selection_session.h"
+#include "ui/settings_store.h"
+#include "ui/trainer_session.h"
+
+namespace goris::ui {
+
+enum class CompareMode { Off, SideBySide, Slider };
+const char* compare_mode_id(CompareMode m);
+std::optional<CompareMode> compare_mode_from_id(const std::string& id);
+
+class AppState {
+ public:
+  static constexpr int kMaxGrid = 8;
+
+  explicit AppState(StudioSettings& settings);
+  ~AppState();
+  AppState(const AppState&) = delete;
+  AppState& operator=(const AppState&) = delete;
+
+  StudioSettings& settings() { return settings_; }
+
+  // --- Opening (on a background thread; poll() completes it) ---
+  // Throws goris::Error while training runs (stop it first) or while another open is in flight.
+  void open(const std::filesystem::path& path);
+  bool opening() const { return pending_open_.valid(); }
+  std::string opening_path() const { return opening_path_.string(); }
+  const OpenedScene* scene() const { return scene_ ? &*scene_ : nullptr; }
+  // Grows with every successful open (the scene's address stays the same across opens).
+  std::uint64_t scene_version() const { return scene_version_; }
+  // The error of the last open that failed (cleared by the next open).
+  const std::string& open_error() const { return open_error_; }
+
+  // Once per frame: completes a finished open, picks up the trainer's newest snapshot, reports how training,
+  // selection edits and removals went.
+  void poll();
+
+  // --- The model the viewports show: the opened run's, or the training session's newest snapshot ---
+  std::shared_ptr<const ModelSnapshot> model() const { return model_; }
+  std::uint64_t model_version() const { return model_version_; }
+
+  // --- Training ---
+  TrainerSession& session() { return session_; }
+  const TrainerSession& session() const { return session_; }
+  // The run folder of the next training; empty = a new folder under runs_root() for a data set.
+  std::filesystem::path run_folder;
+  // `set KEY VALUE` overrides for a new run (validated when added).
+  void add_override(const std::string& key, const std::string& value);
+  const std::vector<std::pair<std::string, std::string>>& overrides() const { return overrides_; }
+  // Trains until `iterations` in total, or `more` iterations beyond the run's current one.
+  void start_training(int iterations, bool more);
+  bool training_active() const;  // running, paused or stopping
+
+  // The run folder the shown model belongs to (an opened run, or the one trained into); empty when none.
+  std::filesystem::path current_run() const;
+
+  // --- Selection (ui/selection_session.h) of the shown model ---
+  SelectionSession& selection() { return selection_; }
+  const SelectionSession& selection() const { return selection_; }
+  // Why selection edits are refused now (training runs, nothing shown, ...); null when they are not.
+  const char* selection_blocked() const;
+  // A click at (x, y) pixels of the main viewport's image shown at display_w x display_h: reports what lies
+  // there (as click()) and picks the Gaussian under it for the selection in `mode`; returns the selection
+  // job. Throws goris::Error without a frame, outside the image, or when selecting is blocked.
+  std::uint64_t select_click(float x, float y, float display_w, float display_h, SelectMode mode);
+  // The mouse's click: as select_click, but when selecting is blocked the reason is only reported (returns 0).
+  std::uint64_t mouse_click(float x, float y, float display_w, float display_h, SelectMode mode);
+  std::uint64_t select_grow(float grow, bool merge = false);
+  std::uint64_t select_labels();
+  std::uint64_t select_masks();  // the data set's training object masks (mask_XXX.png)
+  std::uint64_t select_clear();
+  std::uint64_t undo_selection();
+  std::uint64_t redo_selection();
+  std::filesystem::path save_selection();  // RUN/selection.json
+
+  // --- Removal (stage 2, ui/removal_session.h) of the current run ---
+  RemovalSession& removal() { return removal_; }
+  const RemovalSession& removal() const { return removal_; }
+  // Starts the removal of current_run() with the settings' options (fine-tune iterations: `iterations`
+  // when positive). An unsaved selection is saved first, so the removal uses what is shown.
+  void start_removal(int iterations = 0);
+  // Whether poll() has taken in the end of the last removal (masks folder, messages).
+  bool removal_reported() const { return removal_.runs_ended() == removal_runs_seen_; }
+  // RUN/removal (or the opened cleaned scene itself) when it holds stage 2's masks; empty otherwise.
+  const std::filesystem::path& removal_masks_dir() const { return removal_masks_dir_; }
+
+  // --- View ---
+  OrbitCamera orbit;
+  std::optional<Camera> snapped;  // the exact data set camera, until the view moves
+  std::string snapped_name;       // e.g. "train 3 (r_003)"
+  size_t snapped_index = 0;       // which camera (valid while snapped)
+  bool snapped_test = false;
+  std::string snapped_view;  // its view name, e.g. "r_003"
+  void snap(size_t index, bool test);
+  void camera_moved() { snapped.reset(); }
+  // The camera of a render that fills a w x h box (letterboxed for a snapped camera's aspect), at most
+  // settings().display_max_side pixels on its longest side.
+  Camera render_camera(float box_w, float box_h) const;
+
+  Channel main_channel = Channel::Final;
+  std::vector<Channel> grid_channels;
+  // viewport -1 = main, 0.. = grid tile. Throws goris::Error for a tile that does not exist or a channel
+  // that cannot be shown now (naming why).
+  void set_channel(int viewport, Channel c);
+  ChannelContext channel_context() const;
+  const char* channel_unavailable(Channel c) const { return ui::channel_unavailable(c, channel_context()); }
+  void set_grid_count(int n);
+  bool label_overlay = false;
+  CompareMode compare = CompareMode::Off;
+  float compare_split = 0.5f;
+  void set_compare(CompareMode m, float split);
+
+  // --- The frame on screen and clicks on it ---
+  std::shared_ptr<const DisplayFrame> frame;  // set by the app when a render arrives
+  std::optional<PickResult> last_pick;
+  // A click at (x, y) pixels of the main viewport's image shown at display_w x display_h: what lies
+  // there (selection builds on this). Throws goris::Error without a frame or outside the image.
+  PickResult click(float x, float y, float display_w, float display_h);
+
+  // --- Messages for the status bar (and stdout in scripted mode) ---
+  void message(const std::string& text, bool error = false);
+  const std::string& last_message() const { return last_message_; }
+  bool last_message_is_error() const { return last_message_error_; }
+  std::function<void(const std::string&, bool)> on_message;
+
+ private:
+  void finish_open();
+  void show_model(std::shared_ptr<const ModelSnapshot> m);
+  void require_selectable(const char* what) const;
+  void find_removal_masks();
+
+  StudioSettings& settings_;
+  std::optional<OpenedScene> scene_;
+  std::uint64_t scene_version_ = 0;
+  std::future<OpenedScene> pending_open_;
+  std::filesystem::path opening_path_;
+  std::string open_error_;
+  TrainerSession session_;
+  SessionState last_session_state_ = SessionState::Idle;  // to report how a run ended, once
+  std::uint64_t session_version_seen_ = 0;                // snapshots up to this one belong to an earlier document
+  std::shared_ptr<const ModelSnapshot> model_;
+  std::uint64_t model_version_ = 0;
+  bool model_from_session_ = false;              // the shown model is the training session's
+  RemovalState last_removal_state_ = RemovalState::Idle;
+  std::vector<std::pair<std::string, std::string>> overrides_;
+  // Declared after the trainer: destroyed first (their workers may still read the shown model).
+  SelectionSession selection_;
+  RemovalSession removal_;
+  std::uint64_t removal_runs_seen_ = 0;
+  std::filesystem::path removal_masks_dir_;
+  std::string last_message_;
+  bool last_message_error_ = false;
+};
+
+}  // namespace goris::ui

@@ -1,0 +1,99 @@
+#include "ui/panels/training_panel.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <cstdio>
+
+#include "core/util/duration_text.h"
+#include "core/util/error.h"
+
+namespace goris::ui {
+
+void TrainingPanel::draw(AppState& st) {
+  TrainerSession& session = st.session();
+  const SessionState s = session.state();
+  const bool active = s == SessionState::Running || s == SessionState::Paused || s == SessionState::Stopping;
+  const OpenedScene* scene = st.scene();
+  StudioSettings& set = st.settings();
+  if (!scene) {
+    ImGui::TextDisabled("Open a data set or a run first.");
+    return;
+  }
+  const bool is_run = scene->kind == OpenedScene::Kind::Run;
+
+  // The run folder: editable for a data set (empty = a new folder under the runs root).
+  if (st.run_folder.string() != seen_run_folder_) run_folder_ = seen_run_folder_ = st.run_folder.string();
+  ImGui::BeginDisabled(active || is_run);
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::InputTextWithHint("##run", "run folder (empty: a new one)", &run_folder_)) {
+    st.run_folder = run_folder_;
+    seen_run_folder_ = run_folder_;
+  }
+  ImGui::EndDisabled();
+  if (is_run) ImGui::TextDisabled("continues this run from its latest checkpoint");
+
+  ImGui::BeginDisabled(active || is_run);
+  static const char* kModes[] = {"radiance", "intrinsic", "auto"};
+  int mode = set.train_mode == "intrinsic" ? 1 : set.train_mode == "auto" ? 2 : 0;
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::Combo("mode", &mode, kModes, 3)) set.train_mode = kModes[mode];
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(
+        "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
+        "auto: intrinsic when the data set has glossy masks");
+  ImGui::SetNextItemWidth(120);
+  ImGui::InputInt("resolution (0 = full)", &set.train_resolution, 0);
+  ImGui::SetNextItemWidth(120);
+  ImGui::InputInt("initial points", &set.train_init_points, 0);
+  set.train_resolution = std::max(set.train_resolution, 0);
+  set.train_init_points = std::max(set.train_init_points, 1);
+  static const char* kDevices[] = {"auto", "cpu", "cuda"};
+  int dev = set.train_device == "cpu" ? 1 : set.train_device == "cuda" ? 2 : 0;
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::Combo("device", &dev, kDevices, 3)) set.train_device = kDevices[dev];
+  ImGui::Checkbox("white background", &set.train_white_background);
+  ImGui::EndDisabled();
+  ImGui::BeginDisabled(active);
+  ImGui::SetNextItemWidth(120);
+  ImGui::InputInt("iterations", &set.train_iterations, 1000);
+  set.train_iterations = std::max(set.train_iterations, 1);
+  ImGui::EndDisabled();
+  for (const auto& [k, v] : st.overrides()) ImGui::TextDisabled("set %s = %s", k.c_str(), v.c_str());
+
+  if (!active) {
+    if (ImGui::Button("Train")) report_errors(st, [&] { st.start_training(set.train_iterations, false); });
+    ImGui::SameLine();
+    if (ImGui::Button("+1000")) report_errors(st, [&] { st.start_training(1000, true); });
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("train 1000 more iterations");
+  } else {
+    if (s == SessionState::Paused) {
+      if (ImGui::Button("Resume")) session.resume();
+    } else {
+      ImGui::BeginDisabled(s == SessionState::Stopping);
+      if (ImGui::Button("Pause")) session.pause();
+      ImGui::EndDisabled();
+    }
+    ImGui::SameLine();
+    ImGui::BeginDisabled(s == SessionState::Stopping);
+    if (ImGui::Button("Stop")) session.stop();
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("finish the iteration, write a checkpoint and stop");
+  }
+
+  const TrainProgress p = session.progress();
+  const float fraction = p.total > 0 ? float(p.iteration) / float(p.total) : 0.0f;
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "%d / %d", p.iteration, p.total);
+  ImGui::ProgressBar(fraction, ImVec2(-1, 0), overlay);
+  ImGui::Text("state: %s", state_name(s));
+  ImGui::TextWrapped("%s", session.status().c_str());
+  if (p.total > 0) {
+    ImGui::Text("loss %.4f   PSNR %.2f dB", p.loss, p.psnr);
+    ImGui::Text("%zu Gaussians   %.1f it/s", p.gaussians, p.it_per_s);
+    ImGui::Text("elapsed %s   ETA %s", duration_text(p.elapsed_s).c_str(),
+                active ? duration_text(p.eta_s).c_str() : "--");
+  }
+}
+
+}  // namespace goris::ui

@@ -1,0 +1,107 @@
+#include "ui/scene_loader.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/train/run_folder.h"
+#include "core/train/train_setup.h"
+#include "core/util/error.h"
+#include "render/train/raster_renderer.h"
+#include "render/train/run_renderer.h"
+#include "ui/dataset_cameras.h"
+
+namespace goris::ui {
+
+namespace fs = std::filesystem;
+
+bool is_run_folder(const fs::path& path) { return fs::is_directory(path) && fs::exists(run_config_path(path)); }
+
+namespace {
+
+// The orbit frame from the training cameras: up from their orientation, centre and size from where they are.
+void frame_from_cameras(const Dataset& ds, OpenedScene& s) {
+  const std::vector<View>& views = ds.train.empty() ? ds.test : ds.train;
+  const SceneBounds b = camera_bounds(views);
+  s.up = world_up(views);
+  s.center = b.center;
+  s.radius = b.radius > 0 ? b.radius : 1.0f;
+  // Cameras on a ring look inwards: the scene is around their centre, about half their radius across.
+  if (views.size() >= 2) s.radius *= 0.5f;
+}
+
+// Without cameras: the model's median position and the 90th percentile of distances from it.
+void frame_from_model(const ModelSnapshot& m, OpenedScene& s) {
+  if (m.count() == 0) return;
+  Buffer<float> pos(m.count() * 3, m.device());
+  device_copy(pos.data(), pos.device(), m.view().positions, m.device(), pos.bytes());
+  const std::vector<float> p = pos.to_host();
+  glm::vec3 c(0.0f);
+  for (int k = 0; k < 3; ++k) {
+    std::vector<float> axis(m.count());
+    for (size_t i = 0; i < m.count(); ++i) axis[i] = p[i * 3 + k];
+    std::nth_element(axis.begin(), axis.begin() + std::ptrdiff_t(axis.size() / 2), axis.end());
+    c[k] = axis[axis.size() / 2];
+  }
+  std::vector<float> d(m.count());
+  for (size_t i = 0; i < m.count(); ++i) d[i] = glm::length(glm::vec3(p[i * 3], p[i * 3 + 1], p[i * 3 + 2]) - c);
+  const size_t k = std::min(d.size() - 1, d.size() * 9 / 10);
+  std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(k), d.end());
+  s.center = c;
+  s.radius = d[k] > 0 ? d[k] : 1.0f;
+}
+
+}  // namespace
+
+OpenedScene open_scene(const fs::path& input, Device device) {
+  if (input.empty()) throw Error("open: no path given");
+  const fs::path path = fs::absolute(input).lexically_normal();
+  if (!fs::exists(path)) throw Error(path.string(), "no such file or folder");
+  OpenedScene s;
+  s.path = path;
+  if (is_run_folder(path)) {
+    s.kind = OpenedScene::Kind::Run;
+    s.run_config = read_run_config(path);
+    s.dataset_options = dataset_options(*s.run_config);
+    GaussianModel model = load_run_model(path, device, &s.model_source);
+    try {
+      s.dataset = load_dataset(s.run_config->data, s.dataset_options);
+    } catch (const Error& e) {
+      s.warnings.push_back(std::string("the run's data set cannot be opened (") + e.what() +
+                           "): no cameras or photos to compare with");
+    }
+    std::shared_ptr<const ShadingSource> shading;
+    std::shared_ptr<const std::string> renderer_state;
+    if (s.run_config->mode == "intrinsic") {
+      // Shaded with the run's environment map and net (kept beside its latest checkpoint).
+      float extent = 0;
+      if (s.dataset && !s.dataset->train.empty()) {
+        extent = scene_extent(*s.dataset);
+      } else {
+        frame_from_model(ModelSnapshot(model, 0, {}), s);
+        extent = 2.0f * s.radius;
+        s.warnings.push_back("without the data set the scene extent (reflection ray offsets) is estimated");
+      }
+      try {
+        const auto renderer = load_run_renderer(path, *s.run_config, extent, device);
+        renderer_state = std::make_shared<const std::string>(renderer->save_own_state());
+        shading = std::make_shared<const ShadingSource>(ShadingSource{*s.run_config, extent});
+      } catch (const Error& e) {
+        s.warnings.push_back(std::string("shown unshaded (radiance only): ") + e.what());
+      }
+    }
+    s.model = std::make_shared<const ModelSnapshot>(model, 0, RasterRenderer::settings_for(*s.run_config),
+                                                    std::move(shading), std::move(renderer_state));
+  } else {
+    s.kind = OpenedScene::Kind::Dataset;
+    s.dataset = load_dataset(path, s.dataset_options);
+  }
+  if (s.dataset) {
+    for (const std::string& w : s.dataset->warnings) s.warnings.push_back(w);
+    if (!s.dataset->train.empty() || !s.dataset->test.empty()) frame_from_cameras(*s.dataset, s);
+  } else if (s.model) {
+    frame_from_model(*s.model, s);
+  }
+  return s;
+}
+
+}  // namespace goris::ui

@@ -1,0 +1,237 @@
+#include "ui/script.h"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "core/util/error.h"
+
+namespace goris::ui {
+
+namespace {
+
+using Kind = ScriptAction::Kind;
+
+struct KindName {
+  Kind kind;
+  const char* name;
+};
+constexpr KindName kNames[] = {{Kind::Open, "open"},
+                               {Kind::Out, "out"},
+                               {Kind::Set, "set"},
+                               {Kind::Train, "train"},
+                               {Kind::Grid, "grid"},
+                               {Kind::Channel, "channel"},
+                               {Kind::Snap, "snap"},
+                               {Kind::Click, "click"},
+                               {Kind::SelectClick, "select_click"},
+                               {Kind::SelectGrow, "select_grow"},
+                               {Kind::SelectLabels, "select_labels"},
+                               {Kind::SelectMasks, "select_masks"},
+                               {Kind::Undo, "undo"},
+                               {Kind::Redo, "redo"},
+                               {Kind::SaveSelection, "save_selection"},
+                               {Kind::Remove, "remove"},
+                               {Kind::ExpectStepComplete, "expect_step_complete"},
+                               {Kind::Compare, "compare"},
+                               {Kind::Screenshot, "screenshot"},
+                               {Kind::WaitFrames, "wait_frames"},
+                               {Kind::Quit, "quit"}};
+
+std::string trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\r");
+  return s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> split_words(const std::string& s) {
+  std::vector<std::string> words;
+  std::istringstream in(s);
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+class LineParser {
+ public:
+  LineParser(std::string where, std::string name) : where_(std::move(where)), name_(std::move(name)) {}
+
+  [[noreturn]] void fail(const std::string& problem) const { throw Error(where_, name_ + ": " + problem); }
+
+  void expect_args(const std::vector<std::string>& args, size_t lo, size_t hi, const char* usage) const {
+    if (args.size() < lo || args.size() > hi) fail("expected '" + std::string(usage) + "'");
+  }
+  int integer(const std::string& s, int lo, int hi, const char* what) const {
+    int v = 0;
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size()) fail(std::string(what) + " '" + s + "' is not a whole number");
+    if (v < lo || v > hi)
+      fail(std::string(what) + " " + s + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+    return v;
+  }
+  float number(const std::string& s, const char* what) const {
+    float v = 0;
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size() || !(v == v))
+      fail(std::string(what) + " '" + s + "' is not a number");
+    return v;
+  }
+  // A coordinate in pixels, or in percent of the image ("45%", 0..100).
+  float coordinate(const std::string& s, const char* what, bool& fraction) const {
+    fraction = !s.empty() && s.back() == '%';
+    if (!fraction) return number(s, what);
+    const float v = number(s.substr(0, s.size() - 1), what);
+    if (v < 0 || v > 100) fail(std::string(what) + " " + s + " is outside 0%..100%");
+    return v / 100.0f;
+  }
+  std::string path(const std::string& rest) const {
+    std::string p = trim(rest);
+    if (p.size() >= 2 && p.front() == '"' && p.back() == '"') p = p.substr(1, p.size() - 2);
+    if (p.empty()) fail("expected a path");
+    return p;
+  }
+
+ private:
+  std::string where_, name_;
+};
+
+ScriptAction parse_line(const std::string& line, const std::string& where) {
+  const std::string text = trim(line);
+  const size_t sp = text.find_first_of(" \t");
+  const std::string name = text.substr(0, sp);
+  const std::string rest = sp == std::string::npos ? "" : text.substr(sp + 1);
+  const std::vector<std::string> args = split_words(rest);
+  LineParser p(where, name);
+
+  ScriptAction a;
+  bool known = false;
+  for (const KindName& k : kNames)
+    if (name == k.name) {
+      a.kind = k.kind;
+      known = true;
+    }
+  if (!known) {
+    std::string list;
+    for (const KindName& k : kNames) list += (list.empty() ? "" : ", ") + std::string(k.name);
+    throw Error(where, "unknown action '" + name + "' (known: " + list + ")");
+  }
+  switch (a.kind) {
+    case Kind::Open:
+    case Kind::Out:
+    case Kind::Screenshot:
+      a.path = p.path(rest);
+      break;
+    case Kind::Set: {
+      p.expect_args(args, 2, size_t(-1), "set KEY VALUE");
+      a.key = args[0];
+      a.value = trim(trim(rest).substr(args[0].size()));
+      break;
+    }
+    case Kind::Train:
+      p.expect_args(args, 1, 1, "train N");
+      a.count = p.integer(args[0], 1, 100000000, "iteration count");
+      break;
+    case Kind::Grid:
+      p.expect_args(args, 1, 1, "grid N");
+      a.count = p.integer(args[0], 0, 8, "tile count");
+      break;
+    case Kind::WaitFrames:
+      p.expect_args(args, 1, 1, "wait_frames N");
+      a.count = p.integer(args[0], 0, 1000000, "frame count");
+      break;
+    case Kind::Channel: {
+      p.expect_args(args, 2, 2, "channel VIEWPORT NAME");
+      a.viewport = args[0] == "main" ? -1 : p.integer(args[0], 0, 7, "viewport");
+      const auto c = channel_from_id(args[1]);
+      if (!c) p.fail("unknown channel '" + args[1] + "' (" + channel_id_list() + ")");
+      a.channel = *c;
+      break;
+    }
+    case Kind::Snap:
+      p.expect_args(args, 1, 2, "snap INDEX [train|test]");
+      a.camera = p.integer(args[0], 0, 1000000, "camera index");
+      if (args.size() == 2) {
+        if (args[1] != "train" && args[1] != "test") p.fail("expected train or test, not '" + args[1] + "'");
+        a.test_split = args[1] == "test";
+      }
+      break;
+    case Kind::Click:
+      p.expect_args(args, 2, 2, "click X Y");
+      a.x = p.coordinate(args[0], "X", a.x_fraction);
+      a.y = p.coordinate(args[1], "Y", a.y_fraction);
+      break;
+    case Kind::SelectClick:
+      p.expect_args(args, 2, 3, "select_click X Y [add|remove]");
+      a.x = p.coordinate(args[0], "X", a.x_fraction);
+      a.y = p.coordinate(args[1], "Y", a.y_fraction);
+      if (args.size() == 3) {
+        if (args[2] != "add" && args[2] != "remove") p.fail("expected add or remove, not '" + args[2] + "'");
+        a.select_mode = args[2];
+      }
+      break;
+    case Kind::SelectGrow:
+      p.expect_args(args, 1, 1, "select_grow G");
+      a.grow = p.number(args[0], "G");
+      if (a.grow < -1 || a.grow > 1) p.fail("G " + args[0] + " is outside -1..1");
+      break;
+    case Kind::Remove:
+      p.expect_args(args, 0, 1, "remove [ITERS]");
+      a.count = args.empty() ? 0 : p.integer(args[0], 1, 100000000, "iteration count");
+      break;
+    case Kind::SelectLabels:
+    case Kind::SelectMasks:
+    case Kind::Undo:
+    case Kind::Redo:
+    case Kind::SaveSelection:
+    case Kind::ExpectStepComplete:
+      p.expect_args(args, 0, 0, action_name(a.kind));
+      break;
+    case Kind::Compare:
+      p.expect_args(args, 1, 2, "compare off|side_by_side|slider [SPLIT]");
+      a.mode = args[0];
+      if (a.mode != "off" && a.mode != "side_by_side" && a.mode != "slider")
+        p.fail("unknown mode '" + a.mode + "' (off, side_by_side, slider)");
+      if (args.size() == 2) {
+        a.split = p.number(args[1], "split");
+        if (a.split < 0 || a.split > 1) p.fail("split " + args[1] + " is outside 0..1");
+      }
+      break;
+    case Kind::Quit:
+      p.expect_args(args, 0, 0, "quit");
+      break;
+  }
+  return a;
+}
+
+}  // namespace
+
+const char* action_name(ScriptAction::Kind kind) {
+  for (const KindName& k : kNames)
+    if (k.kind == kind) return k.name;
+  return "?";
+}
+
+std::vector<ScriptAction> parse_script(const std::string& text, const std::string& source) {
+  std::vector<ScriptAction> actions;
+  std::istringstream in(text);
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    ScriptAction a = parse_line(t, source + ":" + std::to_string(number));
+    a.line = number;
+    actions.push_back(std::move(a));
+  }
+  return actions;
+}
+
+std::vector<ScriptAction> load_script(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path.string(), std::filesystem::exists(path) ? "cannot be read" : "no such script file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_script(text.str(), path.string());
+}
+
+}  // namespace goris::ui

@@ -1,0 +1,70 @@
+#pragma once
+// Scripted mode (`goris-studio --script FILE`): one UI action per line, run through the same code paths
+// as the mouse and the panels. Blank lines and lines starting with # are ignored.
+//
+//   open PATH                  open a data set or a run folder (waits until loaded)
+//   out PATH                   run folder for the next `train` (default: a new folder, see the README)
+//   set KEY VALUE              a training setting for a new run (a config.json key, VALUE as JSON or text)
+//   train N                    train N more iterations with the session of the Training panel; waits
+//   grid N                     N small viewports under the main one (0..8)
+//   channel VIEWPORT NAME      VIEWPORT = main or a grid tile index 0..7; NAME as in the channel chooser
+//   snap INDEX [train|test]    put the view camera on a data set camera (default: train)
+//   click X Y                  a plain left click at pixel (X, Y) of the main viewport's image: reports what
+//                              lies there and selects what it hits (a miss is reported, not a failure)
+//   select_click X Y [add|remove]  the same with shift (add) or ctrl (remove); fails when nothing is hit
+//   select_grow G              the grow / shrink slider, G in -1..1 (> 0 grows clicked regions, < 0 erodes)
+//   select_labels              select by the learned object label (> 0.3, closed)
+//   select_masks               select by the data set's training object masks (mask_XXX.png votes, closed)
+//   undo | redo                undo / redo the last selection edit
+//   save_selection             write RUN/selection.json (+ .npy) for `goris remove`
+//   remove [ITERS]             run stage 2 on the run (ITERS fine-tune iterations; default: the panel's);
+//                              waits until it has finished, fails when it fails or is cancelled
+//   expect_step_complete       fails unless every stage-2 step of the last removal reached 100 %
+//   compare MODE [SPLIT]       off | side_by_side | slider (SPLIT in 0..1 for the slider)
+//   screenshot PATH            the whole window as PNG, plus PATH's stem + .layout.json (viewport rectangles)
+//   wait_frames N              let N frames pass
+//   quit                       close the editor (exit status 0)
+//
+// PATH is the rest of the line (it may contain spaces; surrounding double quotes are removed); relative
+// paths are taken from the current directory. X and Y may be given in percent of the image ("45%").
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ui/channels.h"
+#include "ui/selection_edit.h"
+
+namespace goris::ui {
+
+struct ScriptAction {
+  enum class Kind {
+    Open, Out, Set, Train, Grid, Channel, Snap, Click, SelectClick, SelectGrow, SelectLabels, SelectMasks, Undo, Redo,
+    SaveSelection, Remove, ExpectStepComplete, Compare, Screenshot, WaitFrames, Quit
+  };
+  Kind kind = Kind::Quit;
+  int line = 0;            // 1-based line in the script
+  std::string path;        // open, out, screenshot
+  std::string key, value;  // set
+  int count = 0;           // train, grid, wait_frames, remove (0 = default)
+  int viewport = -1;       // channel: -1 = main, else grid tile index
+  Channel channel = Channel::Final;
+  int camera = 0;           // snap
+  bool test_split = false;  // snap ... test
+  float x = 0, y = 0;       // click, select_click (pixels, or fractions of the image when *_fraction)
+  bool x_fraction = false, y_fraction = false;
+  std::string select_mode = "replace";  // select_click: replace | add | remove
+  float grow = 0;                       // select_grow
+  std::string mode;         // compare
+  float split = 0.5f;       // compare slider position
+};
+
+// The name of an action kind as written in scripts ("open", "train", ...).
+const char* action_name(ScriptAction::Kind kind);
+
+// Parses a whole script; `source` names it in errors ("FILE:LINE: problem"). Throws goris::Error for an
+// unknown action, missing or extra arguments, or a bad number.
+std::vector<ScriptAction> parse_script(const std::string& text, const std::string& source);
+// Reads and parses a script file; throws goris::Error naming the file when it cannot be read.
+std::vector<ScriptAction> load_script(const std::filesystem::path& path);
+
+}  // namespace goris::ui

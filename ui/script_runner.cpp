@@ -1,0 +1,232 @@
+#include "ui/script_runner.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/util/error.h"
+
+namespace goris::ui {
+
+namespace fs = std::filesystem;
+using Kind = ScriptAction::Kind;
+
+ScriptRunner::ScriptRunner(std::vector<ScriptAction> actions, std::string source)
+    : actions_(std::move(actions)), source_(std::move(source)) {
+  if (actions_.empty()) status_ = Status::Finished;
+}
+
+int ScriptRunner::current_line() const { return next_ < actions_.size() ? actions_[next_].line : 0; }
+
+void ScriptRunner::fail(const ScriptAction& a, const std::string& problem) {
+  status_ = Status::Failed;
+  error_ = source_ + ":" + std::to_string(a.line) + ": " + action_name(a.kind) + ": " + problem;
+}
+
+ScriptRunner::Status ScriptRunner::step(ScriptHost& host) {
+  if (status_ != Status::Running) return status_;
+  const ScriptAction& a = actions_[next_];
+  bool done = false;
+  try {
+    done = run_action(host, a);
+  } catch (const std::exception& e) {
+    fail(a, e.what());
+    return status_;
+  }
+  if (status_ != Status::Running) return status_;
+  if (done) {
+    phase_ = 0;
+    if (a.kind == Kind::Quit || ++next_ == actions_.size()) status_ = Status::Finished;
+  }
+  return status_;
+}
+
+bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
+  AppState& st = host.state();
+  switch (a.kind) {
+    case Kind::Open:
+      if (phase_ == 0) {
+        st.open(a.path);
+        phase_ = 1;
+        return false;
+      }
+      if (st.opening()) return false;
+      if (!st.open_error().empty()) {
+        fail(a, st.open_error());
+        return false;
+      }
+      return host.settled();
+    case Kind::Out:
+      st.run_folder = fs::absolute(a.path);
+      return true;
+    case Kind::Set:
+      st.add_override(a.key, a.value);
+      return true;
+    case Kind::Train: {
+      if (phase_ == 0) {
+        st.start_training(a.count, /*more=*/true);
+        phase_ = 1;
+        return false;
+      }
+      const SessionState s = st.session().state();
+      if (s == SessionState::Error) {
+        fail(a, st.session().status());
+        return false;
+      }
+      if (s != SessionState::Done) return false;
+      if (phase_ == 1) {
+        const TrainProgress p = st.session().progress();
+        std::printf("trained to iteration %d: loss %.4f, PSNR %.2f dB, %zu Gaussians (%s)\n", p.iteration, p.loss,
+                    p.psnr, p.gaussians, st.session().status().c_str());
+        const FrameStats f = host.training_frame_stats();
+        if (f.frames > 0)
+          std::printf("GUI while training: %ld frames, %.1f ms mean, %.1f ms max\n", f.frames, f.mean_ms, f.max_ms);
+        std::fflush(stdout);
+        phase_ = 2;
+      }
+      return host.settled();
+    }
+    case Kind::Grid:
+      if (phase_ == 0) {
+        st.set_grid_count(a.count);
+        st.settings().show_grid = a.count > 0;
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::Channel:
+      if (phase_ == 0) {
+        st.set_channel(a.viewport, a.channel);
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::Snap:
+      if (phase_ == 0) {
+        st.snap(size_t(a.camera), a.test_split);
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::Compare:
+      if (phase_ == 0) {
+        st.set_compare(*compare_mode_from_id(a.mode), a.split);
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::Click:
+    case Kind::SelectClick: {
+      const bool strict = a.kind == Kind::SelectClick;
+      return run_selection_edit(host, a, strict, [&]() -> std::uint64_t {
+        const glm::vec2 size = host.main_image_size();
+        const float x = a.x_fraction ? std::min(a.x * size.x, size.x - 0.5f) : a.x;
+        const float y = a.y_fraction ? std::min(a.y * size.y, size.y - 0.5f) : a.y;
+        const SelectMode mode = *select_mode_from_id(a.select_mode);
+        return strict ? st.select_click(x, y, size.x, size.y, mode) : st.mouse_click(x, y, size.x, size.y, mode);
+      });
+    }
+    case Kind::SelectGrow:
+      return run_selection_edit(host, a, true, [&] { return st.select_grow(a.grow); });
+    case Kind::SelectLabels:
+      return run_selection_edit(host, a, true, [&] { return st.select_labels(); });
+    case Kind::SelectMasks:
+      return run_selection_edit(host, a, true, [&] { return st.select_masks(); });
+    case Kind::Undo:
+      return run_selection_edit(host, a, true, [&] { return st.undo_selection(); });
+    case Kind::Redo:
+      return run_selection_edit(host, a, true, [&] { return st.redo_selection(); });
+    case Kind::SaveSelection: {
+      if (!host.settled()) return false;
+      const fs::path json = st.save_selection();
+      std::printf("saved the selection to %s\n", json.string().c_str());
+      std::fflush(stdout);
+      return true;
+    }
+    case Kind::Remove:
+      return run_remove(host, a);
+    case Kind::ExpectStepComplete: {
+      const RemovalProgressTracker p = st.removal().progress();
+      std::string missing;
+      for (int k = 0; k < kRemovalStepCount; ++k) {
+        const RemovalStepStatus& s = p.steps()[size_t(k)];
+        if (s.complete) continue;
+        char b[96];
+        std::snprintf(b, sizeof b, "%s%s at %.0f %%", missing.empty() ? "" : ", ", removal_step_name(RemovalStep(k)),
+                      100.0 * double(s.fraction()));
+        missing += b;
+      }
+      if (!missing.empty()) {
+        fail(a, "not every stage-2 step reached 100 %: " + missing);
+        return false;
+      }
+      std::printf("every stage-2 step reached 100 %%\n");
+      std::fflush(stdout);
+      return true;
+    }
+    case Kind::Screenshot:
+      if (phase_ == 0) {
+        if (!host.settled()) return false;
+        host.request_screenshot(fs::absolute(a.path));
+        phase_ = 1;
+        return false;
+      }
+      if (host.screenshot_pending()) return false;
+      if (const auto err = host.screenshot_error()) {
+        fail(a, *err);
+        return false;
+      }
+      std::printf("screenshot %s\n", fs::absolute(a.path).string().c_str());
+      std::fflush(stdout);
+      return true;
+    case Kind::WaitFrames:
+      if (phase_ == 0) {
+        frames_left_ = a.count;
+        phase_ = 1;
+      }
+      return frames_left_-- <= 0;
+    case Kind::Quit:
+      host.quit();
+      return true;
+  }
+  return true;
+}
+
+bool ScriptRunner::run_selection_edit(ScriptHost& host, const ScriptAction& a, bool strict,
+                                      const std::function<std::uint64_t()>& start) {
+  AppState& st = host.state();
+  if (phase_ == 0) {
+    if (!host.settled()) return false;
+    job_ = start();
+    phase_ = 1;
+    return false;
+  }
+  if (phase_ == 1) {
+    if (job_ != 0 && !st.selection().finished(job_)) return false;
+    if (const auto err = job_ != 0 ? st.selection().job_error(job_) : std::nullopt; err && strict) {
+      fail(a, *err);
+      return false;
+    }
+    phase_ = 2;
+  }
+  return host.settled();
+}
+
+bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a) {
+  AppState& st = host.state();
+  if (phase_ == 0) {
+    if (!host.settled()) return false;
+    st.start_removal(a.count);
+    phase_ = 1;
+    return false;
+  }
+  if (phase_ == 1) {
+    const RemovalState s = st.removal().state();
+    if (s == RemovalState::Running || s == RemovalState::Cancelling) return false;
+    if (s != RemovalState::Done) {
+      fail(a, std::string(removal_state_name(s)) + ": " + st.removal().status());
+      return false;
+    }
+    std::printf("removal %s (%.1f s)\n", st.removal().status().c_str(), st.removal().elapsed_s());
+    std::fflush(stdout);
+    phase_ = 2;
+  }
+  return host.settled();
+}
+
+}  // namespace goris::ui

@@ -1,0 +1,76 @@
+#pragma once
+// Runs a parsed script one step per GUI frame, through the same AppState actions as the mouse and the
+// panels. Actions that change what is shown wait until the display has settled (the open finished,
+// training done, the new frame rendered and drawn) before the next line runs, so screenshots are
+// deterministic.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ui/app_state.h"
+#include "ui/script.h"
+
+namespace goris::ui {
+
+// GUI frame times while the trainer ran (the editor must stay responsive meanwhile).
+struct FrameStats {
+  long frames = 0;
+  double mean_ms = 0, max_ms = 0;
+};
+
+// What the runner needs from the editor besides the AppState.
+class ScriptHost {
+ public:
+  virtual ~ScriptHost() = default;
+  virtual AppState& state() = 0;
+  // Nothing in flight: no open, no training, no render queued, the last frame drawn for a while.
+  virtual bool settled() const = 0;
+  // Size in window pixels of the main viewport's image (0 x 0 without one).
+  virtual glm::vec2 main_image_size() const = 0;
+  // Asks for a screenshot at the end of this frame; screenshot_pending() turns false when it is written,
+  // screenshot_error() then says whether it failed.
+  virtual void request_screenshot(const std::filesystem::path& png) = 0;
+  virtual bool screenshot_pending() const = 0;
+  virtual std::optional<std::string> screenshot_error() const = 0;
+  virtual void quit() = 0;
+  // Frame times since the last training started (zero frames when unknown).
+  virtual FrameStats training_frame_stats() const { return {}; }
+};
+
+class ScriptRunner {
+ public:
+  enum class Status { Running, Finished, Failed };
+  ScriptRunner(std::vector<ScriptAction> actions, std::string source);
+
+  // One frame's worth: starts the current action or checks whether it has completed.
+  Status step(ScriptHost& host);
+  Status status() const { return status_; }
+  // "FILE:LINE: action: problem" once Failed.
+  const std::string& error() const { return error_; }
+  // The line being run (0 when finished), for the status bar.
+  int current_line() const;
+
+ private:
+  bool run_action(ScriptHost& host, const ScriptAction& a);  // true when the action is complete
+  // Selection edits: starts one (phase 0), waits for its job, fails on its error when `strict`, then waits
+  // until the tinted frame is shown.
+  bool run_selection_edit(ScriptHost& host, const ScriptAction& a, bool strict,
+                          const std::function<std::uint64_t()>& start);
+  bool run_remove(ScriptHost& host, const ScriptAction& a);
+  void fail(const ScriptAction& a, const std::string& problem);
+
+  std::vector<ScriptAction> actions_;
+  std::string source_;
+  size_t next_ = 0;
+  int phase_ = 0;        // progress within the current action
+  int frames_left_ = 0;  // wait_frames
+  std::uint64_t job_ = 0;  // the selection edit being waited for
+  Status status_ = Status::Running;
+  std::string error_;
+};
+
+}  // namespace goris::ui

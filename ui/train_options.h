@@ -1,0 +1,29 @@
+#pragma once
+// The settings of a new training run as the editor builds them: the Training panel's fields, then any
+// `set KEY VALUE` overrides (config.json keys, as `goris train --set`), and where the run folder goes when
+// the user names none.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/train/train_config.h"
+#include "ui/settings_store.h"
+
+namespace goris::ui {
+
+// Applies KEY=VALUE to `config`: VALUE parsed as JSON (number, true/false, "text", [1,2,3]) or else taken
+// as plain text. Throws goris::Error for an unknown key or a value the configuration rejects.
+void apply_config_override(TrainConfig& config, const std::string& key, const std::string& value);
+
+// The panel's options (mode, iterations, resolution, initial points, device, background), then `overrides`
+// in order.
+TrainConfig new_run_config(const StudioSettings& settings,
+                           const std::vector<std::pair<std::string, std::string>>& overrides);
+
+// $XDG_DATA_HOME/goris-studio/runs (or ~/.local/share/goris-studio/runs).
+std::filesystem::path runs_root();
+// A fresh folder name under runs_root() for a data set: <data set folder name>-<YYYYmmdd-HHMMSS>.
+std::filesystem::path default_run_folder(const std::filesystem::path& dataset);
+
+}  // namespace goris::ui

@@ -1,0 +1,263 @@
+#include "ui/trainer_session.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/train/checkpoint.h"
+#include "core/train/run_folder.h"
+#include "core/util/error.h"
+#include "render/train/raster_renderer.h"
+#include "render/train/run_renderer.h"
+#include "render/train/training_setup.h"
+#include "ui/background_priority.h"
+
+namespace goris::ui {
+
+namespace fs = std::filesystem;
+
+const char* state_name(SessionState s) {
+  switch (s) {
+    case SessionState::Idle:
+      return "idle";
+    case SessionState::Running:
+      return "running";
+    case SessionState::Paused:
+      return "paused";
+    case SessionState::Stopping:
+      return "stopping";
+    case SessionState::Done:
+      return "done";
+    case SessionState::Error:
+      return "error";
+  }
+  return "?";
+}
+
+TrainerSession::TrainerSession(SessionOptions options) : options_(options) {}
+
+TrainerSession::~TrainerSession() {
+  stop();
+  if (worker_.joinable()) worker_.join();
+}
+
+void TrainerSession::start(const TrainRequest& request) {
+  {
+    std::lock_guard lk(mutex_);
+    if (state_ != SessionState::Idle && state_ != SessionState::Done && state_ != SessionState::Error)
+      throw Error(std::string("training is ") + state_name(state_) + ": stop it before starting again");
+    if (request.iterations <= 0) throw Error("training: the iteration target must be positive");
+    if (request.run_dir.empty()) throw Error("training: no run folder given");
+  }
+  if (worker_.joinable()) worker_.join();  // it has finished (Done/Error): joining does not wait
+  std::lock_guard lk(mutex_);
+  state_ = SessionState::Running;
+  status_ = "starting";
+  pause_requested_ = false;
+  stop_flag_ = false;
+  worker_ = std::thread([this, request] { work(request); });
+}
+
+void TrainerSession::pause() {
+  std::lock_guard lk(mutex_);
+  if (state_ != SessionState::Running) return;
+  pause_requested_ = true;
+  state_ = SessionState::Paused;
+  changed_.notify_all();
+}
+
+void TrainerSession::resume() {
+  std::lock_guard lk(mutex_);
+  if (state_ != SessionState::Paused) return;
+  pause_requested_ = false;
+  state_ = SessionState::Running;
+  changed_.notify_all();
+}
+
+void TrainerSession::stop() {
+  std::lock_guard lk(mutex_);
+  if (state_ != SessionState::Running && state_ != SessionState::Paused) return;
+  stop_flag_ = true;
+  pause_requested_ = false;
+  state_ = SessionState::Stopping;
+  changed_.notify_all();
+}
+
+SessionState TrainerSession::state() const {
+  std::lock_guard lk(mutex_);
+  return state_;
+}
+std::string TrainerSession::status() const {
+  std::lock_guard lk(mutex_);
+  return status_;
+}
+TrainProgress TrainerSession::progress() const {
+  std::lock_guard lk(mutex_);
+  return progress_;
+}
+TrainingHistory TrainerSession::history() const {
+  std::lock_guard lk(mutex_);
+  return history_;
+}
+std::shared_ptr<const ModelSnapshot> TrainerSession::snapshot() const {
+  std::lock_guard lk(mutex_);
+  return snapshot_;
+}
+std::uint64_t TrainerSession::snapshot_version() const {
+  std::lock_guard lk(mutex_);
+  return snapshot_version_;
+}
+fs::path TrainerSession::run_dir() const {
+  std::lock_guard lk(mutex_);
+  return run_dir_;
+}
+
+SessionState TrainerSession::wait(std::chrono::milliseconds timeout) const {
+  std::unique_lock lk(mutex_);
+  changed_.wait_for(lk, timeout, [&] {
+    return state_ == SessionState::Idle || state_ == SessionState::Done || state_ == SessionState::Error;
+  });
+  return state_;
+}
+
+void TrainerSession::set_status(const std::string& s) {
+  std::lock_guard lk(mutex_);
+  status_ = s;
+}
+
+void TrainerSession::finish(SessionState s, const std::string& status) {
+  std::lock_guard lk(mutex_);
+  state_ = s;
+  status_ = status;
+  pause_requested_ = false;
+  changed_.notify_all();
+}
+
+void TrainerSession::publish_snapshot(int iteration) {
+  std::shared_ptr<const std::string> renderer_state;
+  if (shading_) renderer_state = std::make_shared<const std::string>(renderer_->save_own_state());
+  auto snap = std::make_shared<const ModelSnapshot>(trainer_->model(), iteration,
+                                                    RasterRenderer::settings_for(trainer_->config()), shading_,
+                                                    std::move(renderer_state));
+  last_snapshot_iteration_ = iteration;
+  last_snapshot_time_ = std::chrono::steady_clock::now();
+  std::lock_guard lk(mutex_);
+  snapshot_ = std::move(snap);
+  ++snapshot_version_;
+}
+
+// A new run, or the latest checkpoint of the folder, set up as `goris train` does it
+// (render/train/training_setup.h); the in-memory trainer is reused when the folder is the one trained last.
+void TrainerSession::prepare_trainer(const TrainRequest& rq) {
+  const fs::path run_dir = fs::absolute(rq.run_dir);
+  if (trainer_ && run_dir == run_dir_) {
+    const int target = rq.more ? trainer_->state().iteration + rq.iterations : rq.iterations;
+    if (trainer_->state().iteration >= target)
+      throw Error(run_dir.string(),
+                  "already trained for " + std::to_string(trainer_->state().iteration) + " iterations; ask for more");
+    if (target != trainer_->config().iterations) {
+      // A different target: a new Trainer over the same state and images, as `goris train --resume --iters`.
+      TrainConfig config = trainer_->config();
+      config.iterations = target;
+      std::vector<TrainView> views = trainer_->views();
+      const float extent = trainer_->extent();
+      TrainerState state = std::move(trainer_->state());
+      trainer_.reset();
+      trainer_ = std::make_unique<Trainer>(config, std::move(views), extent, renderer_, std::move(state));
+    }
+    return;
+  }
+  trainer_.reset();
+  {
+    std::lock_guard lk(mutex_);
+    run_dir_ = run_dir;
+    history_.clear();
+  }
+  const fs::path data = rq.data.empty() ? fs::path() : fs::weakly_canonical(fs::absolute(rq.data));
+  TrainConfig config = rq.config;
+  std::optional<ResumePoint> resumed;
+  if (latest_checkpoint(run_dir)) {
+    set_status("reading the latest checkpoint");
+    resumed = read_latest_checkpoint(run_dir);
+    config = resumed->checkpoint.config;
+    config.device = rq.config.device;  // where to train is this machine's choice, as `goris train --device`
+    if (!data.empty() && fs::weakly_canonical(fs::path(config.data)) != data)
+      throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
+  } else {
+    if (fs::exists(run_config_path(run_dir)))
+      throw Error(run_dir.string(),
+                  "holds a run (config.json) but no checkpoint to resume from; choose another run folder");
+    if (data.empty()) throw Error(run_dir.string(), "no data set to train on");
+    config.data = data.string();
+  }
+  const int done = resumed ? resumed->checkpoint.state.iteration : 0;
+  config.iterations = rq.more ? done + rq.iterations : rq.iterations;
+  if (resumed && done >= config.iterations)
+    throw Error(run_dir.string(), "already trained for " + std::to_string(done) + " iterations; ask for more");
+  set_status("loading " + config.data);
+  PreparedTraining prep = prepare_training(run_dir, config, std::move(resumed), [this](size_t i, size_t n) {
+    set_status("loading images " + std::to_string(i + 1) + "/" + std::to_string(n));
+  });
+  renderer_ = std::move(prep.renderer);
+  trainer_ = std::move(prep.trainer);
+  // Snapshots of an intrinsic run carry what the display shades them with.
+  shading_.reset();
+  if (as_intrinsic(renderer_.get()))
+    shading_ = std::make_shared<const ShadingSource>(ShadingSource{trainer_->config(), prep.extent});
+}
+
+void TrainerSession::on_progress(const TrainProgress& p) {
+  const auto now = std::chrono::steady_clock::now();
+  {
+    std::lock_guard lk(mutex_);
+    progress_ = p;
+    history_.add({p.iteration, float(p.loss), float(p.psnr), float(p.gaussians), float(p.it_per_s)});
+    if (state_ == SessionState::Running) status_ = "training";
+  }
+  const bool due = p.iteration - last_snapshot_iteration_ >= options_.snapshot_every ||
+                   std::chrono::duration<double>(now - last_snapshot_time_).count() >= options_.snapshot_interval_s;
+  if (due && p.iteration != last_snapshot_iteration_) publish_snapshot(p.iteration);
+  std::unique_lock lk(mutex_);
+  if (pause_requested_ && !stop_flag_) {
+    status_ = "paused at iteration " + std::to_string(p.iteration);
+    changed_.wait(lk, [&] { return !pause_requested_ || stop_flag_.load(); });
+    if (state_ == SessionState::Running) status_ = "training";
+  }
+}
+
+void TrainerSession::work(TrainRequest rq) {
+  const BackgroundPriority background;  // the GUI thread goes first
+  try {
+    prepare_trainer(rq);
+    write_run_config(run_dir_, trainer_->config());
+    {
+      std::lock_guard lk(mutex_);
+      progress_ = trainer_->progress(0);
+      status_ = "training";
+    }
+    publish_snapshot(trainer_->state().iteration);
+
+    Trainer::RunOptions ro;
+    ro.run_dir = run_dir_;
+    ro.stop = &stop_flag_;
+    ro.progress_every = 1;
+    ro.on_progress = [this](const TrainProgress& p) { on_progress(p); };
+    const Trainer::RunResult result = trainer_->run(ro);
+    const TrainerState& st = trainer_->state();
+    if (st.iteration != last_snapshot_iteration_) publish_snapshot(st.iteration);
+    if (result == Trainer::RunResult::Stopped) {
+      finish(SessionState::Done, "stopped at iteration " + std::to_string(st.iteration) + "; checkpoint " +
+                                     checkpoint_path(run_dir_, st.iteration).filename().string());
+      return;
+    }
+    write_trained_run(run_dir_, *trainer_, *renderer_);
+    char line[160];
+    std::snprintf(line, sizeof line, "done: %d iterations, %zu Gaussians, PSNR %.2f dB", st.iteration, st.model.count(),
+                  st.ema_psnr);
+    finish(SessionState::Done, line);
+  } catch (const std::exception& e) {
+    trainer_.reset();  // a failed run is reloaded from its checkpoints by the next start
+    finish(SessionState::Error, e.what());
+  }
+}
+
+}  // namespace goris::ui
