@@ -7,6 +7,7 @@
 
 #include "core/io/file_bytes.h"
 #include "core/io/npy.h"
+#include "core/io/npy_write.h"
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
 
@@ -16,18 +17,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// NumPy format 1.0: magic, version, little-endian header length, a dict literal padded with spaces and a
-// newline so that the data starts at a multiple of 64 bytes.
 std::vector<std::uint8_t> npy_u8(const SelectionMask& mask) {
-  std::string header = "{'descr': '|u1', 'fortran_order': False, 'shape': (" + std::to_string(mask.size()) + ",), }";
-  const std::size_t unpadded = 10 + header.size() + 1;
-  header.append((64 - unpadded % 64) % 64, ' ');
-  header += '\n';
-  std::vector<std::uint8_t> bytes = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, std::uint8_t(header.size() & 0xff),
-                                     std::uint8_t(header.size() >> 8)};
-  bytes.insert(bytes.end(), header.begin(), header.end());
-  bytes.insert(bytes.end(), mask.begin(), mask.end());
-  return bytes;
+  return npy_bytes("|u1", {mask.size()}, mask.data(), mask.size());
 }
 
 std::string stale_hint() { return " - the model changed since this selection was made: run `goris select` again"; }

@@ -1,27 +1,10 @@
 # `goris remove` end to end on a tiny intrinsic run of the embedded scene (64 px, 60 iterations): every
 # stage-2 step writes its intermediates, the result is a run folder that `goris eval` reads, a second run
 # resumes from what is there, and ablations that belong to stage 1 are refused with the flag to use.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 set(RUN "${WORK}/run")
 
-function(goris_ok)
-  execute_process(COMMAND "${GORIS}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "goris ${ARGN} exited with ${rc}\n${out}\n${err}")
-  endif()
-  set(OUT "${out}" PARENT_SCOPE)
-  set(ERR "${err}" PARENT_SCOPE)
-endfunction()
-function(goris_fails expected)
-  execute_process(COMMAND "${GORIS}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(rc EQUAL 0)
-    message(FATAL_ERROR "goris ${ARGN} succeeded, expected an error containing '${expected}'\n${out}")
-  endif()
-  string(FIND "${err}" "${expected}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "goris ${ARGN}: expected '${expected}' in the error, got:\n${err}")
-  endif()
-endfunction()
 function(expect_count pattern n)
   file(GLOB files ${pattern})
   list(LENGTH files got)

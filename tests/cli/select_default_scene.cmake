@@ -1,32 +1,9 @@
 # `goris select` on a tiny run of the embedded scene (50 iterations, 64 px): --masks and --click write
 # selection.json + selection.npy + previews; background clicks, absurd selections and bad arguments are
 # errors that say what to change.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 set(RUN "${WORK}/run")
-
-function(goris_ok)
-  execute_process(COMMAND "${GORIS}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "goris ${ARGN} exited with ${rc}\n${out}\n${err}")
-  endif()
-  set(OUT "${out}" PARENT_SCOPE)
-endfunction()
-function(goris_fails expected)
-  execute_process(COMMAND "${GORIS}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(rc EQUAL 0)
-    message(FATAL_ERROR "goris ${ARGN} succeeded, expected an error containing '${expected}'\n${out}")
-  endif()
-  string(FIND "${err}" "${expected}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "goris ${ARGN}: expected '${expected}' in the error, got:\n${err}")
-  endif()
-endfunction()
-function(expect_text text what)
-  string(FIND "${text}" "${what}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "expected '${what}' in:\n${text}")
-  endif()
-endfunction()
 
 # The random initial points fill only the middle of the views, so the image corners show background.
 goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --iters 50 --resolution 64 --device cpu

@@ -1,5 +1,6 @@
 # A short `goris train` on lego at 32x32, then resume, render --maps and eval; Ctrl-C leaves a checkpoint
 # and the message how to resume. Skipped when ../shared/datasets/lego is absent.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 if(NOT EXISTS "${SHARED}/datasets/lego")
   message("GORIS_TEST_SKIPPED: ../shared/datasets/lego is absent")
   return()
@@ -7,21 +8,6 @@ endif()
 file(REMOVE_RECURSE "${WORK}")
 get_filename_component(DATA "${SHARED}/datasets/lego" REALPATH)
 set(RUN "${WORK}/run")
-
-function(goris_ok)
-  execute_process(COMMAND "${GORIS}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "goris ${ARGN} exited with ${rc}\n${out}\n${err}")
-  endif()
-  set(OUT "${out}" PARENT_SCOPE)
-  set(ERR "${err}" PARENT_SCOPE)
-endfunction()
-function(expect_text text what)
-  string(FIND "${text}" "${what}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "expected '${what}' in:\n${text}")
-  endif()
-endfunction()
 
 set(common --resolution 32 --device cpu --init-points 2000 --checkpoint-every 20)
 goris_ok(train "${DATA}" --out "${RUN}" --iters 30 ${common})
