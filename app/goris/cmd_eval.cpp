@@ -7,6 +7,8 @@
 // side (at least 4 pixels) and clamped to the image; views whose mask is empty are left out of the
 // masked means. A crop rather than the exact mask keeps SSIM's 11x11 windows meaningful at the edges.
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -154,6 +156,29 @@ void run_eval(const Options& o) {
                  {"region", "bounding box of the object mask (>= 0.5), grown by 10% per side (min 4 px)"}};
   j["render_ms_mean"] = render_ms / double(views.size());
   j["peak_host_memory_mib"] = peak_host_memory_mib();
+  // Time per stage and peak memory of the run itself: stage 1 from its training log, stage 2 from the removal
+  // report (when RUN is a removal folder, RUN/.. is its stage-1 run).
+  auto training_seconds = [](const fs::path& dir) -> std::optional<double> {
+    std::ifstream in(dir / "log.csv");
+    std::string line, last;
+    while (std::getline(in, line))
+      if (!line.empty() && std::isdigit(static_cast<unsigned char>(line[0]))) last = line;
+    if (last.empty()) return std::nullopt;
+    // iteration,loss,psnr,gaussians,elapsed_s,it_per_s
+    size_t pos = 0;
+    for (int k = 0; k < 4 && pos != std::string::npos; ++k) pos = last.find(',', pos) + 1;
+    return pos ? std::optional<double>(std::atof(last.c_str() + pos)) : std::nullopt;
+  };
+  const bool removal = fs::exists(run_dir / "report.json");
+  nlohmann::json stages = nlohmann::json::object();
+  if (const auto t = training_seconds(removal ? run_dir.parent_path() : run_dir)) stages["stage 1 training"] = *t;
+  if (removal) {
+    const nlohmann::json rep = nlohmann::json::parse(read_text_file(run_dir / "report.json"), nullptr, false);
+    if (rep.is_object() && rep.contains("seconds"))
+      for (auto it = rep["seconds"].begin(); it != rep["seconds"].end(); ++it) stages["stage 2 " + it.key()] = it.value();
+    if (rep.is_object() && rep.contains("peak_host_memory_mib")) j["removal_peak_host_memory_mib"] = rep["peak_host_memory_mib"];
+  }
+  j["stage_seconds"] = stages;
   j["per_view"] = per_view;
 
   const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);

@@ -23,6 +23,7 @@
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/train/trainer.h"
+#include "core/util/bench.h"
 #include "core/util/error.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/maps/gbuffer_maps.h"
@@ -417,6 +418,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              {"material_pixels", fs_stats.material_pixels},
                              {"projected_points", fs_stats.projected_points}};
     j["options"] = options_json(o);
+    j["peak_host_memory_mib"] = peak_host_memory_mib();
     s.finish("done");
     for (int k = 0; k < kRemovalStepCount; ++k) j["seconds"][removal_step_name(RemovalStep(k))] = report.seconds[k];
     const std::string text = j.dump(2) + "\n";
