@@ -1,6 +1,7 @@
 // `goris demo`: the main job on the embedded default scene (resources/default_scene), end to end on the
 // chosen device: train a short schedule, render the test views with every map, evaluate against the views
-// with the target (`--gt full`), and write report.md with side-by-side images a person can look at.
+// with the target (`--gt full`), select the target from its masks, remove it (stage 2), evaluate the cleaned
+// scene against the views without it, and write report.md with side-by-side images a person can look at.
 // Each step runs as its own `goris` subcommand in a child process (the same binary), so the demo exercises
 // exactly what a user types and a failing step stops the demo with that step's message.
 #include <spawn.h>
@@ -34,6 +35,7 @@ struct Options {
   std::string out = "goris-demo";
   std::string device = "auto";
   int iters = 2000;
+  std::string mode = "radiance";
   int report_views = 4;
 };
 
@@ -97,7 +99,7 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
   md += "Data: `" + o.data + "` (" + ds.format + ", " + std::to_string(ds.train.size()) + " train / " +
         std::to_string(ds.test.size()) + " test views at " + std::to_string(ds.train[0].camera.width) + "x" +
         std::to_string(ds.train[0].camera.height) + ")  \n";
-  md += "Training: " + std::to_string(o.iters) + " iterations, radiance mode, device `" + m.value("device", "?") +
+  md += "Training: " + std::to_string(o.iters) + " iterations, " + o.mode + " mode, device `" + m.value("device", "?") +
         "`, " + std::to_string(m.value("gaussians", 0)) + " Gaussians  \n";
   char line[256];
   std::snprintf(line, sizeof line, "Test views against the images with the target (`--gt full`): PSNR %.2f dB, SSIM %.4f  \n",
@@ -116,6 +118,28 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
     goris::write_file_bytes(out / file, png.data(), png.size());
     md += "![" + v.name + "](" + file + ")\n\n";
   }
+  const fs::path removed = run / "removal";
+  if (fs::exists(removed / "metrics.json")) {
+    std::ifstream rf(removed / "metrics.json");
+    const nlohmann::json r = nlohmann::json::parse(rf);
+    const nlohmann::json masked = r.value("masked", nlohmann::json::object());
+    std::snprintf(line, sizeof line,
+                  "\n## After removal\n\nTest views against the scene without the target (`test/r_XXX.png`): PSNR "
+                  "%.2f dB, SSIM %.4f, inside the target's region M-PSNR %.2f dB, M-SSIM %.4f  \n",
+                  r.value("psnr", 0.0), r.value("ssim", 0.0), masked.value("psnr", 0.0), masked.value("ssim", 0.0));
+    md += line;
+    md += "Intermediates (masks, reference views, inpainted maps): `" + removed.string() + "`\n\n";
+    md += "Each row: ground truth without the target | render after removal | depth | normal\n\n";
+    for (int i = 0; i < n; ++i) {
+      const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
+      const cv::Mat row = comparison_row(v.image, out / "renders_removed", v.name);
+      const std::string file = "removed_" + v.name + ".png";
+      std::vector<unsigned char> png;
+      cv::imencode(".png", row, png);
+      goris::write_file_bytes(out / file, png.data(), png.size());
+      md += "![" + v.name + " after removal](" + file + ")\n\n";
+    }
+  }
   goris::write_file_bytes(out / "report.md", md.data(), md.size());
   std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
 }
@@ -133,22 +157,34 @@ void run_demo(const Options& o) {
   { std::ofstream(out / "demo.marker") << "written by goris demo\n"; }
   const std::string data = fs::absolute(o.data).string();
   run_step("info", {"info", data});
-  run_step("train", {"train", data, "--out", run.string(), "--iters", std::to_string(o.iters), "--device", o.device,
-                     "--checkpoint-every", "0"});
+  run_step("train", {"train", data, "--out", run.string(), "--mode", o.mode, "--iters", std::to_string(o.iters),
+                     "--device", o.device, "--checkpoint-every", "0"});
   run_step("render test views with all maps", {"render", run.string(), "--split", "test", "--out", renders.string(),
                                                "--maps", "--device", o.device});
   run_step("evaluate against the views with the target", {"eval", run.string(), "--split", "test", "--gt", "full",
                                                           "--device", o.device});
+  // Stage 2: the target from the data set's object masks, removed with its reflections, evaluated against
+  // the after-removal ground truth (test/r_XXX.png).
+  const fs::path removed = run / "removal", removed_renders = out / "renders_removed";
+  run_step("select the target from the object masks", {"select", run.string(), "--masks", "--device", o.device});
+  run_step("remove it (stage 2)", {"remove", run.string(), "--device", o.device});
+  run_step("render the cleaned scene", {"render", removed.string(), "--split", "test", "--out",
+                                        removed_renders.string(), "--maps", "--device", o.device});
+  run_step("evaluate against the scene without the target", {"eval", removed.string(), "--split", "test",
+                                                             "--device", o.device});
   write_report(o, out, run, renders);
 }
 
 void setup_demo(CLI::App& root) {
   auto o = std::make_shared<Options>();
-  auto* c = root.add_subcommand("demo", "Train, render and evaluate the embedded default scene; write a report");
+  auto* c = root.add_subcommand("demo", "Train, remove the target, render and evaluate the embedded default scene; write a report");
   c->add_option("--data", o->data, "Data set (default: the embedded default scene)")->capture_default_str();
   c->add_option("--out", o->out, "Output folder (report.md, images, run/)")->capture_default_str();
   c->add_option("--iters", o->iters, "Training iterations")->capture_default_str()->check(CLI::PositiveNumber);
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->add_option("--mode", o->mode, "Stage-1 mode: radiance (fast), intrinsic or auto")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
   c->callback([o] { run_demo(*o); });
 }
 
