@@ -46,7 +46,8 @@ struct IntrinsicSettings {
   int normal_prior_until = 10000;
   float smoothness = 0.05f;        // edge-aware smoothness of F0, roughness and the normal on the glossy mask
   float region = 1.0f;             // mean(M_gt M)
-  float region_rough = 1.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition)
+  float region_rough = 0.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition,
+                                   // off: it did not help on steel_snowman, see README)
   float label = 1.0f;              // BCE of the rendered label against the object masks
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
 };
