@@ -118,7 +118,10 @@ void AppState::show_model(std::shared_ptr<const ModelSnapshot> m) {
     source = checkpoint_path(session_.run_dir(), model_->iteration()).string();
   else if (scene_)
     source = scene_->model_source;
-  selection_.bind(model_, current_run(), source, !training_active());
+  // A cleaned scene's selection.json records what was removed from its parent run: not this model's.
+  const fs::path run = current_run();
+  const bool cleaned_scene = !run.empty() && fs::exists(run / "report.json") && fs::is_directory(run / "inpaint_masks");
+  selection_.bind(model_, run, source, !training_active() && !cleaned_scene);
 }
 
 bool AppState::training_active() const {

@@ -14,7 +14,8 @@ RemovalCostModel RemovalCostModel::estimate(std::size_t views, int finetune_iter
   c.weight[int(RemovalStep::ReferenceViews)] = 0.05;
   c.weight[int(RemovalStep::Inpaint2D)] = 3.0 * (material_maps ? 6.0 : 2.0) * 0.4;  // 3 views x maps
   c.weight[int(RemovalStep::Lift)] = 0.5;
-  c.weight[int(RemovalStep::FineTune)] = 0.4 * v + 1.5 * double(std::max(finetune_iterations, 1));  // + image loading
+  // An iteration (forward + backward, losses, optimiser) costs about three renders; + loading the images.
+  c.weight[int(RemovalStep::FineTune)] = 0.4 * v + 3.0 * double(std::max(finetune_iterations, 1));
   return c;
 }
 

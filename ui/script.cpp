@@ -21,6 +21,7 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::Set, "set"},
                                {Kind::Train, "train"},
                                {Kind::Grid, "grid"},
+                               {Kind::Panels, "panels"},
                                {Kind::Channel, "channel"},
                                {Kind::Snap, "snap"},
                                {Kind::Click, "click"},
@@ -32,9 +33,13 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::Redo, "redo"},
                                {Kind::SaveSelection, "save_selection"},
                                {Kind::Remove, "remove"},
+                               {Kind::RemoveStart, "remove_start"},
+                               {Kind::RemoveWait, "remove_wait"},
+                               {Kind::RemoveCancel, "remove_cancel"},
                                {Kind::ExpectStepComplete, "expect_step_complete"},
                                {Kind::Compare, "compare"},
                                {Kind::Screenshot, "screenshot"},
+                               {Kind::ScreenshotNow, "screenshot_now"},
                                {Kind::WaitFrames, "wait_frames"},
                                {Kind::Quit, "quit"}};
 
@@ -119,6 +124,7 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
     case Kind::Open:
     case Kind::Out:
     case Kind::Screenshot:
+    case Kind::ScreenshotNow:
       a.path = p.path(rest);
       break;
     case Kind::Set: {
@@ -134,6 +140,9 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
     case Kind::Grid:
       p.expect_args(args, 1, 1, "grid N");
       a.count = p.integer(args[0], 0, 8, "tile count");
+      break;
+    case Kind::Panels:
+      a.names = args;  // checked against the editor's panels when the line runs
       break;
     case Kind::WaitFrames:
       p.expect_args(args, 1, 1, "wait_frames N");
@@ -175,7 +184,8 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
       if (a.grow < -1 || a.grow > 1) p.fail("G " + args[0] + " is outside -1..1");
       break;
     case Kind::Remove:
-      p.expect_args(args, 0, 1, "remove [ITERS]");
+    case Kind::RemoveStart:
+      p.expect_args(args, 0, 1, a.kind == Kind::Remove ? "remove [ITERS]" : "remove_start [ITERS]");
       a.count = args.empty() ? 0 : p.integer(args[0], 1, 100000000, "iteration count");
       break;
     case Kind::SelectLabels:
@@ -183,6 +193,8 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
     case Kind::Undo:
     case Kind::Redo:
     case Kind::SaveSelection:
+    case Kind::RemoveWait:
+    case Kind::RemoveCancel:
     case Kind::ExpectStepComplete:
       p.expect_args(args, 0, 0, action_name(a.kind));
       break;

@@ -7,6 +7,8 @@
 //   set KEY VALUE              a training setting for a new run (a config.json key, VALUE as JSON or text)
 //   train N                    train N more iterations with the session of the Training panel; waits
 //   grid N                     N small viewports under the main one (0..8)
+//   panels NAME...             expand these sidebar panels (Open, Training, Plots, Selection, Removal,
+//                              Camera, Display), collapse the others
 //   channel VIEWPORT NAME      VIEWPORT = main or a grid tile index 0..7; NAME as in the channel chooser
 //   snap INDEX [train|test]    put the view camera on a data set camera (default: train)
 //   click X Y                  a plain left click at pixel (X, Y) of the main viewport's image: reports what
@@ -19,9 +21,14 @@
 //   save_selection             write RUN/selection.json (+ .npy) for `goris remove`
 //   remove [ITERS]             run stage 2 on the run (ITERS fine-tune iterations; default: the panel's);
 //                              waits until it has finished, fails when it fails or is cancelled
+//   remove_start [ITERS]       starts stage 2 and goes on at once (progress screenshots, cancelling)
+//   remove_wait                waits for the running removal; fails unless it completes
+//   remove_cancel              cancels the running removal and waits until it has stopped
 //   expect_step_complete       fails unless every stage-2 step of the last removal reached 100 %
 //   compare MODE [SPLIT]       off | side_by_side | slider (SPLIT in 0..1 for the slider)
-//   screenshot PATH            the whole window as PNG, plus PATH's stem + .layout.json (viewport rectangles)
+//   screenshot PATH            the whole window as PNG, plus PATH's stem + .layout.json (viewport rectangles),
+//                              once nothing runs and the display has settled
+//   screenshot_now PATH        the same at the next frame, while work goes on (progress displays)
 //   wait_frames N              let N frames pass
 //   quit                       close the editor (exit status 0)
 //
@@ -38,12 +45,14 @@ namespace goris::ui {
 
 struct ScriptAction {
   enum class Kind {
-    Open, Out, Set, Train, Grid, Channel, Snap, Click, SelectClick, SelectGrow, SelectLabels, SelectMasks, Undo, Redo,
-    SaveSelection, Remove, ExpectStepComplete, Compare, Screenshot, WaitFrames, Quit
+    Open, Out, Set, Train, Grid, Panels, Channel, Snap, Click, SelectClick, SelectGrow, SelectLabels, SelectMasks, Undo, Redo,
+    SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, Compare, Screenshot,
+    ScreenshotNow, WaitFrames, Quit
   };
   Kind kind = Kind::Quit;
   int line = 0;            // 1-based line in the script
   std::string path;        // open, out, screenshot
+  std::vector<std::string> names;  // panels
   std::string key, value;  // set
   int count = 0;           // train, grid, wait_frames, remove (0 = default)
   int viewport = -1;       // channel: -1 = main, else grid tile index

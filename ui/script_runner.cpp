@@ -92,6 +92,12 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
         phase_ = 1;
       }
       return host.settled();
+    case Kind::Panels:
+      if (phase_ == 0) {
+        host.show_panels(a.names);
+        phase_ = 1;
+      }
+      return host.settled();
     case Kind::Channel:
       if (phase_ == 0) {
         st.set_channel(a.viewport, a.channel);
@@ -139,7 +145,24 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       return true;
     }
     case Kind::Remove:
-      return run_remove(host, a);
+    case Kind::RemoveWait:
+      return run_remove(host, a, a.kind == Kind::Remove);
+    case Kind::RemoveStart:
+      if (!host.settled()) return false;
+      st.start_removal(a.count);
+      return true;
+    case Kind::RemoveCancel: {
+      if (phase_ == 0) {
+        if (!st.removal().active()) throw Error("no removal is running");
+        st.removal().cancel();
+        phase_ = 1;
+      }
+      if (st.removal().active()) return false;
+      if (st.removal().state() != RemovalState::Cancelled)
+        fail(a, std::string("the removal ended ") + removal_state_name(st.removal().state()) + " before it stopped: " +
+                    st.removal().status());
+      return true;
+    }
     case Kind::ExpectStepComplete: {
       const RemovalProgressTracker p = st.removal().progress();
       std::string missing;
@@ -160,8 +183,9 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       return true;
     }
     case Kind::Screenshot:
+    case Kind::ScreenshotNow:
       if (phase_ == 0) {
-        if (!host.settled()) return false;
+        if (a.kind == Kind::Screenshot && !host.settled()) return false;
         host.request_screenshot(fs::absolute(a.path));
         phase_ = 1;
         return false;
@@ -207,11 +231,15 @@ bool ScriptRunner::run_selection_edit(ScriptHost& host, const ScriptAction& a, b
   return host.settled();
 }
 
-bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a) {
+bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a, bool start) {
   AppState& st = host.state();
   if (phase_ == 0) {
-    if (!host.settled()) return false;
-    st.start_removal(a.count);
+    if (start) {
+      if (!host.settled()) return false;
+      st.start_removal(a.count);
+    } else if (!st.removal().active() && st.removal().state() == RemovalState::Idle) {
+      throw Error("no removal was started");
+    }
     phase_ = 1;
     return false;
   }

@@ -37,6 +37,9 @@ class ScriptHost {
   virtual bool screenshot_pending() const = 0;
   virtual std::optional<std::string> screenshot_error() const = 0;
   virtual void quit() = 0;
+  // Expands the sidebar panels with these titles and collapses the others (case-insensitive); throws
+  // goris::Error naming an unknown title. Hosts without panels ignore it.
+  virtual void show_panels(const std::vector<std::string>& /*titles*/) {}
   // Frame times since the last training started (zero frames when unknown).
   virtual FrameStats training_frame_stats() const { return {}; }
 };
@@ -60,7 +63,8 @@ class ScriptRunner {
   // until the tinted frame is shown.
   bool run_selection_edit(ScriptHost& host, const ScriptAction& a, bool strict,
                           const std::function<std::uint64_t()>& start);
-  bool run_remove(ScriptHost& host, const ScriptAction& a);
+  // Starts the removal (or, with !start, takes the running one) and waits until it has ended.
+  bool run_remove(ScriptHost& host, const ScriptAction& a, bool start);
   void fail(const ScriptAction& a, const std::string& problem);
 
   std::vector<ScriptAction> actions_;

@@ -1,5 +1,6 @@
 #include "ui/studio_app.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -85,6 +86,25 @@ StudioApp::~StudioApp() {
 }
 
 void StudioApp::quit() { window_->request_close(); }
+
+void StudioApp::show_panels(const std::vector<std::string>& titles) {
+  auto lower = [](std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  std::vector<bool> open(panels_.size(), false);
+  for (const std::string& t : titles) {
+    bool found = false;
+    for (size_t i = 0; i < panels_.size(); ++i)
+      if (lower(panels_[i]->title()) == lower(t)) open[i] = found = true;
+    if (!found) {
+      std::string known;
+      for (const auto& p : panels_) known += (known.empty() ? "" : ", ") + std::string(p->title());
+      throw Error("panels: there is no panel '" + t + "' (" + known + ")");
+    }
+  }
+  panels_open_ = std::move(open);
+}
 
 int StudioApp::run() {
   last_frame_time_ = std::chrono::steady_clock::now();
@@ -223,8 +243,8 @@ void StudioApp::request_render() {
   if (!camera_changed && !model_changed) return;
   const auto now = std::chrono::steady_clock::now();
   if (!camera_changed && state_->session().state() == SessionState::Running) {
-    // New snapshots while training: render at most half of the time, the trainer needs the CPU more.
-    const double gap = std::max(0.25, 2e-3 * (state_->frame ? state_->frame->render_ms : 0.0));
+    // New snapshots while training: render at most a fifth of the time, the trainer needs the CPU more.
+    const double gap = std::max(0.25, 5e-3 * (state_->frame ? state_->frame->render_ms : 0.0));
     if (std::chrono::duration<double>(now - last_request_time_).count() < gap) return;  // asked again next frame
   }
   last_request_time_ = now;

@@ -47,6 +47,7 @@ class StudioApp final : public ScriptHost {
   bool screenshot_pending() const override { return screenshot_path_.has_value(); }
   std::optional<std::string> screenshot_error() const override { return screenshot_error_; }
   void quit() override;
+  void show_panels(const std::vector<std::string>& titles) override;
   FrameStats training_frame_stats() const override { return training_frames_; }
 
  private:
@@ -79,6 +80,7 @@ class StudioApp final : public ScriptHost {
   Viewport main_{-1};
   std::vector<std::unique_ptr<Viewport>> grid_;
   std::vector<std::unique_ptr<Panel>> panels_;
+  std::optional<std::vector<bool>> panels_open_;  // set by a script: applied at the next sidebar draw
   std::unique_ptr<ScriptRunner> script_;
   FrameLimiter limiter_;
   CameraMode camera_mode_ = CameraMode::Orbit;

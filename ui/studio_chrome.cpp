@@ -56,15 +56,20 @@ void StudioApp::draw_sidebar() {
   ImGui::Begin("##sidebar", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_AlwaysVerticalScrollbar);
-  for (const auto& p : panels_) {
+  for (size_t i = 0; i < panels_.size(); ++i) {
+    const auto& p = panels_[i];
     if (!p->visible(settings_)) continue;
-    ImGui::SetNextItemOpen(p->open_by_default(), ImGuiCond_Once);
+    if (panels_open_)
+      ImGui::SetNextItemOpen((*panels_open_)[i], ImGuiCond_Always);
+    else
+      ImGui::SetNextItemOpen(p->open_by_default(), ImGuiCond_Once);
     if (ImGui::CollapsingHeader(p->title())) {
       ImGui::PushID(p->title());
       p->draw(*state_);
       ImGui::PopID();
     }
   }
+  panels_open_.reset();
   ImGui::End();
 }
 

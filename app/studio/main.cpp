@@ -8,7 +8,7 @@
 #include "ui/studio_app.h"
 
 int main(int argc, char** argv) {
-  CLI::App cli{"GOR-IS Studio: train, inspect and (soon) edit Gaussian scenes"};
+  CLI::App cli{"GOR-IS Studio: train, inspect, select and remove objects from Gaussian scenes"};
   goris::ui::StudioOptions o;
   std::string script;
   cli.add_option("path", o.open_path, "A data set folder or a run folder to open");

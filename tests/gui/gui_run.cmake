@@ -1,5 +1,6 @@
 # Shared by the GUI tests: how to run goris-studio in a window. Sets GUI_LAUNCH (a command prefix) or
 # prints GORIS_TEST_SKIPPED and sets GUI_SKIP when no display can be had.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")  # expect_text()
 # Every GUI test starts from an empty WORK folder (its artefacts: screenshots, run folders, settings).
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -27,12 +28,5 @@ function(studio_run script prefix)
   if(NOT rc EQUAL 0 AND err MATCHES "error: display:")
     message("GORIS_TEST_SKIPPED: no window could be opened:\n${err}")
     set(GUI_SKIP TRUE PARENT_SCOPE)
-  endif()
-endfunction()
-
-function(expect_text text what)
-  string(FIND "${text}" "${what}" at)
-  if(at EQUAL -1)
-    message(FATAL_ERROR "expected '${what}' in:\n${text}")
   endif()
 endfunction()

@@ -237,7 +237,16 @@ TEST(StudioAppState, ScriptSelectsAndRemoves) {
 
   // Stage 2: the unsaved selection is saved first, every step completes, the mask channels appear.
   EXPECT_NE(st.channel_unavailable(Channel::InpaintMask), nullptr);
-  ASSERT_EQ(run_script(st, host, "remove 3\nexpect_step_complete\n"), ScriptRunner::Status::Finished) << last_error();
+  EXPECT_EQ(run_script(st, host, "remove_cancel\n"), ScriptRunner::Status::Failed);  // nothing runs
+  EXPECT_NE(last_error().find("no removal is running"), std::string::npos) << last_error();
+  EXPECT_EQ(run_script(st, host, "remove_wait\n"), ScriptRunner::Status::Failed);
+  EXPECT_NE(last_error().find("no removal was started"), std::string::npos) << last_error();
+  // Started, cancelled at once: stopped, not complete; the next removal resumes and completes.
+  ASSERT_EQ(run_script(st, host, "remove_start 3\nremove_cancel\n"), ScriptRunner::Status::Finished) << last_error();
+  EXPECT_EQ(st.removal().state(), RemovalState::Cancelled);
+  EXPECT_EQ(run_script(st, host, "expect_step_complete\n"), ScriptRunner::Status::Failed);
+  ASSERT_EQ(run_script(st, host, "remove 3\nexpect_step_complete\nremove_wait\n"), ScriptRunner::Status::Finished)
+      << last_error();
   EXPECT_TRUE(fs::exists(dir / "run" / "selection.json"));
   EXPECT_TRUE(st.selection().view().saved);
   EXPECT_TRUE(fs::exists(dir / "run" / "removal" / "report.json"));

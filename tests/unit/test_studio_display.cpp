@@ -35,18 +35,9 @@ GaussianModel wall(int n = 200) {
   GaussianModel m(Device::CPU);
   m.allocate(size_t(n));
   for (int i = 0; i < n; ++i) {
-    float* p = m.values(Param::Position) + i * 3;
-    p[0] = 1.2f * u(rng);
-    p[1] = 1.0f * u(rng);
-    p[2] = 0.05f * u(rng);
-    for (int a = 0; a < 3; ++a) m.values(Param::LogScale)[i * 3 + a] = std::log(a == 2 ? 0.02f : 0.25f);
-    float* q = m.values(Param::Rotation) + i * 4;
-    q[0] = 1;
-    q[1] = q[2] = q[3] = 0;
-    m.values(Param::OpacityLogit)[i] = 4.0f;
-    float* sh = m.values(Param::Sh) + i * 48;
-    std::fill(sh, sh + 48, 0.0f);
-    for (int c = 0; c < 3; ++c) sh[c] = u(rng);
+    const glm::vec3 position(1.2f * u(rng), 1.0f * u(rng), 0.05f * u(rng));
+    const glm::vec3 dc(u(rng), u(rng), u(rng));
+    test::set_studio_gaussian(m, i, position, glm::vec3(0.25f, 0.25f, 0.02f), dc);
     for (int k = 0; k < extra::kCount; ++k) m.values(Param::ExtraLogit)[i * extra::kCount + k] = 2.0f * u(rng);
   }
   return m;

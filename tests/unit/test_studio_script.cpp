@@ -92,9 +92,18 @@ TEST(StudioScript, ParsesSelectionAndRemoval) {
       "click 50% 10\n"
       "select_grow -0.25\n"
       "select_labels\nselect_masks\nundo\nredo\nsave_selection\n"
-      "remove\nremove 10\nexpect_step_complete\ngrid 6\n",
+      "remove\nremove 10\nexpect_step_complete\ngrid 6\n"
+      "remove_start 7\nremove_wait\nremove_cancel\nscreenshot_now /tmp/a b.png\npanels Selection removal\n",
       "s.txt");
-  ASSERT_EQ(a.size(), 14u);
+  ASSERT_EQ(a.size(), 19u);
+  EXPECT_EQ(a[18].kind, Kind::Panels);
+  EXPECT_EQ(a[18].names, (std::vector<std::string>{"Selection", "removal"}));
+  EXPECT_EQ(a[14].kind, Kind::RemoveStart);
+  EXPECT_EQ(a[14].count, 7);
+  EXPECT_EQ(a[15].kind, Kind::RemoveWait);
+  EXPECT_EQ(a[16].kind, Kind::RemoveCancel);
+  EXPECT_EQ(a[17].kind, Kind::ScreenshotNow);
+  EXPECT_EQ(a[17].path, "/tmp/a b.png");
   EXPECT_EQ(a[13].kind, Kind::Grid);
   EXPECT_EQ(a[13].count, 6);
   EXPECT_EQ(a[0].kind, Kind::SelectClick);
@@ -149,6 +158,8 @@ TEST(StudioScript, ErrorsNameTheLine) {
   EXPECT_NE(parse_error("undo 2\n").find("s.txt:1: undo: expected 'undo'"), std::string::npos);
   EXPECT_NE(parse_error("remove 0\n").find("outside 1.."), std::string::npos);
   EXPECT_NE(parse_error("grid 9\n").find("tile count 9 is outside 0..8"), std::string::npos);
+  EXPECT_NE(parse_error("remove_cancel now\n").find("expected 'remove_cancel'"), std::string::npos);
+  EXPECT_NE(parse_error("remove_start x\n").find("'x' is not a whole number"), std::string::npos);
   EXPECT_NE(parse_error("remove 5 6\n").find("expected 'remove [ITERS]'"), std::string::npos);
 }
 

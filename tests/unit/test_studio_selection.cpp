@@ -29,19 +29,9 @@ GaussianModel two_blobs() {
   m.allocate(2 * kPerBlob);
   for (int i = 0; i < 2 * kPerBlob; ++i) {
     const int blob = i / kPerBlob;
-    float* p = m.values(Param::Position) + i * 3;
-    p[0] = (blob == 0 ? -1.0f : 1.0f) + g(rng);
-    p[1] = g(rng);
-    p[2] = g(rng);
-    for (int a = 0; a < 3; ++a) m.values(Param::LogScale)[i * 3 + a] = std::log(0.06f);
-    float* q = m.values(Param::Rotation) + i * 4;
-    q[0] = 1;
-    q[1] = q[2] = q[3] = 0;
-    m.values(Param::OpacityLogit)[i] = 4.0f;
-    float* sh = m.values(Param::Sh) + i * 48;
-    std::fill(sh, sh + 48, 0.0f);
-    sh[0] = blob == 0 ? 1.5f : -1.5f;  // DC: red ...
-    sh[2] = blob == 0 ? -1.5f : 1.5f;  // ... or blue
+    const glm::vec3 position((blob == 0 ? -1.0f : 1.0f) + g(rng), g(rng), g(rng));
+    const glm::vec3 dc = blob == 0 ? glm::vec3(1.5f, 0.0f, -1.5f) : glm::vec3(-1.5f, 0.0f, 1.5f);  // red or blue
+    test::set_studio_gaussian(m, i, position, glm::vec3(0.06f), dc);
     for (int k = 0; k < extra::kCount; ++k)
       m.values(Param::ExtraLogit)[i * extra::kCount + k] = k == extra::kLabel ? (blob == 0 ? 4.0f : -4.0f) : 0.0f;
   }

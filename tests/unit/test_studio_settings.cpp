@@ -67,6 +67,10 @@ TEST(StudioSettings, RoundTrip) {
   s.train_init_points = 1234;
   s.train_device = "cpu";
   s.train_white_background = true;
+  s.removal_inpainter = "cmd:lama {image} {mask} {out}";
+  s.removal_iterations = 300;
+  s.removal_ablate_material = true;
+  s.removal_ablate_lamask = true;
   save_settings(file, s);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
   const StudioSettings r = load_settings(file);
@@ -85,6 +89,10 @@ TEST(StudioSettings, RoundTrip) {
   EXPECT_EQ(r.train_init_points, 1234);
   EXPECT_EQ(r.train_device, "cpu");
   EXPECT_TRUE(r.train_white_background);
+  EXPECT_EQ(r.removal_inpainter, "cmd:lama {image} {mask} {out}");
+  EXPECT_EQ(r.removal_iterations, 300);
+  EXPECT_TRUE(r.removal_ablate_material);
+  EXPECT_TRUE(r.removal_ablate_lamask);
 }
 
 TEST(StudioSettings, RecentPathsAreUniqueAndBounded) {
@@ -111,6 +119,9 @@ TEST(StudioSettings, BadFilesNameTheProblem) {
             std::string::npos);
   EXPECT_NE(load_error(f, R"({"train_device": "tpu"})").find("'train_device'"), std::string::npos);
   EXPECT_NE(load_error(f, R"({"train_mode": "fast"})").find("'train_mode': unknown value 'fast'"), std::string::npos);
+  EXPECT_NE(load_error(f, R"({"removal_iterations": -5})").find("'removal_iterations' = -5 is outside"),
+            std::string::npos);
+  EXPECT_NE(load_error(f, R"({"removal_inpainter": ""})").find("'removal_inpainter' is empty"), std::string::npos);
   // Keys of other versions are ignored; what is known is read.
   EXPECT_EQ(load_error(f, R"({"future_key": 1, "display_max_side": 64})"), "");
   EXPECT_EQ(load_settings(f).display_max_side, 64);

@@ -33,26 +33,34 @@ void TrainingPanel::draw(AppState& st) {
   ImGui::EndDisabled();
   if (is_run) ImGui::TextDisabled("continues this run from its latest checkpoint");
 
-  ImGui::BeginDisabled(active || is_run);
-  static const char* kModes[] = {"radiance", "intrinsic", "auto"};
-  int mode = set.train_mode == "intrinsic" ? 1 : set.train_mode == "auto" ? 2 : 0;
-  ImGui::SetNextItemWidth(120);
-  if (ImGui::Combo("mode", &mode, kModes, 3)) set.train_mode = kModes[mode];
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip(
-        "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
-        "auto: intrinsic when the data set has glossy masks");
-  ImGui::SetNextItemWidth(120);
-  ImGui::InputInt("resolution (0 = full)", &set.train_resolution, 0);
-  ImGui::SetNextItemWidth(120);
-  ImGui::InputInt("initial points", &set.train_init_points, 0);
-  set.train_resolution = std::max(set.train_resolution, 0);
-  set.train_init_points = std::max(set.train_init_points, 1);
+  ImGui::BeginDisabled(active);
+  if (is_run && scene->run_config) {
+    // A run keeps its own settings; only where it trains is this machine's choice.
+    const TrainConfig& c = *scene->run_config;
+    ImGui::TextDisabled("mode %s, %s, background (%.2g, %.2g, %.2g)", c.mode.c_str(),
+                        c.resolution > 0 ? ("width " + std::to_string(c.resolution)).c_str() : "full size",
+                        double(c.background.x), double(c.background.y), double(c.background.z));
+  } else {
+    static const char* kModes[] = {"radiance", "intrinsic", "auto"};
+    int mode = set.train_mode == "intrinsic" ? 1 : set.train_mode == "auto" ? 2 : 0;
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::Combo("mode", &mode, kModes, 3)) set.train_mode = kModes[mode];
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
+          "auto: intrinsic when the data set has glossy masks");
+    ImGui::SetNextItemWidth(120);
+    ImGui::InputInt("resolution (0 = full)", &set.train_resolution, 0);
+    ImGui::SetNextItemWidth(120);
+    ImGui::InputInt("initial points", &set.train_init_points, 0);
+    set.train_resolution = std::max(set.train_resolution, 0);
+    set.train_init_points = std::max(set.train_init_points, 1);
+    ImGui::Checkbox("white background", &set.train_white_background);
+  }
   static const char* kDevices[] = {"auto", "cpu", "cuda"};
   int dev = set.train_device == "cpu" ? 1 : set.train_device == "cuda" ? 2 : 0;
   ImGui::SetNextItemWidth(120);
   if (ImGui::Combo("device", &dev, kDevices, 3)) set.train_device = kDevices[dev];
-  ImGui::Checkbox("white background", &set.train_white_background);
   ImGui::EndDisabled();
   ImGui::BeginDisabled(active);
   ImGui::SetNextItemWidth(120);
