@@ -13,6 +13,7 @@
 #include <string>
 
 #include "app/goris/command.h"
+#include "app/goris/ctrl_c.h"
 #include "core/util/error.h"
 #include "render/export/run_export.h"
 
@@ -26,12 +27,6 @@ struct Options {
   float geometry_lr_scale = 0.0f;
   std::uint64_t seed = 0;
 };
-
-std::atomic<bool> g_stop{false};
-void on_export_sigint(int) {
-  g_stop = true;
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
-}
 
 void print_baked(const BakedReport& r) {
   const DistillResult& d = r.distill;
@@ -91,16 +86,11 @@ void run_export(const Options& o) {
         std::fprintf(stderr, "%s%s %d/%d%s", tty ? "\r" : "", p.phase.c_str(), p.done, p.total, tty ? "   " : "\n");
       if (tty && p.done == p.total) std::fprintf(stderr, "\n");
     };
-    g_stop = false;
-    auto previous = std::signal(SIGINT, on_export_sigint);
     BakedReport r;
-    try {
-      r = ex.write_baked(o.baked, s, progress, &g_stop);
-    } catch (...) {
-      std::signal(SIGINT, previous);
-      throw;
+    {
+      const cli::CtrlC ctrl_c;
+      r = ex.write_baked(o.baked, s, progress, ctrl_c.flag());
     }
-    std::signal(SIGINT, previous);
     print_baked(r);
     std::fflush(stdout);
   }

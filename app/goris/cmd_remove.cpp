@@ -13,18 +13,13 @@
 #include <vector>
 
 #include "app/goris/command.h"
+#include "app/goris/ctrl_c.h"
 #include "core/compute/device.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
 
 namespace {
 using namespace goris;
-
-std::atomic<bool> g_stop{false};
-extern "C" void on_remove_sigint(int) {
-  g_stop = true;
-  std::signal(SIGINT, SIG_DFL);
-}
 
 struct Options {
   std::string run, inpainter = "telea", inpainted, device = "auto";
@@ -58,17 +53,16 @@ void run_remove(const Options& o) {
                  removal_step_name(p.step), bar, 100 * f, p.detail.c_str(), tty ? "\033[K" : "\n");
     std::fflush(stderr);
   };
-  g_stop = false;
-  auto previous = std::signal(SIGINT, on_remove_sigint);
   RemovalReport r;
-  try {
-    r = run_removal(o.run, ro, progress, &g_stop);
-  } catch (...) {
-    std::signal(SIGINT, previous);
-    if (tty) std::fprintf(stderr, "\n");
-    throw;
+  {
+    const cli::CtrlC ctrl_c;
+    try {
+      r = run_removal(o.run, ro, progress, ctrl_c.flag());
+    } catch (...) {
+      if (tty) std::fprintf(stderr, "\n");
+      throw;
+    }
   }
-  std::signal(SIGINT, previous);
   if (tty) std::fprintf(stderr, "\n");
   if (r.cancelled) {
     std::printf("interrupted; run the same command again to resume (%s)\n", r.out_dir.string().c_str());

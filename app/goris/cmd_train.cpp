@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/goris/command.h"
+#include "app/goris/ctrl_c.h"
 #include "core/compute/device.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
@@ -28,13 +29,6 @@
 namespace {
 namespace fs = std::filesystem;
 using namespace goris;
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void on_sigint(int) {
-  g_stop = true;
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
-}
 
 struct Options {
   std::string data, out, mode = "radiance", device = "auto", normals;
@@ -145,7 +139,6 @@ void run_train(const Options& o) {
   const bool tty = isatty(STDERR_FILENO);
   Trainer::RunOptions ro;
   ro.run_dir = run_dir;
-  ro.stop = &g_stop;
   ro.progress_every = tty ? 10 : config.log_interval;
   ro.on_progress = [tty](const TrainProgress& p) {
     std::fprintf(stderr, "%s[%*d/%d] loss %.4f  PSNR %5.2f dB  %zu Gaussians  %.1f it/s  ETA %s%s", tty ? "\r" : "",
@@ -153,17 +146,17 @@ void run_train(const Options& o) {
                  duration_text(p.eta_s).c_str(), tty ? "   " : "\n");
     std::fflush(stderr);
   };
-  g_stop = false;
-  auto previous = std::signal(SIGINT, on_sigint);
   Trainer::RunResult result;
-  try {
-    result = trainer.run(ro);
-  } catch (...) {
-    std::signal(SIGINT, previous);
-    if (tty) std::fprintf(stderr, "\n");
-    throw;
+  {
+    const cli::CtrlC ctrl_c;
+    ro.stop = ctrl_c.flag();
+    try {
+      result = trainer.run(ro);
+    } catch (...) {
+      if (tty) std::fprintf(stderr, "\n");
+      throw;
+    }
   }
-  std::signal(SIGINT, previous);
   if (tty) std::fprintf(stderr, "\n");
 
   const TrainerState& st = trainer.state();
