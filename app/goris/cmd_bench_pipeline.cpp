@@ -1,0 +1,605 @@
+// `goris bench pipeline --data D1 [D2 ...] --configs NAMES --out DIR [--schedule short|medium|full ...]
+// [--device D]`: the paper's ablation ladder (baseline, +elt, +ssf, full, distilled) run end to end per scene
+// and schedule, each step a `goris` child process (this binary), so a crash in one configuration is recorded
+// and the bench goes on. Writes results.csv, results.md and PSNR-against-time charts (chart.svg/png and
+// chart_SCENE.svg/png) with the Pareto front. A configuration whose result.json in DIR was made with the
+// same options is reused, not rerun.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "app/goris/command.h"
+#include "core/io/file_bytes.h"
+#include "core/report/chart.h"
+#include "core/report/pareto.h"
+#include "core/util/error.h"
+#include "render/removal/removal_pipeline.h"
+
+extern char** environ;
+
+namespace {
+namespace fs = std::filesystem;
+using goris::Error;
+using nlohmann::json;
+
+// The ladder, in the paper's order: each rung adds one part.
+struct ConfigSpec {
+  const char* name;
+  const char* stage1;  // key of the shared stage-1 run
+  std::vector<std::string> train_args;
+  const char* ablate;  // remove --ablate, "" = none
+  bool distill;
+  const char* description;
+};
+
+const std::vector<ConfigSpec>& ladder() {
+  static const std::vector<ConfigSpec> specs = {
+      {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask", false,
+       "radiance stage 1; RGB-only inpainting, no lighting-aware mask"},
+      {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
+       "material,lamask", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
+      {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask", false,
+       "intrinsic stage 1 with the screen-space filter"},
+      {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting and lighting-aware masks"},
+      {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
+       "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
+  };
+  return specs;
+}
+
+struct Schedule {
+  std::string name;
+  int train_iters, remove_iters, export_iters;
+  std::vector<std::string> extra_train_args;
+};
+
+// Stage-2 fine-tuning (4000 at 30k) and distillation (2000 at 30k) scale with stage 1, as `goris remove` does.
+Schedule schedule_of(const std::string& name) {
+  if (name == "tiny")  // hidden: the CLI test's seconds-long schedule
+    return {name, 30, 10, 10,
+            {"--resolution", "64", "--init-points", "3000", "--set", "intrinsic_env_resolution=8", "--set",
+             "random_init_box_ratio=0.15"}};
+  const int iters = name == "short" ? 500 : name == "medium" ? 2000 : 30000;
+  return {name, iters, std::max(10, iters * 4000 / 30000), std::max(10, iters * 2000 / 30000), {}};
+}
+
+struct Options {
+  std::vector<std::string> data;
+  std::string configs = "baseline,+elt,+ssf,full,distilled";
+  std::string out;
+  std::vector<std::string> schedules = {"short"};
+  std::string device = "auto";
+};
+
+struct StepRun {
+  bool ok = false;
+  double seconds = 0;
+  double peak_mib = 0;
+  std::string error;
+};
+
+fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
+
+// The `error: ...` line of a failed step's log (main prints it), else its last non-empty line.
+std::string failure_message(const fs::path& log) {
+  std::string text;
+  try {
+    text = goris::read_text_file(log);
+  } catch (const Error&) {
+    return "";
+  }
+  std::istringstream in(text);
+  std::string line, last, err;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t cr = line.rfind('\r');  // progress bars redraw with \r
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (line.empty()) continue;
+    last = line;
+    if (line.rfind("error:", 0) == 0) err = line;
+  }
+  return err.empty() ? last : err;
+}
+
+// Runs `goris ARGS` with stdout and stderr in `log`; wall time and the child's peak resident memory.
+StepRun run_child(const std::string& step, std::vector<std::string> args, const fs::path& log) {
+  std::printf("    %-8s goris", step.c_str());
+  for (const auto& a : args) std::printf(" %s", a.c_str());
+  std::printf("\n");
+  std::fflush(stdout);
+  // Spawning /proc/self/exe runs this very binary even if a rebuild replaced the file during a long bench.
+  const std::string exe = "/proc/self/exe";
+  args.insert(args.begin(), self_executable().string());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+  StepRun r;
+  const auto t0 = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) {
+    r.error = step + ": could not start " + exe;
+    return r;
+  }
+  int status = 0;
+  struct rusage ru {};
+  wait4(pid, &status, 0, &ru);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.peak_mib = double(ru.ru_maxrss) / 1024.0;  // Linux: KiB
+  r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (!r.ok) {
+    const std::string how = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
+                                              : "killed by signal " + std::to_string(WTERMSIG(status));
+    const std::string msg = failure_message(log);
+    r.error = step + " failed (" + how + ")" + (msg.empty() ? "" : ": " + msg) + " [log " + log.string() + "]";
+    std::printf("    %-8s FAILED: %s\n", step.c_str(), r.error.c_str());
+  } else {
+    std::printf("    %-8s %.1f s, peak %.0f MiB\n", step.c_str(), r.seconds, r.peak_mib);
+  }
+  std::fflush(stdout);
+  return r;
+}
+
+json read_json(const fs::path& p) {
+  const json j = json::parse(goris::read_text_file(p), nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw Error(p.string(), "not a JSON object");
+  return j;
+}
+
+void write_text(const fs::path& p, const std::string& s) { goris::write_file_bytes(p, s.data(), s.size()); }
+
+double num(const json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+
+// One row of the results: a configuration on a scene under a schedule.
+struct Row {
+  std::string scene, config, schedule, status = "failed", error, device;
+  bool reused = false;
+  int train_iters = 0, remove_iters = 0;
+  double gaussians = std::nan(""), psnr = std::nan(""), ssim = std::nan(""), m_psnr = std::nan(""),
+         m_ssim = std::nan("");
+  double train_s = 0, select_s = 0, remove_s = 0, export_s = 0, eval_s = 0, peak_mib = 0;
+  std::map<std::string, double> remove_steps;
+  std::string note;
+  double total_s() const { return train_s + select_s + remove_s + export_s; }
+};
+
+json row_json(const Row& r) {
+  return {{"scene", r.scene},       {"config", r.config},         {"schedule", r.schedule},   {"status", r.status},
+          {"error", r.error},       {"device", r.device},         {"train_iters", r.train_iters},
+          {"remove_iters", r.remove_iters}, {"gaussians", r.gaussians}, {"psnr", r.psnr},  {"ssim", r.ssim},
+          {"m_psnr", r.m_psnr},     {"m_ssim", r.m_ssim},         {"train_s", r.train_s},     {"select_s", r.select_s},
+          {"remove_s", r.remove_s}, {"export_s", r.export_s},     {"eval_s", r.eval_s},       {"peak_mib", r.peak_mib},
+          {"remove_steps", r.remove_steps}, {"note", r.note}};
+}
+
+Row row_from_json(const json& j) {
+  Row r;
+  auto s = [&](const char* k) { return j.value(k, std::string()); };
+  auto d = [&](const char* k) { return j.contains(k) && j[k].is_number() ? j[k].get<double>() : std::nan(""); };
+  r.scene = s("scene"), r.config = s("config"), r.schedule = s("schedule"), r.status = s("status");
+  r.error = s("error"), r.device = s("device"), r.note = s("note");
+  r.train_iters = j.value("train_iters", 0), r.remove_iters = j.value("remove_iters", 0);
+  r.gaussians = d("gaussians"), r.psnr = d("psnr"), r.ssim = d("ssim"), r.m_psnr = d("m_psnr"), r.m_ssim = d("m_ssim");
+  r.train_s = d("train_s"), r.select_s = d("select_s"), r.remove_s = d("remove_s"), r.export_s = d("export_s");
+  r.eval_s = d("eval_s"), r.peak_mib = d("peak_mib");
+  if (j.contains("remove_steps") && j["remove_steps"].is_object())
+    for (auto it = j["remove_steps"].begin(); it != j["remove_steps"].end(); ++it)
+      if (it.value().is_number()) r.remove_steps[it.key()] = it.value().get<double>();
+  return r;
+}
+
+// Stage 1 of a scene under a schedule, trained once per stage-1 kind and shared by the configurations.
+struct Stage1 {
+  fs::path run;
+  StepRun train;
+};
+
+class Bench {
+ public:
+  explicit Bench(const Options& o) : o_(o), out_(fs::absolute(o.out)) {}
+
+  void run();
+
+ private:
+  Stage1 stage1(const std::string& scene, const std::string& data, const Schedule& s, const ConfigSpec& c);
+  Row run_config(const std::string& scene, const std::string& data, const Schedule& s, const ConfigSpec& c,
+                 const Row* full);
+  void evaluate(Row& r, const fs::path& run_dir, const fs::path& logs);
+  void write_outputs(const std::vector<Row>& rows, bool final) const;
+  bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem) const;
+
+  Options o_;
+  fs::path out_;
+  std::map<std::string, Stage1> stage1_;
+};
+
+Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Schedule& s, const ConfigSpec& c) {
+  const fs::path dir = out_ / "runs" / scene / s.name / (std::string("stage1_") + c.stage1);
+  const std::string key = dir.string();
+  if (auto it = stage1_.find(key); it != stage1_.end()) return it->second;
+  std::vector<std::string> args = {"train", data, "--out", (dir / "run").string(), "--iters",
+                                   std::to_string(s.train_iters), "--device", o_.device, "--checkpoint-every", "0"};
+  args.insert(args.end(), c.train_args.begin(), c.train_args.end());
+  args.insert(args.end(), s.extra_train_args.begin(), s.extra_train_args.end());
+  const json options = {{"args", args}};
+  Stage1 st{dir / "run", {}};
+  // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
+  if (fs::exists(dir / "stage1.json")) {
+    const json j = read_json(dir / "stage1.json");
+    if (j.value("options", json()) == options && j.value("ok", false)) {
+      st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), ""};
+      std::printf("    train    reused %s\n", st.run.string().c_str());
+      return stage1_[key] = st;
+    }
+  }
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  st.train = run_child("train", args, dir / "train.log");
+  write_text(dir / "stage1.json", json{{"options", options}, {"ok", st.train.ok}, {"seconds", st.train.seconds},
+                                       {"peak_mib", st.train.peak_mib}, {"error", st.train.error}}
+                                          .dump(2));
+  return stage1_[key] = st;
+}
+
+void Bench::evaluate(Row& r, const fs::path& run_dir, const fs::path& logs) {
+  const StepRun ev =
+      run_child("eval", {"eval", run_dir.string(), "--split", "test", "--device", o_.device}, logs / "eval.log");
+  r.eval_s = ev.seconds;
+  r.peak_mib = std::max(r.peak_mib, ev.peak_mib);
+  if (!ev.ok) throw Error(ev.error);
+  const json m = read_json(run_dir / "metrics.json");
+  r.psnr = num(m, "psnr"), r.ssim = num(m, "ssim"), r.gaussians = num(m, "gaussians");
+  r.device = m.value("device", o_.device);
+  if (m.contains("masked") && m["masked"].is_object()) r.m_psnr = num(m["masked"], "psnr"), r.m_ssim = num(m["masked"], "ssim");
+}
+
+Row Bench::run_config(const std::string& scene, const std::string& data, const Schedule& s, const ConfigSpec& c,
+                      const Row* full) {
+  Row r;
+  r.scene = scene, r.config = c.name, r.schedule = s.name, r.train_iters = s.train_iters, r.device = o_.device;
+  const fs::path dir = out_ / "runs" / scene / s.name / c.name, logs = dir / "logs", run = dir / "run";
+  const json options = {{"data", data},
+                        {"config", c.name},
+                        {"schedule", {s.name, s.train_iters, s.remove_iters, s.export_iters, s.extra_train_args}},
+                        {"train", c.train_args},
+                        {"ablate", c.ablate},
+                        {"device", o_.device}};
+  if (fs::exists(dir / "result.json")) {
+    const json j = read_json(dir / "result.json");
+    if (j.value("options", json()) == options && j.value("row", json()).value("status", "") == "ok") {
+      Row old = row_from_json(j["row"]);
+      old.reused = true;
+      std::printf("  %s / %s / %s: reused the result in %s\n", scene.c_str(), s.name.c_str(), c.name, dir.c_str());
+      return old;
+    }
+  }
+  std::printf("  %s / %s / %s: %s\n", scene.c_str(), s.name.c_str(), c.name, c.description);
+  fs::remove_all(dir);
+  fs::create_directories(logs);
+  try {
+    fs::path removal;
+    if (c.distill && full && full->status == "ok") {
+      // distilled = full + export: the full configuration's stage 1 and 2 are its own first steps.
+      r.train_s = full->train_s, r.select_s = full->select_s, r.remove_s = full->remove_s;
+      r.remove_steps = full->remove_steps, r.remove_iters = full->remove_iters, r.peak_mib = full->peak_mib;
+      removal = out_ / "runs" / scene / s.name / "full" / "run" / "removal";
+      r.note = "stages 1-2 of full (" + removal.parent_path().string() + "); ";
+    } else {
+      const Stage1 st = stage1(scene, data, s, c);
+      r.train_s = st.train.seconds;
+      r.peak_mib = st.train.peak_mib;
+      if (!st.train.ok) throw Error(st.train.error);
+      fs::copy(st.run, run, fs::copy_options::recursive);  // each configuration removes in its own copy
+      const StepRun sel =
+          run_child("select", {"select", run.string(), "--masks", "--device", o_.device}, logs / "select.log");
+      r.select_s = sel.seconds;
+      r.peak_mib = std::max(r.peak_mib, sel.peak_mib);
+      if (!sel.ok) throw Error(sel.error);
+      std::vector<std::string> rm = {"remove", run.string(), "--iters", std::to_string(s.remove_iters), "--device",
+                                     o_.device};
+      if (*c.ablate) rm.insert(rm.end(), {"--ablate", c.ablate});
+      const StepRun rem = run_child("remove", rm, logs / "remove.log");
+      r.remove_s = rem.seconds;
+      r.peak_mib = std::max(r.peak_mib, rem.peak_mib);
+      if (!rem.ok) throw Error(rem.error);
+      removal = run / "removal";
+      const json rep = read_json(removal / "report.json");
+      for (int k = 0; k < goris::kRemovalStepCount; ++k) {
+        const char* step = goris::removal_step_name(goris::RemovalStep(k));
+        if (rep.contains("seconds") && rep["seconds"].contains(step)) r.remove_steps[step] = rep["seconds"][step];
+      }
+      r.remove_iters = rep.value("finetune_iterations", s.remove_iters);
+      r.peak_mib = std::max(r.peak_mib, rep.value("peak_host_memory_mib", 0.0));
+    }
+    if (!c.distill) {
+      evaluate(r, removal, logs);
+    } else {
+      const fs::path baked = dir / "baked.ply";
+      const StepRun ex = run_child("export",
+                                   {"export", removal.string(), "--baked", baked.string(), "--iters",
+                                    std::to_string(s.export_iters), "--device", o_.device},
+                                   logs / "export.log");
+      r.export_s = ex.seconds;
+      r.peak_mib = std::max(r.peak_mib, ex.peak_mib);
+      if (!ex.ok) throw Error(ex.error);
+      // The baked PLY is a plain 3DGS model: evaluate it as a radiance run whose point cloud it is.
+      const fs::path baked_run = dir / "baked_run";
+      fs::create_directories(baked_run);
+      json cfg = read_json(removal / "config.json");
+      cfg["mode"] = "radiance";
+      write_text(baked_run / "config.json", cfg.dump(2) + "\n");
+      fs::copy_file(baked, baked_run / "point_cloud.ply", fs::copy_options::overwrite_existing);
+      try {
+        evaluate(r, baked_run, logs);
+        r.note += "metrics of the baked PLY evaluated as a radiance run";
+      } catch (const Error& e) {
+        // Fall back to the export's own score of the baked model against the test images (PSNR only).
+        const json bj = read_json(dir / "baked.json");
+        r.psnr = bj.contains("gt") ? num(bj["gt"], "psnr_baked") : std::nan("");
+        r.gaussians = num(bj, "gaussians");
+        if (!std::isfinite(r.psnr)) throw;
+        r.note += std::string("PSNR from the export's baked.json (evaluating the baked run failed: ") + e.what() + ")";
+      }
+    }
+    r.status = "ok";
+  } catch (const std::exception& e) {
+    r.status = "failed";
+    r.error = e.what();
+  }
+  write_text(dir / "result.json", json{{"options", options}, {"row", row_json(r)}}.dump(2) + "\n");
+  return r;
+}
+
+std::string fmt(double v, const char* f) {
+  if (!std::isfinite(v)) return "";
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string md_cell(std::string s) {
+  for (size_t p = 0; (p = s.find('|', p)) != std::string::npos; p += 2) s.replace(p, 1, "\\|");
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  return s;
+}
+
+std::string step_column(std::string step) {
+  std::replace(step.begin(), step.end(), ' ', '_');
+  std::replace(step.begin(), step.end(), '-', '_');
+  return "remove_" + step + "_s";
+}
+
+size_t config_index(const std::string& name) {
+  for (size_t i = 0; i < ladder().size(); ++i)
+    if (ladder()[i].name == name) return i;
+  return 0;
+}
+
+// False when no row has a result to draw (no chart then).
+bool Bench::write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem) const {
+  goris::Chart chart;
+  chart.title = title;
+  chart.x_label = "total time: train + select + remove (+ export), seconds (log scale)";
+  chart.y_label = "PSNR after removal (dB)";
+  std::vector<goris::TimeQuality> pts;
+  std::set<std::string> configs_seen;
+  for (const Row& r : rows) {
+    if (r.status != "ok" || !std::isfinite(r.psnr) || !(r.total_s() > 0)) continue;
+    const size_t ci = config_index(r.config);
+    size_t si = std::find(o_.schedules.begin(), o_.schedules.end(), r.schedule) - o_.schedules.begin();
+    chart.markers.push_back({r.total_s(), r.psnr, goris::palette_color(ci), goris::marker_shape(si),
+                             r.config + " / " + r.schedule + ": " + fmt(r.psnr, "%.2f") + " dB, " +
+                                 fmt(r.total_s(), "%.1f") + " s"});
+    pts.push_back({r.total_s(), r.psnr});
+    configs_seen.insert(r.config);
+  }
+  if (chart.markers.empty()) return false;
+  for (size_t i : goris::pareto_front(pts)) chart.step_line.push_back({pts[i].time, pts[i].quality});
+  for (size_t i = 0; i < ladder().size(); ++i)
+    if (configs_seen.count(ladder()[i].name))
+      chart.legend.push_back({ladder()[i].name, goris::palette_color(i), goris::MarkerShape::Circle, false});
+  for (size_t i = 0; i < o_.schedules.size(); ++i)
+    chart.legend.push_back({"schedule " + o_.schedules[i], {110, 110, 110}, goris::marker_shape(i), false});
+  chart.legend.push_back({"Pareto front", chart.step_color, goris::MarkerShape::Circle, true});
+  write_text(fs::path(stem.string() + ".svg"), goris::chart_svg(chart));
+  std::vector<unsigned char> png;
+  cv::imencode(".png", goris::chart_image(chart), png);
+  goris::write_file_bytes(fs::path(stem.string() + ".png"), png.data(), png.size());
+  return true;
+}
+
+void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
+  std::vector<std::string> steps;
+  for (int k = 0; k < goris::kRemovalStepCount; ++k) steps.push_back(goris::removal_step_name(goris::RemovalStep(k)));
+
+  std::string csv = "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim,"
+                    "train_s,select_s,remove_s";
+  for (const auto& s : steps) csv += "," + step_column(s);
+  csv += ",export_s,eval_s,total_s,peak_host_mib,reused,error,note\n";
+  for (const Row& r : rows) {
+    csv += csv_field(r.scene) + "," + csv_field(r.config) + "," + r.schedule + "," + r.status + "," +
+           csv_field(r.device) + "," + std::to_string(r.train_iters) + "," + std::to_string(r.remove_iters) + "," +
+           fmt(r.gaussians, "%.0f") + "," + fmt(r.psnr, "%.3f") + "," + fmt(r.ssim, "%.4f") + "," +
+           fmt(r.m_psnr, "%.3f") + "," + fmt(r.m_ssim, "%.4f") + "," + fmt(r.train_s, "%.2f") + "," +
+           fmt(r.select_s, "%.2f") + "," + fmt(r.remove_s, "%.2f");
+    for (const auto& s : steps) csv += "," + (r.remove_steps.count(s) ? fmt(r.remove_steps.at(s), "%.2f") : "");
+    csv += "," + fmt(r.export_s, "%.2f") + "," + fmt(r.eval_s, "%.2f") + "," + fmt(r.total_s(), "%.2f") + "," +
+           fmt(r.peak_mib, "%.0f") + "," + (r.reused ? "yes" : "no") + "," + csv_field(r.error) + "," +
+           csv_field(r.note) + "\n";
+  }
+  write_text(out_ / "results.csv", csv);
+
+  std::string md = "# GOR-IS pipeline bench\n\n";
+  md += "Configurations (the paper's ablation ladder):\n\n";
+  for (const auto& c : ladder()) md += std::string("- `") + c.name + "`: " + c.description + "\n";
+  md += "\nSchedules: ";
+  for (size_t i = 0; i < o_.schedules.size(); ++i) {
+    const Schedule s = schedule_of(o_.schedules[i]);
+    md += (i ? "; " : "") + s.name + " = " + std::to_string(s.train_iters) + " stage-1 iterations, " +
+          std::to_string(s.remove_iters) + " fine-tune, " + std::to_string(s.export_iters) + " distillation";
+  }
+  md += ". Device requested: `" + o_.device + "`.\n\n";
+  md += "Times are wall seconds of each step's process; total = train + select + remove (+ export), evaluation "
+        "excluded. Stage 1 is trained once per kind and shared (its time is counted in each configuration that "
+        "uses it). Metrics: test views against the after-removal ground truth; M-PSNR / M-SSIM inside the "
+        "target's region. Peak memory: the largest resident set of any step's process.\n\n";
+  md += "| scene | config | schedule | status | train s | select s | remove s | export s | eval s | total s | peak MiB "
+        "| Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | device |\n";
+  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+  for (const Row& r : rows)
+    md += "| " + md_cell(r.scene) + " | " + r.config + " | " + r.schedule + " | " + r.status + (r.reused ? " (reused)" : "") +
+          " | " + fmt(r.train_s, "%.1f") + " | " + fmt(r.select_s, "%.1f") + " | " + fmt(r.remove_s, "%.1f") + " | " +
+          fmt(r.export_s, "%.1f") + " | " + fmt(r.eval_s, "%.1f") + " | " + fmt(r.total_s(), "%.1f") + " | " +
+          fmt(r.peak_mib, "%.0f") + " | " + fmt(r.gaussians, "%.0f") + " | " + fmt(r.psnr, "%.2f") + " | " +
+          fmt(r.ssim, "%.4f") + " | " + fmt(r.m_psnr, "%.2f") + " | " + fmt(r.m_ssim, "%.4f") + " | " +
+          md_cell(r.device) + " |\n";
+  std::string notes;
+  for (const Row& r : rows) {
+    if (!r.error.empty()) notes += "- " + r.scene + " / " + r.config + " / " + r.schedule + ": **failed**: " + md_cell(r.error) + "\n";
+    if (!r.note.empty()) notes += "- " + r.scene + " / " + r.config + " / " + r.schedule + ": " + md_cell(r.note) + "\n";
+  }
+  if (!notes.empty()) md += "\nNotes:\n\n" + notes;
+
+  std::vector<std::string> scenes;
+  for (const Row& r : rows)
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  // The overall chart: one marker per configuration x schedule, the mean over the scenes where it succeeded.
+  std::vector<Row> means;
+  for (const auto& c : ladder())
+    for (const auto& s : o_.schedules) {
+      Row m;
+      m.config = c.name, m.schedule = s, m.status = "ok", m.psnr = 0;
+      int n = 0;
+      for (const Row& r : rows)
+        if (r.config == c.name && r.schedule == s && r.status == "ok" && std::isfinite(r.psnr)) {
+          m.psnr += r.psnr, m.train_s += r.total_s(), ++n;
+        }
+      if (n == 0) continue;
+      m.psnr /= n, m.train_s /= n;
+      means.push_back(m);
+    }
+  std::vector<std::string> missing;  // charts with nothing to draw
+  const std::string title = scenes.size() == 1 ? "PSNR against time: " + scenes[0]
+                                               : "PSNR against time: mean over " + std::to_string(scenes.size()) + " scenes";
+  if (write_chart(means, title, out_ / "chart")) md += "\n![PSNR against total time](chart.png)\n";
+  else missing.push_back("chart");
+  for (const auto& sc : scenes) {
+    std::vector<Row> mine;
+    for (const Row& r : rows)
+      if (r.scene == sc) mine.push_back(r);
+    if (write_chart(mine, "PSNR against time: " + sc, out_ / ("chart_" + sc))) md += "\n![" + sc + "](chart_" + sc + ".png)\n";
+    else missing.push_back("chart_" + sc);
+  }
+  write_text(out_ / "results.md", md);
+  if (final)
+    for (const auto& m : missing) std::printf("no successful configuration with a PSNR: no %s.svg/png\n", m.c_str());
+}
+
+void Bench::run() {
+  std::vector<const ConfigSpec*> configs;
+  std::stringstream ss(o_.configs);
+  for (std::string name; std::getline(ss, name, ',');) {
+    if (name.empty()) continue;
+    if (name == "all") {
+      for (const auto& c : ladder()) configs.push_back(&c);
+      continue;
+    }
+    const auto it = std::find_if(ladder().begin(), ladder().end(), [&](const ConfigSpec& c) { return c.name == name; });
+    if (it == ladder().end()) throw Error("--configs", "unknown configuration '" + name + "' (baseline, +elt, +ssf, full, distilled, all)");
+    if (std::find(configs.begin(), configs.end(), &*it) == configs.end()) configs.push_back(&*it);
+  }
+  if (configs.empty()) throw Error("--configs", "no configuration named");
+  // Ladder order (the pointers point into ladder()), so that distilled finds full's result when both run.
+  std::sort(configs.begin(), configs.end());
+  std::vector<std::string> schedules;
+  for (const auto& s : o_.schedules)
+    if (std::find(schedules.begin(), schedules.end(), s) == schedules.end()) schedules.push_back(s);
+  o_.schedules = schedules;
+  std::vector<std::pair<std::string, std::string>> scenes;  // name, absolute data path
+  for (const auto& d : o_.data) {
+    if (!fs::is_directory(d)) throw Error(d, "not a data set folder");
+    const fs::path abs = fs::weakly_canonical(fs::absolute(d));
+    std::string name = abs.filename().string();
+    for (int k = 2; std::any_of(scenes.begin(), scenes.end(), [&](const auto& s) { return s.first == name; }); ++k)
+      name = abs.filename().string() + "_" + std::to_string(k);
+    scenes.push_back({name, abs.string()});
+  }
+  if (fs::exists(out_) && !fs::is_directory(out_)) throw Error(out_.string(), "exists and is not a folder");
+  fs::create_directories(out_ / "runs");
+
+  std::vector<Row> rows;
+  for (const auto& [scene, data] : scenes)
+    for (const auto& sched : o_.schedules) {
+      const Schedule s = schedule_of(sched);
+      std::optional<Row> full;
+      for (const ConfigSpec* c : configs) {
+        rows.push_back(run_config(scene, data, s, *c, full ? &*full : nullptr));
+        if (std::string(c->name) == "full") full = rows.back();
+        write_outputs(rows, false);  // a long bench shows its results so far
+      }
+    }
+  std::printf("\n");
+  write_outputs(rows, true);
+  int failed = 0;
+  for (const Row& r : rows) failed += r.status != "ok";
+  std::printf("wrote %s, %s and the charts in %s (%zu rows, %d failed)\n", (out_ / "results.csv").c_str(),
+              (out_ / "results.md").c_str(), out_.c_str(), rows.size(), failed);
+  if (failed) goris::cli::set_exit_code(1);
+}
+
+void setup_bench_pipeline(CLI::App& root) {
+  auto& bench = goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto o = std::make_shared<Options>();
+  auto* c = bench.add_subcommand(
+      "pipeline", "The ablation ladder end to end per scene and schedule: times, memory, PSNR/SSIM, Pareto chart");
+  c->add_option("--data", o->data, "Data set folders (one row block per scene)")->required()->expected(1, -1);
+  c->add_option("--configs", o->configs, "Comma-separated: baseline,+elt,+ssf,full,distilled or all")
+      ->capture_default_str();
+  c->add_option("--out", o->out, "Output folder (results.csv, results.md, chart*.svg/png, runs/)")->required();
+  c->add_option("--schedule", o->schedules, "short (500 iterations), medium (2000), full (30000); repeatable")
+      ->capture_default_str()
+      ->expected(1, -1)
+      ->check(CLI::Validator(
+          [](std::string& s) {  // "tiny" is the CLI test's schedule, left out of the help
+            return s == "short" || s == "medium" || s == "full" || s == "tiny" ? std::string()
+                                                                                 : "unknown schedule '" + s + "'";
+          },
+          "short|medium|full"));
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->callback([o] { Bench(*o).run(); });
+}
+
+}  // namespace
+GORIS_COMMAND(85, setup_bench_pipeline);

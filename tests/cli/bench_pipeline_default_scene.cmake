@@ -1,0 +1,85 @@
+# `goris bench pipeline` on the embedded scene with the hidden seconds-long `tiny` schedule: two rungs of the
+# ladder (baseline, full) each trained, selected, removed and evaluated in child processes; results.csv,
+# results.md and the charts are written; a second run reuses both results; bad names are refused.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
+file(REMOVE_RECURSE "${WORK}")
+set(OUTDIR "${WORK}/bench")
+
+goris_fails("unknown configuration 'nope'" bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,nope
+            --out "${OUTDIR}" --schedule tiny --device cpu)
+goris_fails("not a data set folder" bench pipeline --data "${WORK}/missing" --configs baseline --out "${OUTDIR}"
+            --schedule tiny --device cpu)
+
+goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full --out "${OUTDIR}"
+         --schedule tiny --device cpu)
+foreach(f results.csv results.md chart.svg chart.png chart_default_scene.svg chart_default_scene.png)
+  if(NOT EXISTS "${OUTDIR}/${f}")
+    message(FATAL_ERROR "bench pipeline wrote no ${f}:\n${OUT}")
+  endif()
+endforeach()
+
+file(STRINGS "${OUTDIR}/results.csv" lines)
+list(LENGTH lines n)
+if(NOT n EQUAL 3)
+  message(FATAL_ERROR "results.csv: expected a header and 2 rows, got ${n}:\n${lines}")
+endif()
+list(GET lines 0 header)
+expect_text("${header}" "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim")
+expect_text("${header}" "total_s,peak_host_mib")
+list(GET lines 1 baseline)
+list(GET lines 2 full)
+expect_text("${baseline}" "default_scene,baseline,tiny,ok,cpu,30,10,")
+expect_text("${full}" "default_scene,full,tiny,ok,cpu,30,10,")
+# PSNR is a number (not empty) in both rows.
+foreach(row "${baseline}" "${full}")
+  string(REPLACE "," ";" cells "${row}")
+  list(GET cells 8 psnr)
+  if(NOT psnr MATCHES "^[0-9]+\\.[0-9]+$")
+    message(FATAL_ERROR "no PSNR in row: ${row}")
+  endif()
+endforeach()
+
+file(READ "${OUTDIR}/results.md" md)
+expect_text("${md}" "| default_scene | baseline | tiny | ok |")
+expect_text("${md}" "| default_scene | full | tiny | ok |")
+expect_text("${md}" "![PSNR against total time](chart.png)")
+file(READ "${OUTDIR}/chart.svg" svg)
+expect_text("${svg}" "<svg xmlns=")
+expect_text("${svg}" "Pareto front")
+expect_text("${svg}" "</svg>")
+file(SIZE "${OUTDIR}/chart.png" png_size)
+if(png_size LESS 5000)
+  message(FATAL_ERROR "chart.png is only ${png_size} bytes")
+endif()
+
+# Same options again: nothing reruns.
+goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full --out "${OUTDIR}"
+         --schedule tiny --device cpu)
+expect_text("${OUT}" "default_scene / tiny / baseline: reused")
+expect_text("${OUT}" "default_scene / tiny / full: reused")
+string(FIND "${OUT}" "goris train" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "a reused bench trained again:\n${OUT}")
+endif()
+
+# A configuration that fails (here: a copy of the scene without its training masks, so `goris select --masks`
+# fails) is recorded with its error; the bench goes on, writes its tables and exits non-zero.
+file(COPY "${RESOURCES}/default_scene/" DESTINATION "${WORK}/nomask")
+file(GLOB masks "${WORK}/nomask/train/mask_*.png")
+file(REMOVE ${masks})
+execute_process(COMMAND "${GORIS}" bench pipeline --data "${WORK}/nomask" --configs baseline,full
+                        --out "${WORK}/failing" --schedule tiny --device cpu
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "a bench with failed configurations exited 0:\n${out}")
+endif()
+file(STRINGS "${WORK}/failing/results.csv" lines)
+list(LENGTH lines n)
+if(NOT n EQUAL 3)
+  message(FATAL_ERROR "the failed configurations are not both in results.csv:\n${lines}")
+endif()
+list(GET lines 2 row)
+expect_text("${row}" "nomask,full,tiny,failed,")
+expect_text("${row}" "select failed (exit code 1): error: masks:")
+file(READ "${WORK}/failing/results.md" md)
+expect_text("${md}" "**failed**: select failed")
