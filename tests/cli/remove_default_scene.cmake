@@ -81,3 +81,14 @@ string(FIND "${ERR}" "(cached)" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "the second run did not reuse the inpainted maps:\n${ERR}")
 endif()
+
+# Bad input leaves what is there intact: an inpainter that fails (the error names the command), and a
+# radiance run whose labels were never learned (no selection: the error points to goris select).
+goris_fails("false" remove "${RUN}" --iters 20 --device cpu --inpainter "cmd:false {image} {mask} {out}")
+if(NOT EXISTS "${R}/point_cloud.ply" OR NOT EXISTS "${R}/report.json")
+  message(FATAL_ERROR "a failed removal lost the earlier result")
+endif()
+set(RAD "${WORK}/radiance")
+goris_ok(train "${RESOURCES}/default_scene" --out "${RAD}" --mode radiance --iters 20 --resolution 64 --device cpu
+         --init-points 2000 --checkpoint-every 0)
+goris_fails("goris select" remove "${RAD}" --iters 5 --device cpu)
