@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "render/raster/lane_hit_cpu.h"
 #include "render/raster/lanes_cpu.h"
 #include "render/raster/raster_cpu.h"
 #include "render/raster/raster_pipeline.h"
@@ -36,15 +37,10 @@ void blend_lanes(const SplatView<T>& s, const T* val, int K, std::uint32_t k, in
   using V = LaneV<T>;
   using M = LaneM<T>;
   const int p = ly * kTileSize + lx0;
-  const V dx = s.mean.x - lane_iota(px0);
-  const V dy = lane_splat(s.mean.y - py);
-  const V power = hit_power(s.conic, dx, dy);
-  M m = lane_mask<T>(cols) & ~(power > T(0));
-  const V G = lane_exp(lane_select(m, power, V{}));
-  const V oG = s.opacity * G;
-  const V alpha = lane_select(oG < BlendConst<T>::alpha_max, oG, lane_splat(BlendConst<T>::alpha_max));
-  m &= ~(alpha < BlendConst<T>::alpha_min);
+  const LaneHit<T> h = lane_hit(s, px0, py, cols);
+  M m = h.m;
   if (!lane_bits<T>(m)) return;
+  const V &dx = h.dx, &dy = h.dy, &alpha = h.alpha;
   const V Tp = lane_load(&t.trans[p]);
   const V test_T = Tp * (T(1) - alpha);
   const unsigned stop = lane_bits<T>(m & (test_T < BlendConst<T>::T_min));

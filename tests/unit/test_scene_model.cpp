@@ -12,6 +12,7 @@
 #include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
+#include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
@@ -31,23 +32,12 @@ GaussianModel random_model(size_t n, std::uint64_t seed) {
 }
 
 Camera look_at_camera(glm::vec3 eye, glm::vec3 target, int w, int h, float f) {
-  Camera c;
+  Camera c = goris::test::look_at(eye, target, w, 90.0f);  // the pose; then the requested intrinsics
   c.width = w;
   c.height = h;
   c.fx = c.fy = f;
   c.cx = w * 0.5f;
   c.cy = h * 0.5f;
-  const glm::vec3 z = glm::normalize(target - eye);
-  const glm::vec3 x = glm::normalize(glm::cross(z, glm::vec3(0, 0, 1)));
-  const glm::vec3 y = glm::cross(z, x);
-  glm::mat3 R;  // rows x, y, z (world -> camera)
-  for (int k = 0; k < 3; ++k) {
-    R[k][0] = x[k];
-    R[k][1] = y[k];
-    R[k][2] = z[k];
-  }
-  c.R = R;
-  c.t = -(R * eye);
   return c;
 }
 
