@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/goris/command.h"
+#include "core/io/json_file.h"
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/io/image.h"
@@ -182,8 +183,7 @@ void run_eval(const Options& o) {
   j["per_view"] = per_view;
 
   const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
-  const std::string text = j.dump(2) + "\n";
-  write_file_bytes(out, text.data(), text.size());
+  write_json_file(out, j);
   std::printf("%s split (%zu views at %dx%d, gt %s): PSNR %.2f dB  SSIM %.4f", o.split.c_str(), views.size(),
               views[0].camera.width, views[0].camera.height, o.gt.c_str(), mean_of(psnrs), mean_of(ssims));
   if (!m_psnrs.empty()) std::printf("  M-PSNR %.2f dB  M-SSIM %.4f (%zu views)", mean_of(m_psnrs), mean_of(m_ssims), m_psnrs.size());

@@ -1,3 +1,4 @@
+#include "core/io/json_file.h"
 #include "core/removal/selection_file.h"
 
 #include <cmath>
@@ -65,8 +66,7 @@ void write_selection(const fs::path& json_path, SelectionRecord record, const Se
   j["model_fingerprint"] = record.model_fingerprint;
   j["selected"] = record.selected;
   j["mask_file"] = record.mask_file;
-  const std::string text = j.dump(2) + "\n";
-  write_file_bytes(json_path, text.data(), text.size());
+  write_json_file(json_path, j);
 }
 
 StoredSelection read_selection_file(const fs::path& json_path, const GaussianModel& model) {

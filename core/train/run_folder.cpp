@@ -1,3 +1,4 @@
+#include "core/io/json_file.h"
 #include "core/train/run_folder.h"
 
 #include <fstream>
@@ -15,8 +16,7 @@ std::filesystem::path run_config_path(const std::filesystem::path& run_dir) { re
 std::filesystem::path run_ply_path(const std::filesystem::path& run_dir) { return run_dir / "point_cloud.ply"; }
 
 void write_run_config(const std::filesystem::path& run_dir, const TrainConfig& config) {
-  const std::string text = nlohmann::json(config).dump(2) + "\n";
-  write_file_bytes(run_config_path(run_dir), text.data(), text.size());
+  write_json_file(run_config_path(run_dir), nlohmann::json(config));
 }
 
 TrainConfig read_run_config(const std::filesystem::path& run_dir) {

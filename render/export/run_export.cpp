@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/io/json_file.h"
 #include "core/compute/memory.h"
 #include "core/io/file_bytes.h"
 #include "core/io/image.h"
@@ -39,8 +40,7 @@ nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 void write_json(const fs::path& path, const nlohmann::json& j) {
-  const std::string text = j.dump(2) + "\n";
-  write_file_bytes(path, text.data(), text.size());
+  write_json_file(path, j);
 }
 
 void create_folder(const fs::path& dir, const fs::path& for_what) {

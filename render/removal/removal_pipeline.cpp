@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/io/json_file.h"
 #include "core/inpaint/harmonic_inpainter.h"
 #include "core/inpaint/inpainter.h"
 #include "core/io/dataset.h"
@@ -261,8 +262,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                    {"mask_pixels", count_set(holes[std::size_t(v)].mask)},
                    {"angle_threshold_deg", choice.angle_threshold[k]}});
     }
-    const std::string text = j.dump(2) + "\n";
-    write_file_bytes(out / "reference.json", text.data(), text.size());
+    write_json_file(out / "reference.json", j);
     s.finish(std::to_string(choice.views.size()) + " views");
   }
 
@@ -324,8 +324,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       }
     }
     if (!cached) {
-      const std::string text = opts.dump(2) + "\n";
-      write_file_bytes(opts_path, text.data(), text.size());
+      write_json_file(opts_path, opts);
     }
     s.finish();
   }
@@ -421,8 +420,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["peak_host_memory_mib"] = peak_host_memory_mib();
     s.finish("done");
     for (int k = 0; k < kRemovalStepCount; ++k) j["seconds"][removal_step_name(RemovalStep(k))] = report.seconds[k];
-    const std::string text = j.dump(2) + "\n";
-    write_file_bytes(out / "report.json", text.data(), text.size());
+    write_json_file(out / "report.json", j);
   }
   return report;
 }
