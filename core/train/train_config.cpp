@@ -22,6 +22,9 @@ void visit_fields(Config& c, F&& f) {
   f("downscale", c.downscale);
   f("resolution", c.resolution);
   f("background", c.background);
+  f("use_glossy_masks", c.use_glossy_masks);
+  f("use_object_masks", c.use_object_masks);
+  f("max_train_views", c.max_train_views);
   f("random_init_points", c.random_init_points);
   f("random_init_box_ratio", c.random_init_box_ratio);
   f("lr_position_init", c.lr.position_init);
@@ -97,6 +100,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (device != "auto" && device != "cpu" && device != "cuda") fail("device must be auto, cpu or cuda");
   if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
   if (resolution < 0) fail("resolution must be positive (or 0 for none)");
+  if (max_train_views < 0) fail("max_train_views must be >= 0 (0 = all views)");
   if (random_init_points < 1) fail("random_init_points must be at least 1");
   if (!(random_init_box_ratio > 0)) fail("random_init_box_ratio must be positive");
   if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");

@@ -65,6 +65,12 @@ struct TrainConfig {
   float downscale = 1.0f;       // --downscale
   int resolution = 0;           // --resolution: target width in pixels (0 = use downscale)
   glm::vec3 background{0.0f};   // RGBA images composited on it; also the renderer's background
+  // What of the data set to use (the stability bench's failure cases): the glossy masks (--mode auto then
+  // detects glossy regions itself), the object masks, and at most this many training views (0 = all; a
+  // subset is spread evenly over the views in file order).
+  bool use_glossy_masks = true;
+  bool use_object_masks = true;
+  int max_train_views = 0;
 
   // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
   int random_init_points = 100000;

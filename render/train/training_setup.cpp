@@ -22,6 +22,20 @@ std::optional<ResumePoint> read_latest_checkpoint(const fs::path& run_dir) {
   return ResumePoint{*ck, read_checkpoint(*ck, Device::CPU)};
 }
 
+void select_training_data(const TrainConfig& config, Dataset& dataset) {
+  std::vector<View>& train = dataset.train;
+  if (config.max_train_views > 0 && std::size_t(config.max_train_views) < train.size()) {
+    std::vector<View> kept;  // evenly spread: view round(i * n / k)
+    const std::size_t n = train.size(), k = std::size_t(config.max_train_views);
+    for (std::size_t i = 0; i < k; ++i) kept.push_back(train[(i * n) / k]);
+    train = std::move(kept);
+  }
+  for (View& v : train) {
+    if (!config.use_glossy_masks) v.glossy_mask.reset();
+    if (!config.use_object_masks) v.object_mask.reset();
+  }
+}
+
 PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, std::optional<ResumePoint> resumed,
                                   const std::function<void(std::size_t, std::size_t)>& on_view) {
   config.validate("training options");
@@ -30,6 +44,7 @@ PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, s
   const DatasetOptions dopt = dataset_options(config);
   p.dataset = load_dataset(config.data, dopt);
   if (p.dataset.train.empty()) throw Error(config.data, "the data set has no training views");
+  select_training_data(config, p.dataset);
   if (config.mode == "auto") {
     // Intrinsic when the data set has glossy masks (what the intrinsic losses need).
     const bool glossy = std::any_of(p.dataset.train.begin(), p.dataset.train.end(),

@@ -42,6 +42,10 @@ struct PreparedTraining {
   std::string initial_model;
 };
 
+// Applies config.use_glossy_masks / use_object_masks / max_train_views to the loaded data set's training
+// views (prepare_training calls it; the views' mask paths are dropped, the subset is spread evenly).
+void select_training_data(const TrainConfig& config, Dataset& dataset);
+
 // `config` names the data set and the iteration target (it is validated here); `resumed` continues from a
 // checkpoint (its state moves into the trainer, placed on the configured device) instead of initialising.
 // Creates RUN/checkpoints. `on_view` is told (index, count) as each training image loads. Throws
