@@ -5,6 +5,7 @@
 
 #include "core/compute/device.h"
 #include "core/train/checkpoint.h"
+#include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "ui/panel_layout.h"
 #include "ui/train_options.h"
@@ -137,8 +138,13 @@ fs::path AppState::current_run() const {
 
 void AppState::find_removal_masks() {
   removal_masks_dir_.clear();
+  removal_result_.clear();
   const fs::path run = current_run();
   if (run.empty()) return;
+  // A cleaned scene is a run folder of its own once stage 2 has written its model.
+  const fs::path cleaned = run / "removal";
+  if (fs::exists(cleaned / "config.json") && (fs::exists(run_ply_path(cleaned)) || latest_checkpoint(cleaned)))
+    removal_result_ = cleaned;
   auto has_masks = [](const fs::path& d) {
     return fs::is_directory(d / "lighting_masks") || fs::is_directory(d / "inpaint_masks");
   };
@@ -173,6 +179,11 @@ void AppState::poll() {
   if (removal_.runs_ended() != removal_runs_seen_) {
     removal_runs_seen_ = removal_.runs_ended();
     find_removal_masks();
+  }
+  if (exporter_.runs_ended() != export_runs_seen_) {
+    export_runs_seen_ = exporter_.runs_ended();
+    const ExportState es = exporter_.state();
+    message(std::string("export ") + export_state_name(es) + ": " + exporter_.status(), es == ExportState::Error);
   }
 }
 
@@ -369,6 +380,45 @@ void AppState::start_removal(int iterations) {
   message("removing in " + (run / "removal").string() +
           (sel.mask ? " (the selection: " + std::to_string(sel.selected) + " Gaussians)"
                     : " (no selection: RUN/selection.json or the learned labels)"));
+}
+
+fs::path AppState::export_source() const {
+  if (export_from_removal && !removal_result_.empty()) return removal_result_;
+  return current_run();
+}
+
+ExportRequest AppState::export_request() const {
+  const StudioSettings& s = settings_;
+  ExportRequest r;
+  r.run_dir = export_source();
+  // Relative choices lie inside the exported run folder, so each run keeps its own exports.
+  auto place = [&](bool wanted, const std::string& path, const char* what) -> fs::path {
+    if (!wanted) return {};
+    if (path.empty()) throw Error(std::string("export: the ") + what + " is chosen but its path is empty");
+    const fs::path p(path);
+    return p.is_absolute() ? p : r.run_dir / p;
+  };
+  r.ply = place(s.export_ply, s.export_ply_path, "intrinsic PLY");
+  r.baked = place(s.export_baked, s.export_baked_path, "baked PLY");
+  r.renders = place(s.export_renders, s.export_renders_dir, "renders folder");
+  r.baked_iterations = s.export_baked_iterations;
+  r.render_path = parse_render_path(s.export_render_path);
+  r.frames = s.export_frames;
+  r.device = s.train_device;
+  return r;
+}
+
+void AppState::start_export() {
+  if (export_source().empty()) throw Error("export: no run to export (train a model, or open a run folder)");
+  if (training_active())
+    throw Error("export: the model changes while it trains: stop the training first (the export reads the run's "
+                "latest checkpoint)");
+  if (removal_.active() && export_source() == removal_result_)
+    throw Error("export: the removal is still writing the cleaned scene: wait for it or cancel it");
+  const ExportRequest r = export_request();
+  exporter_.start(r);
+  export_runs_seen_ = exporter_.runs_ended();
+  message("exporting " + r.run_dir.string());
 }
 
 }  // namespace goris::ui

@@ -15,6 +15,7 @@
 #include "core/io/camera.h"
 #include "ui/channels.h"
 #include "ui/display_frame.h"
+#include "ui/export_job.h"
 #include "ui/model_snapshot.h"
 #include "ui/orbit_camera.h"
 #include "ui/removal_session.h"
@@ -104,6 +105,24 @@ class AppState {
   // RUN/removal (or the opened cleaned scene itself) when it holds stage 2's masks; empty otherwise.
   const std::filesystem::path& removal_masks_dir() const { return removal_masks_dir_; }
 
+  // --- Export (ui/export_job.h) of the current run or of its cleaned scene ---
+  ExportJob& exporter() { return exporter_; }
+  const ExportJob& exporter() const { return exporter_; }
+  bool show_export_dialog = false;   // File > Export..., the Removal panel's Export, `export_dialog`
+  bool export_from_removal = false;  // the dialog's source: the run, or its stage-2 result RUN/removal
+  // RUN/removal of the current run when it holds a cleaned scene (a run folder with a model); else empty.
+  const std::filesystem::path& removal_result() const { return removal_result_; }
+  // The run folder an export reads: removal_result() when chosen and present, else current_run().
+  std::filesystem::path export_source() const;
+  // What the dialog's fields (the settings' export_* choices) ask for; relative paths are taken inside
+  // export_source(). Throws goris::Error for a chosen part whose path is empty or an unknown render path.
+  ExportRequest export_request() const;
+  // The dialog's Export button (and the script's `export`): starts export_request() on the worker. Throws
+  // goris::Error when nothing can be exported now (no run, training runs, an export runs, a bad choice).
+  void start_export();
+  // Whether poll() has taken in the end of the last export (its message).
+  bool export_reported() const { return exporter_.runs_ended() == export_runs_seen_; }
+
   // --- View ---
   OrbitCamera orbit;
   std::optional<Camera> snapped;  // the exact data set camera, until the view moves
@@ -168,6 +187,9 @@ class AppState {
   RemovalSession removal_;
   std::uint64_t removal_runs_seen_ = 0;
   std::filesystem::path removal_masks_dir_;
+  std::filesystem::path removal_result_;
+  ExportJob exporter_;  // reads its own copy of the run from disk: nothing shared with the display
+  std::uint64_t export_runs_seen_ = 0;
   std::string last_message_;
   bool last_message_error_ = false;
 };

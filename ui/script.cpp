@@ -37,6 +37,13 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::RemoveWait, "remove_wait"},
                                {Kind::RemoveCancel, "remove_cancel"},
                                {Kind::ExpectStepComplete, "expect_step_complete"},
+                               {Kind::ExportDialog, "export_dialog"},
+                               {Kind::ExportFrom, "export_from"},
+                               {Kind::Export, "export"},
+                               {Kind::ExportStart, "export_start"},
+                               {Kind::ExportWait, "export_wait"},
+                               {Kind::ExportCancel, "export_cancel"},
+                               {Kind::ExpectExportError, "expect_export_error"},
                                {Kind::Compare, "compare"},
                                {Kind::Screenshot, "screenshot"},
                                {Kind::ScreenshotNow, "screenshot_now"},
@@ -54,6 +61,33 @@ std::vector<std::string> split_words(const std::string& s) {
   std::vector<std::string> words;
   std::istringstream in(s);
   for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+// Words, where a double-quoted string (spaces allowed) is one word without its quotes; an unmatched
+// quote sets `problem`.
+std::vector<std::string> split_quoted(const std::string& s, std::string& problem) {
+  std::vector<std::string> words;
+  size_t i = 0;
+  while (i < s.size()) {
+    if (s[i] == ' ' || s[i] == '\t' || s[i] == '\r') {
+      ++i;
+      continue;
+    }
+    if (s[i] == '"') {
+      const size_t end = s.find('"', i + 1);
+      if (end == std::string::npos) {
+        problem = "unmatched double quote";
+        return words;
+      }
+      words.push_back(s.substr(i + 1, end - i - 1));
+      i = end + 1;
+      continue;
+    }
+    const size_t end = s.find_first_of(" \t\r", i);
+    words.push_back(s.substr(i, end == std::string::npos ? std::string::npos : end - i));
+    i = end == std::string::npos ? s.size() : end;
+  }
   return words;
 }
 
@@ -188,6 +222,51 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
       p.expect_args(args, 0, 1, a.kind == Kind::Remove ? "remove [ITERS]" : "remove_start [ITERS]");
       a.count = args.empty() ? 0 : p.integer(args[0], 1, 100000000, "iteration count");
       break;
+    case Kind::ExportDialog:
+      p.expect_args(args, 0, 1, "export_dialog [open|close]");
+      a.what = args.empty() ? "open" : args[0];
+      if (a.what != "open" && a.what != "close") p.fail("expected open or close, not '" + a.what + "'");
+      break;
+    case Kind::ExportFrom:
+      p.expect_args(args, 1, 1, "export_from run|removal");
+      a.what = args[0];
+      if (a.what != "run" && a.what != "removal") p.fail("expected run or removal, not '" + a.what + "'");
+      break;
+    case Kind::Export:
+    case Kind::ExportStart: {
+      std::string problem;
+      const std::vector<std::string> w = split_quoted(rest, problem);
+      if (!problem.empty()) p.fail(problem);
+      const char* usage =
+          "export | export ply PATH | export baked PATH [ITERS] | export renders DIR [test|train|orbit] [N]";
+      if (w.empty()) break;  // the dialog's choices as they are
+      if (w.size() < 2) p.fail(std::string("expected '") + usage + "'");
+      a.what = w[0];
+      a.path = w[1];
+      if (a.path.empty()) p.fail("expected a path");
+      if (a.what == "ply") {
+        if (w.size() != 2) p.fail("expected 'export ply PATH'");
+      } else if (a.what == "baked") {
+        if (w.size() > 3) p.fail("expected 'export baked PATH [ITERS]'");
+        if (w.size() == 3) a.count = p.integer(w[2], 1, 100000000, "iteration count");
+      } else if (a.what == "renders") {
+        size_t k = 2;
+        if (k < w.size() && (w[k] == "test" || w[k] == "train" || w[k] == "orbit")) a.render_path = w[k++];
+        if (k < w.size()) a.count = p.integer(w[k++], 0, 100000, "frame count");
+        if (k != w.size()) p.fail("expected 'export renders DIR [test|train|orbit] [N]'");
+      } else {
+        p.fail("unknown export '" + a.what + "' (ply, baked, renders)");
+      }
+      break;
+    }
+    case Kind::ExpectExportError: {
+      a.text = trim(rest);
+      if (a.text.size() >= 2 && a.text.front() == '"' && a.text.back() == '"')
+        a.text = a.text.substr(1, a.text.size() - 2);
+      break;
+    }
+    case Kind::ExportWait:
+    case Kind::ExportCancel:
     case Kind::SelectLabels:
     case Kind::SelectMasks:
     case Kind::Undo:

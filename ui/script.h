@@ -25,6 +25,19 @@
 //   remove_wait                waits for the running removal; fails unless it completes
 //   remove_cancel              cancels the running removal and waits until it has stopped
 //   expect_step_complete       fails unless every stage-2 step of the last removal reached 100 %
+//   export_dialog [open|close] show or hide the Export dialog (File > Export...; default: open)
+//   export_from run|removal    what the dialog exports: the run, or its cleaned scene RUN/removal
+//   export                     the Export dialog's button with its choices as they are (the remembered
+//                              settings); waits like the lines below
+//   export ply PATH            the Export dialog's button with only "intrinsic PLY" chosen, to PATH
+//   export baked PATH [ITERS]  ... only "baked PLY" (ITERS distillation iterations; default: the dialog's)
+//   export renders DIR [test|train|orbit] [N]   ... only "renders" (default: test, N = 0: every view;
+//                              orbit: N frames, 0 = 36); each `export` waits until it has finished and fails
+//                              when it fails or is cancelled
+//   export_start [WHAT ...]    the same as `export`, going on at once (progress screenshots, cancelling)
+//   export_wait                waits for the running export; fails unless it completes
+//   export_cancel              cancels the running export and waits until it has stopped
+//   expect_export_error [TEXT] waits for the export to end; fails unless it failed with TEXT in its message
 //   compare MODE [SPLIT]       off | side_by_side | slider (SPLIT in 0..1 for the slider)
 //   screenshot PATH            the whole window as PNG, plus PATH's stem + .layout.json (viewport rectangles),
 //                              once nothing runs and the display has settled
@@ -32,8 +45,9 @@
 //   wait_frames N              let N frames pass
 //   quit                       close the editor (exit status 0)
 //
-// PATH is the rest of the line (it may contain spaces; surrounding double quotes are removed); relative
-// paths are taken from the current directory. X and Y may be given in percent of the image ("45%").
+// PATH is the rest of the line (it may contain spaces; surrounding double quotes are removed), except in
+// `export` lines, where PATH is one word or a double-quoted string; relative paths are taken from the
+// current directory. X and Y may be given in percent of the image ("45%").
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -46,15 +60,20 @@ namespace goris::ui {
 struct ScriptAction {
   enum class Kind {
     Open, Out, Set, Train, Grid, Panels, Channel, Snap, Click, SelectClick, SelectGrow, SelectLabels, SelectMasks, Undo, Redo,
-    SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, Compare, Screenshot,
-    ScreenshotNow, WaitFrames, Quit
+    SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, ExportDialog, ExportFrom,
+    Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, Screenshot, ScreenshotNow,
+    WaitFrames, Quit
   };
   Kind kind = Kind::Quit;
   int line = 0;            // 1-based line in the script
-  std::string path;        // open, out, screenshot
+  std::string path;        // open, out, screenshot, export
+  std::string what;        // export: ply | baked | renders ("": the dialog's choices); export_from: run | removal;
+                           // export_dialog: open | close
+  std::string render_path = "test";  // export renders
+  std::string text;        // expect_export_error
   std::vector<std::string> names;  // panels
   std::string key, value;  // set
-  int count = 0;           // train, grid, wait_frames, remove (0 = default)
+  int count = 0;           // train, grid, wait_frames, remove, export (0 = default)
   int viewport = -1;       // channel: -1 = main, else grid tile index
   Channel channel = Channel::Final;
   int camera = 0;           // snap

@@ -182,6 +182,53 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       std::fflush(stdout);
       return true;
     }
+    case Kind::ExportDialog:
+      if (phase_ == 0) {
+        st.show_export_dialog = a.what == "open";
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::ExportFrom:
+      if (a.what == "removal" && st.removal_result().empty())
+        throw Error("the current run has no cleaned scene (RUN/removal with a model): remove first");
+      st.export_from_removal = a.what == "removal";
+      return true;
+    case Kind::Export:
+      if (phase_ == 0) {
+        if (!host.settled()) return false;
+        start_export(st, a);
+        phase_ = 1;
+        return false;
+      }
+      return wait_export(host, a, ExportState::Done);
+    case Kind::ExportStart:
+      if (!host.settled()) return false;
+      start_export(st, a);
+      return true;
+    case Kind::ExportWait:
+      if (phase_ == 0) {
+        if (st.exporter().state() == ExportState::Idle) throw Error("no export was started");
+        phase_ = 1;
+      }
+      return wait_export(host, a, ExportState::Done);
+    case Kind::ExportCancel:
+      if (phase_ == 0) {
+        if (!st.exporter().active()) throw Error("no export is running");
+        st.exporter().cancel();
+        phase_ = 1;
+      }
+      return wait_export(host, a, ExportState::Cancelled);
+    case Kind::ExpectExportError:
+      if (phase_ == 0) {
+        if (st.exporter().state() == ExportState::Idle) throw Error("no export was started");
+        phase_ = 1;
+      }
+      if (!wait_export(host, a, ExportState::Error)) return false;
+      if (st.exporter().status().find(a.text) == std::string::npos) {
+        fail(a, "the export failed with '" + st.exporter().status() + "', which does not contain '" + a.text + "'");
+        return false;
+      }
+      return true;
     case Kind::Screenshot:
     case Kind::ScreenshotNow:
       if (phase_ == 0) {
@@ -252,6 +299,48 @@ bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a, bool star
     }
     std::printf("removal %s (%.1f s)\n", st.removal().status().c_str(), st.removal().elapsed_s());
     std::fflush(stdout);
+    phase_ = 2;
+  }
+  return host.settled();
+}
+
+void ScriptRunner::start_export(AppState& st, const ScriptAction& a) {
+  if (a.what.empty()) {  // the button as the dialog stands
+    st.start_export();
+    return;
+  }
+  StudioSettings& set = st.settings();
+  set.export_ply = a.what == "ply";
+  set.export_baked = a.what == "baked";
+  set.export_renders = a.what == "renders";
+  const std::string path = fs::absolute(a.path).lexically_normal().string();  // scripts: from the current folder
+  if (set.export_ply) set.export_ply_path = path;
+  if (set.export_baked) {
+    set.export_baked_path = path;
+    if (a.count > 0) set.export_baked_iterations = a.count;
+  }
+  if (set.export_renders) {
+    set.export_renders_dir = path;
+    set.export_render_path = a.render_path;
+    set.export_frames = a.count;
+  }
+  st.start_export();
+}
+
+bool ScriptRunner::wait_export(ScriptHost& host, const ScriptAction& a, ExportState expect) {
+  AppState& st = host.state();
+  if (phase_ == 1) {
+    if (st.exporter().active()) return false;
+    const ExportState s = st.exporter().state();
+    if (s != expect) {
+      fail(a, std::string("the export ended ") + export_state_name(s) + " (expected " + export_state_name(expect) +
+                  "): " + st.exporter().status());
+      return false;
+    }
+    if (s == ExportState::Done) {
+      std::printf("export: %s (%.1f s)\n", st.exporter().result().summary.c_str(), st.exporter().elapsed_s());
+      std::fflush(stdout);
+    }
     phase_ = 2;
   }
   return host.settled();

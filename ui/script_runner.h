@@ -65,6 +65,11 @@ class ScriptRunner {
                           const std::function<std::uint64_t()>& start);
   // Starts the removal (or, with !start, takes the running one) and waits until it has ended.
   bool run_remove(ScriptHost& host, const ScriptAction& a, bool start);
+  // Sets the Export dialog's choices to the line's one part (if it names one) and presses its Export button.
+  static void start_export(AppState& st, const ScriptAction& a);
+  // Waits until the running (or, with !started_here, the last) export has ended and the display settled;
+  // `expect` is the state it must end in.
+  bool wait_export(ScriptHost& host, const ScriptAction& a, ExportState expect);
   void fail(const ScriptAction& a, const std::string& problem);
 
   std::vector<ScriptAction> actions_;

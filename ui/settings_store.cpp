@@ -93,6 +93,15 @@ StudioSettings load_settings(const fs::path& path) {
   read_key(j, "removal_iterations", s.removal_iterations, path);
   read_key(j, "removal_ablate_material", s.removal_ablate_material, path);
   read_key(j, "removal_ablate_lamask", s.removal_ablate_lamask, path);
+  read_key(j, "export_ply", s.export_ply, path);
+  read_key(j, "export_baked", s.export_baked, path);
+  read_key(j, "export_renders", s.export_renders, path);
+  read_key(j, "export_ply_path", s.export_ply_path, path);
+  read_key(j, "export_baked_path", s.export_baked_path, path);
+  read_key(j, "export_renders_dir", s.export_renders_dir, path);
+  read_key(j, "export_baked_iterations", s.export_baked_iterations, path);
+  read_key(j, "export_render_path", s.export_render_path, path);
+  read_key(j, "export_frames", s.export_frames, path);
 
   check_range(s.window_width, 320, 16384, "window_width", path);
   check_range(s.window_height, 240, 16384, "window_height", path);
@@ -102,6 +111,9 @@ StudioSettings load_settings(const fs::path& path) {
   check_range(s.train_init_points, 1, 100000000, "train_init_points", path);
   check_range(int(s.grid_channels.size()), 0, 8, "grid_channels (count)", path);
   check_range(s.removal_iterations, 0, 10000000, "removal_iterations", path);
+  check_range(s.export_baked_iterations, 1, 10000000, "export_baked_iterations", path);
+  check_range(s.export_frames, 0, 100000, "export_frames", path);
+  check_member(s.export_render_path, {"test", "train", "orbit"}, "export_render_path", path);
   if (s.removal_inpainter.empty()) throw Error(path.string(), "'removal_inpainter' is empty");
   check_channel(s.main_channel, "main_channel", path);
   for (const std::string& c : s.grid_channels) check_channel(c, "grid_channels", path);
@@ -133,7 +145,16 @@ void save_settings(const fs::path& path, const StudioSettings& s) {
                   {"removal_inpainter", s.removal_inpainter},
                   {"removal_iterations", s.removal_iterations},
                   {"removal_ablate_material", s.removal_ablate_material},
-                  {"removal_ablate_lamask", s.removal_ablate_lamask}};
+                  {"removal_ablate_lamask", s.removal_ablate_lamask},
+                  {"export_ply", s.export_ply},
+                  {"export_baked", s.export_baked},
+                  {"export_renders", s.export_renders},
+                  {"export_ply_path", s.export_ply_path},
+                  {"export_baked_path", s.export_baked_path},
+                  {"export_renders_dir", s.export_renders_dir},
+                  {"export_baked_iterations", s.export_baked_iterations},
+                  {"export_render_path", s.export_render_path},
+                  {"export_frames", s.export_frames}};
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   if (ec) throw Error(path.parent_path().string(), "cannot create the folder: " + ec.message());

@@ -27,6 +27,15 @@ struct StudioSettings {
   int removal_iterations = 0;               // fine-tune iterations; 0 = the pipeline's default
   bool removal_ablate_material = false;     // RGB-only inpainting
   bool removal_ablate_lamask = false;       // no lighting-aware mask
+  // Export dialog (as `goris export`): which parts, where (relative paths lie inside the exported run
+  // folder, absolute ones are used as they are), the distillation length and the render cameras.
+  bool export_ply = true, export_baked = false, export_renders = false;
+  std::string export_ply_path = "export/model.ply";
+  std::string export_baked_path = "export/baked.ply";
+  std::string export_renders_dir = "export/renders";
+  int export_baked_iterations = 2000;
+  std::string export_render_path = "test";  // test | train | orbit
+  int export_frames = 0;                    // orbit: frame count (0 = 36); test / train: views (0 = all)
 
   static constexpr size_t kMaxRecent = 10;
   // Moves `path` to the front of the recent list (no duplicates, at most kMaxRecent).

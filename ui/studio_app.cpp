@@ -120,7 +120,7 @@ bool StudioApp::busy() const {
   const SessionState s = state_->session().state();
   if (s == SessionState::Running || s == SessionState::Stopping) return true;
   if (state_->opening() || !worker_->idle() || stable_frames_ < 3) return true;
-  if (state_->removal().active() || state_->selection().busy()) return true;
+  if (state_->removal().active() || state_->selection().busy() || state_->exporter().active()) return true;
   return ImGui::IsAnyMouseDown() || glfwGetKey(window_->handle(), GLFW_KEY_W) == GLFW_PRESS ||
          glfwGetKey(window_->handle(), GLFW_KEY_A) == GLFW_PRESS ||
          glfwGetKey(window_->handle(), GLFW_KEY_S) == GLFW_PRESS ||
@@ -182,7 +182,7 @@ void StudioApp::frame() {
   DisplaySignature sig{textures_.version,       state_->model_version(), state_->selection().version(),
                        state_->main_channel,    state_->grid_channels,   state_->compare,
                        state_->compare_split,   settings_.show_grid,     settings_.show_sidebar,
-                       state_->label_overlay};
+                       state_->label_overlay,   state_->show_export_dialog};
   if (sig != display_signature_) {
     display_signature_ = std::move(sig);
     stable_frames_ = 0;
@@ -202,6 +202,7 @@ void StudioApp::frame() {
   if (settings_.show_sidebar) draw_sidebar();
   draw_viewports();
   draw_status();
+  export_dialog_.draw(*state_);
   if (settings_.show_debug_overlay) draw_debug_overlay();
   window_->render();
   if (screenshot_path_) take_screenshot();
@@ -364,6 +365,7 @@ bool StudioApp::settled() const {
     return false;
   if (!worker_->idle()) return false;
   if (state_->selection().busy() || state_->removal().active() || !state_->removal_reported()) return false;
+  if (state_->exporter().active() || !state_->export_reported()) return false;
   // What the frame loop last looked at is still current (an edit may have finished since).
   if (state_->selection().version() != display_signature_.selection ||
       state_->model_version() != display_signature_.model)

@@ -11,6 +11,7 @@
 
 #include "ui/app_state.h"
 #include "ui/channel_renderer.h"
+#include "ui/export_dialog.h"
 #include "ui/frame_limiter.h"
 #include "ui/frame_textures.h"
 #include "ui/panels/panel.h"
@@ -80,6 +81,7 @@ class StudioApp final : public ScriptHost {
   Viewport main_{-1};
   std::vector<std::unique_ptr<Viewport>> grid_;
   std::vector<std::unique_ptr<Panel>> panels_;
+  ExportDialog export_dialog_;
   std::optional<std::vector<bool>> panels_open_;  // set by a script: applied at the next sidebar draw
   std::unique_ptr<ScriptRunner> script_;
   FrameLimiter limiter_;
@@ -112,7 +114,7 @@ class StudioApp final : public ScriptHost {
     std::vector<Channel> grid;
     CompareMode compare = CompareMode::Off;
     float split = 0;
-    bool grid_shown = false, sidebar = false, label_overlay = false;
+    bool grid_shown = false, sidebar = false, label_overlay = false, export_dialog = false;
     bool operator==(const DisplaySignature&) const = default;
   };
   DisplaySignature display_signature_;

@@ -27,6 +27,9 @@ void StudioApp::draw_menu() {
         }
       ImGui::EndMenu();
     }
+    if (ImGui::MenuItem("Export...", nullptr, false, !state_->current_run().empty() || state_->exporter().active()))
+      state_->show_export_dialog = true;
+    ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) quit();
     ImGui::EndMenu();
   }
@@ -83,6 +86,8 @@ void StudioApp::draw_status() {
   const TrainerSession& s = state_->session();
   if (state_->removal().active())
     ImGui::Text("[removal %s]", removal_state_name(state_->removal().state()));
+  else if (state_->exporter().active())
+    ImGui::Text("[export %s]", export_state_name(state_->exporter().state()));
   else
     ImGui::Text("[%s]", state_name(s.state()));
   ImGui::SameLine();

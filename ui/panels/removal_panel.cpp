@@ -207,6 +207,13 @@ void RemovalPanel::draw_result(AppState& st) {
     ImGui::TextWrapped("The cleaned scene is a run folder: %s", cleaned.string().c_str());
     if (ImGui::Button("Open the cleaned scene")) report_errors(st, [&] { st.open(cleaned); });
   }
+  if (!st.removal_result().empty() && !rs.active()) {
+    if (ImGui::Button("Export the cleaned scene...")) {
+      st.export_from_removal = true;
+      st.show_export_dialog = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the Export dialog for RUN/removal: PLYs and renders");
+  }
   if (!st.removal_masks_dir().empty()) {
     ImGui::BeginDisabled(st.channel_unavailable(Channel::LightingMask) != nullptr || st.grid_channels.size() < 2);
     if (ImGui::Button("Show the masks in the grid"))

@@ -1,0 +1,399 @@
+#include "ui/export_job.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/compute/device.h"
+#include "core/util/duration_text.h"
+#include "core/util/error.h"
+#include "ui/background_priority.h"
+
+namespace goris::ui {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Thrown from the library's progress callbacks to end an export at the user's request.
+struct ExportCancelled {};
+
+std::string fixed(double v, int digits) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.*f", digits, v);
+  return b;
+}
+
+}  // namespace
+
+void check_export_request(const ExportRequest& r) {
+  if (r.run_dir.empty()) throw Error("export", "no run folder to export (train a model or open a run first)");
+  if (r.ply.empty() && r.baked.empty() && r.renders.empty())
+    throw Error("export", "nothing to export: choose the intrinsic PLY, the baked PLY or renders");
+  if (!r.ply.empty() && !r.baked.empty() &&
+      fs::absolute(r.ply).lexically_normal() == fs::absolute(r.baked).lexically_normal())
+    throw Error(r.ply.string(), "the intrinsic PLY and the baked PLY are the same file");
+  if (!r.baked.empty() && r.baked_iterations <= 0)
+    throw Error(r.baked.string(),
+                "the distillation needs at least 1 iteration (" + std::to_string(r.baked_iterations) + " given)");
+  if (!r.renders.empty() && r.frames < 0)
+    throw Error(r.renders.string(), "the frame count must be >= 0 (" + std::to_string(r.frames) + " given)");
+}
+
+const char* export_state_name(ExportState s) {
+  switch (s) {
+    case ExportState::Idle:
+      return "idle";
+    case ExportState::Running:
+      return "running";
+    case ExportState::Cancelling:
+      return "cancelling";
+    case ExportState::Done:
+      return "done";
+    case ExportState::Cancelled:
+      return "cancelled";
+    case ExportState::Error:
+      return "error";
+  }
+  return "?";
+}
+
+const char* export_part_name(ExportPart p) {
+  switch (p) {
+    case ExportPart::Load:
+      return "load the run";
+    case ExportPart::Ply:
+      return "intrinsic PLY";
+    case ExportPart::Baked:
+      return "baked PLY";
+    case ExportPart::Renders:
+      return "renders";
+  }
+  return "?";
+}
+
+// A distillation iteration (rasterizer forward + backward) measured at about 0.8 renders of an intrinsic
+// run; loading and the PLY are a few renders' worth.
+constexpr double kIterationCost = 0.8;
+
+double ExportProgress::weight(ExportPart p) const {
+  const ExportPartStatus& s = parts[size_t(p)];
+  if (!s.wanted) return 0.0;
+  switch (p) {
+    case ExportPart::Load:
+      return 2.0;
+    case ExportPart::Ply:
+      return 0.5;
+    case ExportPart::Baked:
+      return double(std::max(teacher_views, 1)) + kIterationCost * double(baked_iterations);
+    case ExportPart::Renders:
+      return double(std::max(frames, 1));
+  }
+  return 0.0;
+}
+
+double ExportProgress::baked_render_share() const {
+  const double renders = double(std::max(teacher_views, 1));
+  return renders / (renders + kIterationCost * double(baked_iterations));
+}
+
+double ExportProgress::fraction() const {
+  double total = 0, done = 0;
+  for (int k = 0; k < kExportPartCount; ++k) {
+    const double w = weight(ExportPart(k));
+    total += w;
+    done += w * (parts[size_t(k)].complete ? 1.0 : std::clamp(parts[size_t(k)].fraction, 0.0, 1.0));
+  }
+  return total > 0 ? done / total : 0.0;
+}
+
+ExportJob::~ExportJob() {
+  cancel();
+  if (worker_.joinable()) worker_.join();
+}
+
+void ExportJob::start(const ExportRequest& request) {
+  {
+    std::lock_guard lk(mutex_);
+    if (state_ == ExportState::Running || state_ == ExportState::Cancelling)
+      throw Error(std::string("export: an export is ") + export_state_name(state_) +
+                  ": wait for it or cancel it first");
+  }
+  check_export_request(request);
+  if (worker_.joinable()) worker_.join();  // it has ended: joining does not wait
+  std::lock_guard lk(mutex_);
+  state_ = ExportState::Running;
+  status_ = "starting";
+  request_ = request;
+  request_.run_dir = fs::absolute(request.run_dir);
+  for (fs::path* p : {&request_.ply, &request_.baked, &request_.renders})
+    if (!p->empty()) *p = fs::absolute(*p).lexically_normal();
+  progress_ = ExportProgress();
+  // Rough counts until the run is loaded (then the real ones).
+  progress_.baked_iterations = request_.baked_iterations;
+  progress_.teacher_views = 100;
+  progress_.frames = request_.frames > 0                         ? request_.frames
+                     : request_.render_path == RenderPath::Orbit ? kDefaultOrbitFrames
+                                                                 : 20;
+  const fs::path* paths[] = {&request_.run_dir, &request_.ply, &request_.baked, &request_.renders};
+  for (int k = 0; k < kExportPartCount; ++k) {
+    progress_.parts[size_t(k)].wanted = !paths[k]->empty();
+    progress_.parts[size_t(k)].path = *paths[k];
+  }
+  result_ = ExportResult();
+  distilling_ = false;
+  cancel_ = false;
+  stop_distill_ = false;
+  started_ = part_started_ = std::chrono::steady_clock::now();
+  worker_ = std::thread([this, rq = request_] { work(rq); });
+}
+
+void ExportJob::cancel() {
+  std::lock_guard lk(mutex_);
+  if (state_ != ExportState::Running) return;
+  cancel_ = true;
+  stop_distill_ = true;  // the distillation's loop returns at once, and its next report ends the export
+  state_ = ExportState::Cancelling;
+  status_ = "cancelling: stops at the next progress check";
+  changed_.notify_all();
+}
+
+void ExportJob::finish_early() {
+  std::lock_guard lk(mutex_);
+  if (state_ == ExportState::Running && distilling_) stop_distill_ = true;
+}
+
+bool ExportJob::distilling() const {
+  std::lock_guard lk(mutex_);
+  return distilling_ && !stop_distill_;
+}
+
+ExportState ExportJob::state() const {
+  std::lock_guard lk(mutex_);
+  return state_;
+}
+bool ExportJob::active() const {
+  const ExportState s = state();
+  return s == ExportState::Running || s == ExportState::Cancelling;
+}
+std::string ExportJob::status() const {
+  std::lock_guard lk(mutex_);
+  return status_;
+}
+ExportProgress ExportJob::progress() const {
+  std::lock_guard lk(mutex_);
+  return progress_;
+}
+double ExportJob::elapsed_s() const {
+  std::lock_guard lk(mutex_);
+  if (state_ == ExportState::Idle) return 0.0;
+  const auto end =
+      state_ == ExportState::Running || state_ == ExportState::Cancelling ? std::chrono::steady_clock::now() : ended_;
+  return std::chrono::duration<double>(end - started_).count();
+}
+ExportResult ExportJob::result() const {
+  std::lock_guard lk(mutex_);
+  return result_;
+}
+ExportRequest ExportJob::request() const {
+  std::lock_guard lk(mutex_);
+  return request_;
+}
+std::uint64_t ExportJob::runs_ended() const {
+  std::lock_guard lk(mutex_);
+  return runs_ended_;
+}
+
+ExportState ExportJob::wait(std::chrono::milliseconds timeout) const {
+  std::unique_lock lk(mutex_);
+  changed_.wait_for(lk, timeout, [&] { return state_ != ExportState::Running && state_ != ExportState::Cancelling; });
+  return state_;
+}
+
+void ExportJob::finish(ExportState s, const std::string& status) {
+  std::lock_guard lk(mutex_);
+  state_ = s;
+  status_ = status;
+  distilling_ = false;
+  ended_ = std::chrono::steady_clock::now();
+  ++runs_ended_;
+  changed_.notify_all();
+}
+
+void ExportJob::check_cancel() const {
+  if (cancel_) throw ExportCancelled{};
+}
+
+void ExportJob::begin_part(ExportPart p) {
+  check_cancel();
+  std::lock_guard lk(mutex_);
+  ExportPartStatus& s = progress_.parts[size_t(p)];
+  s.started = true;
+  progress_.current = int(p);
+  part_started_ = std::chrono::steady_clock::now();
+  if (state_ == ExportState::Running) status_ = std::string(export_part_name(p)) + ": " + s.path.string();
+}
+
+void ExportJob::update_part(ExportPart p, double fraction, const std::string& detail) {
+  {
+    std::lock_guard lk(mutex_);
+    ExportPartStatus& s = progress_.parts[size_t(p)];
+    s.fraction = std::clamp(fraction, 0.0, 1.0);
+    s.detail = detail;
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_started_).count();
+    if (state_ == ExportState::Running) status_ = std::string(export_part_name(p)) + ": " + detail;
+  }
+  check_cancel();
+}
+
+void ExportJob::end_part(ExportPart p, const std::string& detail) {
+  std::lock_guard lk(mutex_);
+  ExportPartStatus& s = progress_.parts[size_t(p)];
+  s.fraction = 1.0;
+  s.complete = true;
+  s.detail = detail;
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_started_).count();
+}
+
+void ExportJob::work(ExportRequest rq) {
+  const BackgroundPriority background;  // the GUI thread goes first
+  ExportPart part = ExportPart::Load;
+  auto add_written = [this](const fs::path& p, const std::string& line) {
+    std::lock_guard lk(mutex_);
+    result_.written.push_back(p);
+    result_.summary += (result_.summary.empty() ? "" : "\n") + line;
+  };
+  try {
+    // Every output path first, so that a typo fails now and not after a distillation.
+    part = ExportPart::Ply;
+    if (!rq.ply.empty()) check_output_file(rq.ply);
+    part = ExportPart::Baked;
+    if (!rq.baked.empty()) check_output_file(rq.baked);
+    part = ExportPart::Renders;
+    if (!rq.renders.empty()) check_output_dir(rq.renders);
+
+    part = ExportPart::Load;
+    begin_part(part);
+    update_part(part, 0.0, "reading " + rq.run_dir.string());
+    const Device device = resolve_device(rq.device);
+    RunExport ex(rq.run_dir, device);
+    end_part(part, std::string(ex.intrinsic() ? "intrinsic" : "radiance") + " run, " +
+                       std::to_string(ex.model().count()) + " Gaussians from " +
+                       fs::path(ex.model_source()).filename().string() + " on " + device_name(device));
+    {
+      // The real counts, for the overall progress. The distillation renders the training views, as many
+      // interpolated ones and the held-out views (test, or 16 orbit cameras); a radiance run is baked as it
+      // is (no training, only the held-out views).
+      const size_t n = rq.renders.empty() ? 0 : ex.path_cameras(rq.render_path, rq.frames).size();
+      const size_t holdout = ex.dataset().test.empty() ? 16 : ex.dataset().test.size();
+      std::lock_guard lk(mutex_);
+      progress_.frames = int(n);
+      if (!ex.intrinsic()) progress_.baked_iterations = 0;
+      progress_.teacher_views = int(holdout + (ex.intrinsic() ? 2 * ex.dataset().train.size() : 0));
+    }
+
+    if (!rq.ply.empty()) {
+      part = ExportPart::Ply;
+      begin_part(part);
+      ex.write_ply(rq.ply);
+      const std::string line = std::string("intrinsic PLY: ") + rq.ply.string() +
+                               (ex.intrinsic() ? " (3DGS layout, intrinsic attributes as extra properties)"
+                                               : " (3DGS layout; a radiance run has no intrinsic attributes)");
+      end_part(part, "wrote " + rq.ply.filename().string());
+      add_written(rq.ply, line);
+    }
+
+    if (!rq.baked.empty()) {
+      part = ExportPart::Baked;
+      begin_part(part);
+      DistillSettings s;
+      s.iterations = rq.baked_iterations;
+      s.progress_every = 1;  // every iteration: a cancel is seen at once
+      const BakedReport r = ex.write_baked(
+          rq.baked, s,
+          [&](const DistillProgress& p) {
+            const double f = p.total > 0 ? double(p.done) / double(p.total) : 1.0;
+            double share = 0;
+            {
+              std::lock_guard lk(mutex_);
+              if (p.phase == "targets") progress_.teacher_views = p.total;
+              share = progress_.baked_render_share();
+            }
+            if (p.phase == "targets") {
+              update_part(part, share * f,
+                          "rendering the run's views " + std::to_string(p.done) + "/" + std::to_string(p.total));
+            } else if (p.phase == "distilling") {
+              {
+                std::lock_guard lk(mutex_);
+                distilling_ = p.done < p.total;
+              }
+              update_part(part, share + (1 - share) * 0.98 * f,
+                          "distilling " + std::to_string(p.done) + "/" + std::to_string(p.total) + ": PSNR " +
+                              fixed(p.psnr, 2) + " dB, " + fixed(p.it_per_s, 1) + " it/s, ETA " +
+                              duration_text(p.eta_s));
+            } else {
+              {
+                std::lock_guard lk(mutex_);
+                distilling_ = false;
+              }
+              update_part(part, 0.99, "fidelity measured on the held-out views; writing");
+            }
+          },
+          &stop_distill_);
+      check_cancel();  // a cancel during the last steps: the file is complete, but report what was asked
+      const DistillResult& d = r.distill;
+      std::string detail;
+      if (r.distilled)
+        detail = std::to_string(d.iterations) + " iterations" + (d.stopped ? " (stopped early)" : "") + ", PSNR " +
+                 fixed(d.psnr, 2) + " dB against the run's renders (" + fixed(d.psnr_start, 2) + " dB before)";
+      else
+        detail = "radiance run: the model is plain SH already (PSNR " + fixed(d.psnr, 2) + " dB against its renders)";
+      end_part(part, detail);
+      {
+        // The report without the model and the held-out images (the GUI copies results every frame).
+        BakedReport light = r;
+        light.distill.ply = GaussianPly();
+        light.distill.holdout_images.clear();
+        std::lock_guard lk(mutex_);
+        result_.baked = std::move(light);
+      }
+      add_written(r.ply, "baked PLY: " + r.ply.string() + " (" + detail + ")");
+      add_written(r.json, "baked PLY report: " + r.json.string());
+    }
+
+    if (!rq.renders.empty()) {
+      part = ExportPart::Renders;
+      begin_part(part);
+      const RendersReport r = ex.write_renders(rq.renders, rq.render_path, rq.frames, [&](size_t done, size_t total) {
+        update_part(part, double(done) / double(std::max<size_t>(total, 1)),
+                    "frame " + std::to_string(done) + "/" + std::to_string(total));
+      });
+      const std::string detail = std::to_string(r.frames.size()) + " " + render_path_name(rq.render_path) +
+                                 " frames at " + std::to_string(r.width) + "x" + std::to_string(r.height) + ", " +
+                                 fixed(r.ms_per_frame, 0) + " ms each";
+      end_part(part, detail);
+      {
+        std::lock_guard lk(mutex_);
+        result_.renders = r;
+      }
+      add_written(r.dir, "renders: " + r.dir.string() + " (" + detail + ", contact_sheet.png, cameras.json)");
+    }
+
+    std::string paths;
+    for (const fs::path& p : result().written)
+      if (p.extension() != ".json") paths += (paths.empty() ? "" : ", ") + p.string();
+    finish(ExportState::Done, "exported " + paths);
+  } catch (const ExportCancelled&) {
+    std::string kept;
+    for (const fs::path& p : result().written) kept += (kept.empty() ? "" : ", ") + p.filename().string();
+    std::string line = "cancelled during " + std::string(export_part_name(part));
+    if (part == ExportPart::Renders)
+      line += " (the frames written so far are complete files; no contact sheet or cameras.json)";
+    line += kept.empty() ? "; nothing was written" : "; kept " + kept;
+    finish(ExportState::Cancelled, line);
+  } catch (const std::exception& e) {
+    finish(ExportState::Error, std::string(export_part_name(part)) + ": " + e.what());
+  }
+}
+
+}  // namespace goris::ui

@@ -1,0 +1,136 @@
+#pragma once
+// The exports of a run folder (`goris export`: render/export/run_export.h) on a worker thread for the
+// editor's Export dialog and the scripted mode's `export` actions: the intrinsic PLY, the baked (distilled,
+// SH-only) PLY and rendered frames, in that order, each through the same library call as the CLI. States:
+//
+//   Idle --start--> Running --(every part written)--> Done
+//   Running --cancel--> Cancelling --(the next progress check)--> Cancelled      any failure --> Error
+//   Done / Cancelled / Error --start--> Running
+//
+// Every output path is checked before any work starts (an unwritable path fails in a second, not after a
+// distillation). Files go through a temporary file renamed into place, so a file is either the old one or
+// complete. A cancel stops at the next progress report (each distillation iteration, each rendered view)
+// and writes nothing more: the parts finished before it stay. finish_early() instead ends the distillation
+// at once and writes the baked model so far (marked "stopped" in its json), as Ctrl-C does in the CLI.
+// The GUI polls progress() and never waits.
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/export/run_export.h"
+
+namespace goris::ui {
+
+// What one export writes (the dialog's Export button and a script line both build one of these).
+struct ExportRequest {
+  std::filesystem::path run_dir;  // a run folder: RUN or a stage-2 result RUN/removal
+  std::filesystem::path ply;      // the model with its intrinsic attributes (empty: not wanted)
+  std::filesystem::path baked;    // the distilled SH-only model, OUT.json beside it (empty: not wanted)
+  int baked_iterations = 2000;    // distillation iterations (a radiance run needs none: baked as it is)
+  std::filesystem::path renders;  // a folder of PNG frames, contact_sheet.png, cameras.json (empty: none)
+  RenderPath render_path = RenderPath::Test;
+  int frames = 0;               // orbit: frame count (0 = 36); test / train: evenly spaced views (0 = all)
+  std::string device = "auto";  // auto | cpu | cuda
+};
+
+// Throws goris::Error for a request that cannot run: no run folder, nothing wanted, the two PLYs being one
+// file, a non-positive iteration count or a negative frame count.
+void check_export_request(const ExportRequest& request);
+
+enum class ExportState { Idle, Running, Cancelling, Done, Cancelled, Error };
+const char* export_state_name(ExportState s);
+
+enum class ExportPart { Load, Ply, Baked, Renders };
+constexpr int kExportPartCount = 4;
+const char* export_part_name(ExportPart p);  // "load the run", "intrinsic PLY", "baked PLY", "renders"
+
+struct ExportPartStatus {
+  bool wanted = false, started = false, complete = false;
+  double fraction = 0;         // 0..1 of this part
+  std::string detail;          // e.g. "distilling 120/400, PSNR 27.1 dB, ETA 12s"
+  std::filesystem::path path;  // where it goes
+  double seconds = 0;          // time spent on it
+};
+
+struct ExportProgress {
+  std::array<ExportPartStatus, kExportPartCount> parts;
+  int current = -1;  // the part being worked on (-1: none yet)
+  // The whole export, 0..1: parts weighted by their expected cost.
+  double fraction() const;
+  // A part's expected cost in units of one render by the run's renderer (a distillation iteration costs
+  // about as much), from the counts below.
+  double weight(ExportPart p) const;
+  // The baked part's share spent rendering the distillation's target and held-out views.
+  double baked_render_share() const;
+  int baked_iterations = 0;  // distillation iterations (0: a radiance run, baked as it is)
+  int teacher_views = 0;     // views the distillation renders with the run's renderer (estimated until known)
+  int frames = 0;            // renders
+};
+
+// What a finished (or cancelled) export wrote.
+struct ExportResult {
+  std::vector<std::filesystem::path> written;  // every file / folder written, in order
+  std::optional<BakedReport> baked;            // without distill.ply and distill.holdout_images (kept small)
+  std::optional<RendersReport> renders;
+  std::string summary;  // one line per part
+};
+
+class ExportJob {
+ public:
+  ExportJob() = default;
+  ~ExportJob();  // cancels and joins the worker
+  ExportJob(const ExportJob&) = delete;
+  ExportJob& operator=(const ExportJob&) = delete;
+
+  // Checks the request (check_export_request) and starts the worker. Throws goris::Error while one runs.
+  void start(const ExportRequest& request);
+  void cancel();            // Running -> Cancelling; otherwise nothing
+  void finish_early();      // ends the distillation now and writes what it has; otherwise nothing
+  bool distilling() const;  // the distillation's training loop runs (finish_early has an effect)
+
+  ExportState state() const;
+  bool active() const;  // Running or Cancelling
+  // One line: what the worker does, how it ended, or why it failed ("baked PLY: FILE: problem").
+  std::string status() const;
+  ExportProgress progress() const;
+  double elapsed_s() const;          // since start (frozen once the export ended)
+  ExportResult result() const;       // what was written (complete once the export ended)
+  ExportRequest request() const;     // of the last start
+  std::uint64_t runs_ended() const;  // grows whenever an export ends, however it ended
+
+  // Blocks until no export is active or the timeout passes; returns the state. Tests and shutdown only.
+  ExportState wait(std::chrono::milliseconds timeout = std::chrono::hours(24)) const;
+
+ private:
+  void work(ExportRequest request);
+  void finish(ExportState s, const std::string& status);
+  // Worker side: marks part `p` as the current one / updates it; throws the cancellation when asked to stop.
+  void begin_part(ExportPart p);
+  void update_part(ExportPart p, double fraction, const std::string& detail);
+  void end_part(ExportPart p, const std::string& detail);
+  void check_cancel() const;
+
+  mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
+  ExportState state_ = ExportState::Idle;
+  std::string status_ = "idle";
+  ExportProgress progress_;
+  ExportResult result_;
+  ExportRequest request_;
+  std::chrono::steady_clock::time_point started_{}, ended_{}, part_started_{};
+  std::uint64_t runs_ended_ = 0;
+  bool distilling_ = false;
+  std::atomic<bool> cancel_{false};
+  std::atomic<bool> stop_distill_{false};
+  std::thread worker_;
+};
+
+}  // namespace goris::ui
