@@ -6,6 +6,7 @@
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
+#include "render/train/auto_mode.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
@@ -241,6 +242,14 @@ void TrainerSession::work(TrainRequest rq) {
     ro.stop = &stop_flag_;
     ro.progress_every = 1;
     ro.on_progress = [this](const TrainProgress& p) { on_progress(p); };
+    ro.before_step = [this](Trainer& t) {  // --mode auto's decision after the warm-up may switch the renderer
+      if (const auto d = apply_auto_mode(t, run_dir_)) {
+        renderer_ = t.renderer();
+        if (as_intrinsic(renderer_.get()))
+          shading_ = std::make_shared<const ShadingSource>(ShadingSource{t.config(), t.extent()});
+        set_status(d->message());
+      }
+    };
     const Trainer::RunResult result = trainer_->run(ro);
     const TrainerState& st = trainer_->state();
     if (st.iteration != last_snapshot_iteration_) publish_snapshot(st.iteration);

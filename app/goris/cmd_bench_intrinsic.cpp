@@ -1,8 +1,10 @@
 // `goris bench intrinsic RUN`: the time split of one intrinsic training iteration (rasterize, reflection
 // rays, trace, screen-space filter + net, shading; and the backward of each) on a real training view of a
 // trained intrinsic run, with the rays traced per second, the Gaussian count, the resolution, the threads
-// and the machine. Medians over --repeats iterations (after one warm-up), stages timed with the device
-// synchronised around each; "cpu ms" is the process CPU time of the whole iteration (all threads).
+// and the machine, and the reflection rays traced and saved by coarse tracing (--coarse-tracing both
+// compares the two set-ups on the same frame: time and PSNR). Medians over --repeats iterations (after one
+// warm-up), stages timed with the device synchronised around each; "cpu ms" is the process CPU time of the
+// whole iteration (all threads).
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include "app/goris/command.h"
 #include "core/compute/memory.h"
 #include "core/io/dataset.h"
+#include "core/train/image_losses.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/util/bench.h"
@@ -34,28 +37,16 @@ double median(std::vector<double> v) {
 
 double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
-void run_bench_intrinsic(const std::string& run, int view_index, int repeats, int threads, const std::string& dev) {
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const std::filesystem::path run_dir = std::filesystem::absolute(run);
-  const TrainConfig config = read_run_config(run_dir);
-  if (config.mode != "intrinsic") throw Error(run_dir.string(), "is a " + config.mode + " run; train with --mode intrinsic");
-  const Device device = resolve_device(dev);
-  const DatasetOptions dopt = dataset_options(config);
-  const Dataset ds = load_dataset(config.data, dopt);
-  if (view_index < 0 || size_t(view_index) >= ds.train.size())
-    throw Error(config.data, "has " + std::to_string(ds.train.size()) + " training views; --view " +
-                                 std::to_string(view_index) + " does not exist");
-  const std::vector<TrainView> views = load_train_views({ds.train[size_t(view_index)]}, dopt);
-  const TrainView& v = views[0];
-  GaussianModel model = load_run_model(run_dir, device);
-  const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
-  IntrinsicRenderer& ir = *as_intrinsic(renderer.get());
-  const size_t hw = size_t(v.camera.width) * v.camera.height;
-
+// Medians of one renderer set-up over the timed iterations, and its last shaded colour.
+struct Measured {
   std::vector<double> raster, rays, trace, filter, shade, shade_b, filter_b, trace_b, raster_b, total, cpu;
-  std::size_t n_rays = 0;
+  std::size_t traced = 0, glossy = 0;
+  std::vector<float> color;
+};
+
+Measured measure(IntrinsicRenderer& ir, GaussianModel& model, const TrainView& v, Device device, int repeats) {
+  const size_t hw = size_t(v.camera.width) * v.camera.height;
+  Measured m;
   for (int r = 0; r <= repeats; ++r) {
     ir.set_profile(r > 0);
     const double c0 = cpu_seconds();
@@ -73,34 +64,94 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
     device_synchronize(device);
     if (r == 0) continue;  // warm-up (allocations, BVH build)
     const IntrinsicTimes& t = ir.times();
-    total.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    cpu.push_back(1000 * (cpu_seconds() - c0));
-    raster.push_back(t.raster);
-    rays.push_back(t.rays);
-    trace.push_back(t.trace);
-    filter.push_back(t.filter);
-    shade.push_back(t.shade);
-    shade_b.push_back(t.shade_back);
-    filter_b.push_back(t.filter_back);
-    trace_b.push_back(t.trace_back);
-    raster_b.push_back(t.raster_back);
-    n_rays = t.rays_traced;
+    m.total.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    m.cpu.push_back(1000 * (cpu_seconds() - c0));
+    m.raster.push_back(t.raster);
+    m.rays.push_back(t.rays);
+    m.trace.push_back(t.trace);
+    m.filter.push_back(t.filter);
+    m.shade.push_back(t.shade);
+    m.shade_b.push_back(t.shade_back);
+    m.filter_b.push_back(t.filter_back);
+    m.trace_b.push_back(t.trace_back);
+    m.raster_b.push_back(t.raster_back);
+    m.traced = t.rays_traced;
+    m.glossy = t.rays_glossy;
+    m.color = std::move(color);
   }
+  return m;
+}
+
+double psnr(const std::vector<float>& a, const std::vector<float>& b) {
+  return psnr_from_mse(mse<float>(a.data(), b.data(), std::min(a.size(), b.size())));
+}
+
+double saved_percent(const Measured& m) { return m.glossy ? 100.0 * (1.0 - double(m.traced) / double(m.glossy)) : 0.0; }
+
+void print_stages(const char* name, const Measured& m) {
+  std::printf("coarse tracing %s: %zu of %zu glossy pixels traced (%.1f %% saved)\n\n", name, m.traced, m.glossy,
+              saved_percent(m));
+  std::printf("| stage | forward ms | backward ms |\n|---|---|---|\n");
+  std::printf("| rasterize (G-buffer) | %.2f | %.2f |\n", median(m.raster), median(m.raster_b));
+  std::printf("| reflection rays (+ coarse selection) | %.2f | (in trace) |\n", median(m.rays));
+  std::printf("| trace | %.2f | %.2f |\n", median(m.trace), median(m.trace_b));
+  std::printf("| filter + net | %.2f | %.2f |\n", median(m.filter), median(m.filter_b));
+  std::printf("| shading | %.2f | %.2f |\n", median(m.shade), median(m.shade_b));
+  const double tr = median(m.trace);
+  std::printf("\niteration (renderer only, wall): median %.1f ms; process CPU %.1f ms; trace %.3f Mrays/s forward\n\n",
+              median(m.total), median(m.cpu), tr > 0 ? double(m.traced) / tr * 1e-3 : 0.0);
+}
+
+void run_bench_intrinsic(const std::string& run, int view_index, int repeats, int threads, const std::string& dev,
+                         const std::string& coarse) {
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const std::filesystem::path run_dir = std::filesystem::absolute(run);
+  const TrainConfig config = read_run_config(run_dir);
+  if (config.mode != "intrinsic") throw Error(run_dir.string(), "is a " + config.mode + " run; train with --mode intrinsic");
+  const Device device = resolve_device(dev);
+  const DatasetOptions dopt = dataset_options(config);
+  const Dataset ds = load_dataset(config.data, dopt);
+  if (view_index < 0 || size_t(view_index) >= ds.train.size())
+    throw Error(config.data, "has " + std::to_string(ds.train.size()) + " training views; --view " +
+                                 std::to_string(view_index) + " does not exist");
+  const std::vector<TrainView> views = load_train_views({ds.train[size_t(view_index)]}, dopt);
+  const TrainView& v = views[0];
+  GaussianModel model = load_run_model(run_dir, device);
+
+  // Which set-ups: the run's own, or coarse tracing forced off / on, or both in turn.
+  std::vector<std::pair<std::string, bool>> modes;
+  if (coarse == "run") modes.push_back({config.intrinsic.coarse_tracing ? "on" : "off", config.intrinsic.coarse_tracing});
+  if (coarse == "off" || coarse == "both") modes.push_back({"off", false});
+  if (coarse == "on" || coarse == "both") modes.push_back({"on", true});
+  std::vector<Measured> results;
+  for (const auto& [name, on] : modes) {
+    TrainConfig c = config;
+    c.intrinsic.coarse_tracing = on;
+    const auto renderer = load_run_renderer(run_dir, c, scene_extent(ds), device);
+    results.push_back(measure(*as_intrinsic(renderer.get()), model, v, device, repeats));
+  }
+
   std::printf("# goris bench intrinsic: one stage-1 iteration with shading (forward + backward)\n");
   std::printf("machine: %s; device %s; threads %d\n", cpu_description().c_str(), device_name(device),
               int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
-  std::printf("run %s: %zu Gaussians, view %s at %dx%d, %zu glossy pixels traced, env map %d^2, filter %s; %d repeats\n\n",
-              run_dir.string().c_str(), model.count(), v.name.c_str(), v.camera.width, v.camera.height, n_rays,
-              config.intrinsic.env_resolution, config.intrinsic.screen_space_filter ? "on" : "off", repeats);
-  std::printf("| stage | forward ms | backward ms |\n|---|---|---|\n");
-  std::printf("| rasterize (G-buffer) | %.2f | %.2f |\n", median(raster), median(raster_b));
-  std::printf("| reflection rays | %.2f | (in trace) |\n", median(rays));
-  std::printf("| trace | %.2f | %.2f |\n", median(trace), median(trace_b));
-  std::printf("| filter + net | %.2f | %.2f |\n", median(filter), median(filter_b));
-  std::printf("| shading | %.2f | %.2f |\n", median(shade), median(shade_b));
-  const double tr = median(trace);
-  std::printf("\niteration (renderer only, wall): median %.1f ms; process CPU %.1f ms; trace %.3f Mrays/s forward\n",
-              median(total), median(cpu), tr > 0 ? double(n_rays) / tr * 1e-3 : 0.0);
+  std::printf("run %s: %zu Gaussians, view %s at %dx%d, env map %d^2, filter %s, coarse max level %d; %d repeats\n\n",
+              run_dir.string().c_str(), model.count(), v.name.c_str(), v.camera.width, v.camera.height,
+              config.intrinsic.env_resolution, config.intrinsic.screen_space_filter ? "on" : "off",
+              config.intrinsic.coarse_max_level, repeats);
+  for (size_t i = 0; i < modes.size(); ++i) print_stages(modes[i].first.c_str(), results[i]);
+  std::printf("| coarse tracing | rays traced | rays saved | forward ms | backward ms | iteration ms | PSNR vs view (dB) |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (size_t i = 0; i < modes.size(); ++i) {
+    const Measured& m = results[i];
+    const double fwd = median(m.raster) + median(m.rays) + median(m.trace) + median(m.filter) + median(m.shade);
+    const double bwd = median(m.raster_b) + median(m.trace_b) + median(m.filter_b) + median(m.shade_b);
+    std::printf("| %s | %zu / %zu | %.1f %% | %.1f | %.1f | %.1f | %.2f |\n", modes[i].first.c_str(), m.traced, m.glossy,
+                saved_percent(m), fwd, bwd, median(m.total), psnr(m.color, v.image));
+  }
+  if (results.size() == 2)
+    std::printf("\nPSNR of the coarse frame against the fully traced one: %.2f dB\n", psnr(results[1].color, results[0].color));
 }
 
 void setup_bench_intrinsic(CLI::App& root) {
@@ -111,12 +162,17 @@ void setup_bench_intrinsic(CLI::App& root) {
   auto repeats = std::make_shared<int>(5);
   auto threads = std::make_shared<int>(0);
   auto device = std::make_shared<std::string>("auto");
+  auto coarse = std::make_shared<std::string>("run");
   c->add_option("run", *run, "An intrinsic run folder (goris train --mode intrinsic)")->required();
   c->add_option("--view", *view, "Training view index")->capture_default_str();
   c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
   c->add_option("--threads", *threads, "CPU threads (0 = all)")->capture_default_str()->check(CLI::NonNegativeNumber);
   c->add_option("--device", *device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  c->callback([=] { run_bench_intrinsic(*run, *view, *repeats, *threads, *device); });
+  c->add_option("--coarse-tracing", *coarse,
+                "run (as the run was trained) | on | off | both (off then on, with the PSNR between the two frames)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"run", "on", "off", "both"}));
+  c->callback([=] { run_bench_intrinsic(*run, *view, *repeats, *threads, *device, *coarse); });
 }
 
 }  // namespace

@@ -4,12 +4,6 @@
 // and the bench goes on. Writes results.csv, results.md and PSNR-against-time charts (chart.svg/png and
 // chart_SCENE.svg/png) with the Pareto front. A configuration whose result.json in DIR was made with the
 // same options is reused, not rerun.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,6 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "app/goris/bench_child.h"
 #include "app/goris/command.h"
 #include "core/io/file_bytes.h"
 #include "core/report/chart.h"
@@ -33,12 +28,20 @@
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
 
-extern char** environ;
-
 namespace {
 namespace fs = std::filesystem;
 using goris::Error;
 using nlohmann::json;
+using goris::bench::csv_field;
+using goris::bench::fmt;
+using goris::bench::json_number;
+using goris::bench::md_cell;
+using goris::bench::read_json_object;
+using goris::bench::run_child;
+using goris::bench::Schedule;
+using goris::bench::schedule_of;
+using goris::bench::StepRun;
+using goris::bench::write_text;
 
 // The ladder, in the paper's order: each rung adds one part.
 struct ConfigSpec {
@@ -65,22 +68,6 @@ const std::vector<ConfigSpec>& ladder() {
   return specs;
 }
 
-struct Schedule {
-  std::string name;
-  int train_iters, remove_iters, export_iters;
-  std::vector<std::string> extra_train_args;
-};
-
-// Stage-2 fine-tuning (4000 at 30k) and distillation (2000 at 30k) scale with stage 1, as `goris remove` does.
-Schedule schedule_of(const std::string& name) {
-  if (name == "tiny")  // hidden: the CLI test's seconds-long schedule
-    return {name, 30, 10, 10,
-            {"--resolution", "64", "--init-points", "3000", "--set", "intrinsic_env_resolution=8", "--set",
-             "random_init_box_ratio=0.15"}};
-  const int iters = name == "short" ? 500 : name == "medium" ? 2000 : 30000;
-  return {name, iters, std::max(10, iters * 4000 / 30000), std::max(10, iters * 2000 / 30000), {}};
-}
-
 struct Options {
   std::vector<std::string> data;
   std::string configs = "baseline,+elt,+ssf,full,distilled";
@@ -88,92 +75,6 @@ struct Options {
   std::vector<std::string> schedules = {"short"};
   std::string device = "auto";
 };
-
-struct StepRun {
-  bool ok = false;
-  double seconds = 0;
-  double peak_mib = 0;
-  std::string error;
-};
-
-fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
-
-// The `error: ...` line of a failed step's log (main prints it), else its last non-empty line.
-std::string failure_message(const fs::path& log) {
-  std::string text;
-  try {
-    text = goris::read_text_file(log);
-  } catch (const Error&) {
-    return "";
-  }
-  std::istringstream in(text);
-  std::string line, last, err;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const size_t cr = line.rfind('\r');  // progress bars redraw with \r
-    if (cr != std::string::npos) line = line.substr(cr + 1);
-    if (line.empty()) continue;
-    last = line;
-    if (line.rfind("error:", 0) == 0) err = line;
-  }
-  return err.empty() ? last : err;
-}
-
-// Runs `goris ARGS` with stdout and stderr in `log`; wall time and the child's peak resident memory.
-StepRun run_child(const std::string& step, std::vector<std::string> args, const fs::path& log) {
-  std::printf("    %-8s goris", step.c_str());
-  for (const auto& a : args) std::printf(" %s", a.c_str());
-  std::printf("\n");
-  std::fflush(stdout);
-  // Spawning /proc/self/exe runs this very binary even if a rebuild replaced the file during a long bench.
-  const std::string exe = "/proc/self/exe";
-  args.insert(args.begin(), self_executable().string());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  StepRun r;
-  const auto t0 = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) {
-    r.error = step + ": could not start " + exe;
-    return r;
-  }
-  int status = 0;
-  struct rusage ru {};
-  wait4(pid, &status, 0, &ru);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.peak_mib = double(ru.ru_maxrss) / 1024.0;  // Linux: KiB
-  r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (!r.ok) {
-    const std::string how = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
-                                              : "killed by signal " + std::to_string(WTERMSIG(status));
-    const std::string msg = failure_message(log);
-    r.error = step + " failed (" + how + ")" + (msg.empty() ? "" : ": " + msg) + " [log " + log.string() + "]";
-    std::printf("    %-8s FAILED: %s\n", step.c_str(), r.error.c_str());
-  } else {
-    std::printf("    %-8s %.1f s, peak %.0f MiB\n", step.c_str(), r.seconds, r.peak_mib);
-  }
-  std::fflush(stdout);
-  return r;
-}
-
-json read_json(const fs::path& p) {
-  const json j = json::parse(goris::read_text_file(p), nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw Error(p.string(), "not a JSON object");
-  return j;
-}
-
-void write_text(const fs::path& p, const std::string& s) { goris::write_file_bytes(p, s.data(), s.size()); }
-
-double num(const json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
-}
 
 // One row of the results: a configuration on a scene under a schedule.
 struct Row {
@@ -250,7 +151,7 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   Stage1 st{dir / "run", {}};
   // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
   if (fs::exists(dir / "stage1.json")) {
-    const json j = read_json(dir / "stage1.json");
+    const json j = read_json_object(dir / "stage1.json");
     if (j.value("options", json()) == options && j.value("ok", false)) {
       st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), ""};
       std::printf("    train    reused %s\n", st.run.string().c_str());
@@ -267,15 +168,13 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
 }
 
 void Bench::evaluate(Row& r, const fs::path& run_dir, const fs::path& logs) {
-  const StepRun ev =
-      run_child("eval", {"eval", run_dir.string(), "--split", "test", "--device", o_.device}, logs / "eval.log");
+  goris::bench::Metrics m;
+  const StepRun ev = goris::bench::run_eval(run_dir, o_.device, logs / "eval.log", m);
   r.eval_s = ev.seconds;
   r.peak_mib = std::max(r.peak_mib, ev.peak_mib);
   if (!ev.ok) throw Error(ev.error);
-  const json m = read_json(run_dir / "metrics.json");
-  r.psnr = num(m, "psnr"), r.ssim = num(m, "ssim"), r.gaussians = num(m, "gaussians");
-  r.device = m.value("device", o_.device);
-  if (m.contains("masked") && m["masked"].is_object()) r.m_psnr = num(m["masked"], "psnr"), r.m_ssim = num(m["masked"], "ssim");
+  r.psnr = m.psnr, r.ssim = m.ssim, r.m_psnr = m.m_psnr, r.m_ssim = m.m_ssim, r.gaussians = m.gaussians;
+  r.device = m.device.empty() ? o_.device : m.device;
 }
 
 Row Bench::run_config(const std::string& scene, const std::string& data, const Schedule& s, const ConfigSpec& c,
@@ -289,14 +188,11 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                         {"train", c.train_args},
                         {"ablate", c.ablate},
                         {"device", o_.device}};
-  if (fs::exists(dir / "result.json")) {
-    const json j = read_json(dir / "result.json");
-    if (j.value("options", json()) == options && j.value("row", json()).value("status", "") == "ok") {
-      Row old = row_from_json(j["row"]);
-      old.reused = true;
-      std::printf("  %s / %s / %s: reused the result in %s\n", scene.c_str(), s.name.c_str(), c.name, dir.c_str());
-      return old;
-    }
+  if (const auto row = goris::bench::reusable_row(dir, options)) {
+    Row old = row_from_json(*row);
+    old.reused = true;
+    std::printf("  %s / %s / %s: reused the result in %s\n", scene.c_str(), s.name.c_str(), c.name, dir.c_str());
+    return old;
   }
   std::printf("  %s / %s / %s: %s\n", scene.c_str(), s.name.c_str(), c.name, c.description);
   fs::remove_all(dir);
@@ -328,7 +224,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       r.peak_mib = std::max(r.peak_mib, rem.peak_mib);
       if (!rem.ok) throw Error(rem.error);
       removal = run / "removal";
-      const json rep = read_json(removal / "report.json");
+      const json rep = read_json_object(removal / "report.json");
       for (int k = 0; k < goris::kRemovalStepCount; ++k) {
         const char* step = goris::removal_step_name(goris::RemovalStep(k));
         if (rep.contains("seconds") && rep["seconds"].contains(step)) r.remove_steps[step] = rep["seconds"][step];
@@ -350,7 +246,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       // The baked PLY is a plain 3DGS model: evaluate it as a radiance run whose point cloud it is.
       const fs::path baked_run = dir / "baked_run";
       fs::create_directories(baked_run);
-      json cfg = read_json(removal / "config.json");
+      json cfg = read_json_object(removal / "config.json");
       cfg["mode"] = "radiance";
       write_text(baked_run / "config.json", cfg.dump(2) + "\n");
       fs::copy_file(baked, baked_run / "point_cloud.ply", fs::copy_options::overwrite_existing);
@@ -359,9 +255,9 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
         r.note += "metrics of the baked PLY evaluated as a radiance run";
       } catch (const Error& e) {
         // Fall back to the export's own score of the baked model against the test images (PSNR only).
-        const json bj = read_json(dir / "baked.json");
-        r.psnr = bj.contains("gt") ? num(bj["gt"], "psnr_baked") : std::nan("");
-        r.gaussians = num(bj, "gaussians");
+        const json bj = read_json_object(dir / "baked.json");
+        r.psnr = bj.contains("gt") ? json_number(bj["gt"], "psnr_baked") : std::nan("");
+        r.gaussians = json_number(bj, "gaussians");
         if (!std::isfinite(r.psnr)) throw;
         r.note += std::string("PSNR from the export's baked.json (evaluating the baked run failed: ") + e.what() + ")";
       }
@@ -371,28 +267,8 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
     r.status = "failed";
     r.error = e.what();
   }
-  write_text(dir / "result.json", json{{"options", options}, {"row", row_json(r)}}.dump(2) + "\n");
+  goris::bench::write_result(dir, options, row_json(r));
   return r;
-}
-
-std::string fmt(double v, const char* f) {
-  if (!std::isfinite(v)) return "";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string md_cell(std::string s) {
-  for (size_t p = 0; (p = s.find('|', p)) != std::string::npos; p += 2) s.replace(p, 1, "\\|");
-  std::replace(s.begin(), s.end(), '\n', ' ');
-  return s;
 }
 
 std::string step_column(std::string step) {

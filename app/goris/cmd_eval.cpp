@@ -101,6 +101,7 @@ void run_eval(const Options& o) {
   nlohmann::json per_view = nlohmann::json::array();
   std::vector<double> psnrs, ssims, m_psnrs, m_ssims;
   double render_ms = 0;
+  size_t non_finite = 0;  // NaN / Inf in the renders (clamping below would hide an Inf)
   for (const View& v : views) {
     if (o.gt == "full" && !v.full_image)
       throw Error(v.image.string(), "--gt full: this view has no full_XXX.png (not a GOR-IS-style data set?)");
@@ -113,6 +114,7 @@ void run_eval(const Options& o) {
     std::vector<float> pred(3 * size_t(w) * h);
     device_copy(pred.data(), Device::CPU, r.color, device, pred.size() * sizeof(float));
     render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    non_finite += size_t(std::count_if(pred.begin(), pred.end(), [](float x) { return !std::isfinite(x); }));
     std::vector<float> clamped(pred.size());
     for (size_t i = 0; i < pred.size(); ++i) clamped[i] = std::clamp(pred[i], 0.0f, 1.0f);  // as a saved image
 
@@ -155,6 +157,7 @@ void run_eval(const Options& o) {
                  {"ssim", number_or_null(mean_of(m_ssims))},
                  {"views", m_psnrs.size()},
                  {"region", "bounding box of the object mask (>= 0.5), grown by 10% per side (min 4 px)"}};
+  j["non_finite_values"] = non_finite;
   j["render_ms_mean"] = render_ms / double(views.size());
   j["peak_host_memory_mib"] = peak_host_memory_mib();
   // Time per stage and peak memory of the run itself: stage 1 from its training log, stage 2 from the removal

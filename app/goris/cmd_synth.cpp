@@ -35,6 +35,9 @@ void setup_synth(CLI::App& root) {
   c->add_option("--train", a->opt.train_views, "training views")->capture_default_str();
   c->add_option("--test", a->opt.test_views, "test views (new viewpoints)")->capture_default_str();
   c->add_option("--seed", a->opt.seed, "random seed of the preset")->capture_default_str();
+  c->add_option("--table-roughness", a->opt.table_roughness,
+                 "override the glossy table top's roughness (0 = mirror .. 1; presets with a table)")
+      ->check(CLI::Range(0.0, 1.0));
   c->add_option("--blender", a->blender, "Blender executable (default: blender on PATH)");
   c->add_flag("--contact-sheet", a->contact_sheet, "also write contact_sheet.png (test views: full_ | r_ | mask)");
   c->add_flag("--no-gt", a->no_gt, "skip the intrinsic ground-truth maps (train/gt/*.exr)");

@@ -24,6 +24,9 @@
 #include "core/util/bench.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/auto_mode.h"
+#include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
 
 namespace {
@@ -140,6 +143,12 @@ void run_train(const Options& o) {
   Trainer::RunOptions ro;
   ro.run_dir = run_dir;
   ro.progress_every = tty ? 10 : config.log_interval;
+  ro.before_step = [&](Trainer& t) {  // --mode auto's decision after the warm-up
+    if (const auto d = apply_auto_mode(t, run_dir)) {
+      std::printf("%s%s\n", tty ? "\n" : "", d->message().c_str());
+      std::fflush(stdout);
+    }
+  };
   ro.on_progress = [tty](const TrainProgress& p) {
     std::fprintf(stderr, "%s[%*d/%d] loss %.4f  PSNR %5.2f dB  %zu Gaussians  %.1f it/s  ETA %s%s", tty ? "\r" : "",
                  int(std::to_string(p.total).size()), p.iteration, p.total, p.loss, p.psnr, p.gaussians, p.it_per_s,
@@ -166,11 +175,17 @@ void run_train(const Options& o) {
                 shell_quote(data.string()).c_str(), shell_quote(run_dir.string()).c_str());
     return;
   }
-  write_trained_run(run_dir, trainer, *prep.renderer);
+  write_trained_run(run_dir, trainer, *trainer.renderer());
   std::printf("done: %d iterations in %s, %zu Gaussians, training PSNR %.2f dB (smoothed), peak memory %.0f MiB\n"
               "model: %s\n",
               st.iteration, duration_text(st.elapsed_s).c_str(), st.model.count(), st.ema_psnr, peak_host_memory_mib(),
               run_ply_path(run_dir).string().c_str());
+  if (const IntrinsicRenderer* ir = as_intrinsic(trainer.renderer().get()); ir && ir->ray_totals().frames > 0) {
+    const IntrinsicRayTotals& r = ir->ray_totals();
+    std::printf("reflection rays: %.0f of %.0f glossy pixels traced per shaded frame (%.1f %% saved by coarse "
+                "tracing)\n", double(r.traced) / double(r.frames), double(r.glossy) / double(r.frames),
+                100.0 * r.saved_fraction());
+  }
 }
 
 void setup_train(CLI::App& root) {
@@ -180,7 +195,8 @@ void setup_train(CLI::App& root) {
   c->add_option("--out", o->out, "Run folder (config.json, checkpoints/, log.csv, point_cloud.ply)")->required();
   c->add_option("--mode", o->mode,
                  "What to train: radiance (SH colour), intrinsic (materials, tracing, shading: stage 1), auto "
-                 "(intrinsic when the data set has glossy masks)")
+                 "(intrinsic only for a glossy scene: from its glossy masks, or detected from the photos after the "
+                 "warm-up when it has none)")
       ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
   c->add_option("--normals", o->normals, "Folder of normal-prior maps for intrinsic mode (see README)");
   c->add_option("--iters", o->iters, "Number of iterations (default 30000)")->check(CLI::PositiveNumber);

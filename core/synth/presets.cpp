@@ -1,5 +1,6 @@
 #include "core/synth/presets.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -264,6 +265,16 @@ SceneDescription make_scene(const SynthOptions& o) {
   s.camera_angle_x = 0.6911112070083618;  // the 50 mm lens of the shared GOR-IS scenes
   Rng rng(o.seed);
   CameraRing ring = it->second(rng, s);
+  if (o.table_roughness) {
+    const double r = *o.table_roughness;
+    if (!(r >= 0.0 && r <= 1.0))
+      throw Error("goris synth", "--table-roughness must be between 0 and 1, got " + std::to_string(r));
+    auto table =
+        std::find_if(s.objects.begin(), s.objects.end(), [](const SceneObject& x) { return x.name == "table"; });
+    if (table == s.objects.end())
+      throw Error("goris synth", "--table-roughness: preset '" + o.preset + "' has no table top");
+    table->material.roughness = r;  // after the preset: the seed's other random choices stay the same
+  }
   s.train_cameras = hemisphere_cameras(ring, o.train_views, 0.0);
   s.test_cameras = hemisphere_cameras(ring, o.test_views, 0.5);
   return s;

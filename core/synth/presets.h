@@ -7,7 +7,10 @@
 //   lambert-room  diffuse floor and wall, area light, no glossy surface (a failure case of the method)
 //   twin-mirrors  steel table and a vertical mirror facing it (the other failure case)
 //   occluded      the target sits behind a bigger object, hidden from most views
+// table_roughness overrides the glossy table top's roughness (the stability bench's extreme 0.0 and 1.0)
+// and leaves everything else of the seed's scene as it was.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,11 +26,13 @@ struct SynthOptions {
   int test_views = 20;
   uint32_t seed = 1;
   bool ground_truth_maps = true;
+  std::optional<double> table_roughness;  // in [0, 1]; presets with a table top only
 };
 
 const std::vector<std::string>& preset_names();
 
-// Throws goris::Error for an unknown preset (the message lists the presets) or out-of-range options.
+// Throws goris::Error for an unknown preset (the message lists the presets), out-of-range options or a
+// table roughness for a preset without a table top.
 SceneDescription make_scene(const SynthOptions& options);
 
 }  // namespace goris::synth

@@ -18,7 +18,7 @@ namespace goris {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'O', 'R', 'I', 'S', 'C', 'K', 'P'};
-constexpr std::uint32_t kVersion = 2;  // 2: + learning-rate scale and skipped steps
+constexpr std::uint32_t kVersion = 3;  // 2: + learning-rate scale and skipped steps; 3: + adaptive densification record
 
 std::uint64_t fnv1a(const std::string& bytes) {
   std::uint64_t h = 1469598103934665603ull;
@@ -127,6 +127,13 @@ void write_checkpoint(const std::filesystem::path& path, const TrainConfig& conf
   w.floats(st.stats.max_radii);
   w.pod(st.lr_scale);
   w.pod(std::int32_t(st.skipped_steps));
+  w.pod(std::uint64_t(st.densify_stop.checks.size()));
+  for (const HeldOutCheck& c : st.densify_stop.checks) {
+    w.pod(std::int32_t(c.iteration));
+    w.pod(c.psnr);
+    w.pod(c.gaussians);
+  }
+  w.pod(std::int32_t(st.densify_stop.stopped_at));
   w.pod(fnv1a(w.bytes()));
 
   write_file_bytes(path, w.bytes().data(), w.bytes().size());
@@ -145,8 +152,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
 
   Reader r(data, path);
   const auto version = r.pod<std::uint32_t>();
-  if (version != kVersion && version != 1)
-    r.fail("has format version " + std::to_string(version) + " (this build reads " + std::to_string(kVersion) + ")");
+  if (version < 1 || version > kVersion)
+    r.fail("has format version " + std::to_string(version) + " (this build reads versions 1 to " + std::to_string(kVersion) + ")");
   Checkpoint ck;
   try {
     from_json(nlohmann::json::parse(r.str()), ck.config);
@@ -193,6 +200,19 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
     st.lr_scale = r.pod<double>();
     st.skipped_steps = r.pod<std::int32_t>();
     if (!(st.lr_scale > 0 && st.lr_scale <= 1)) r.fail("learning-rate scale is invalid");
+  }
+  if (version >= 3) {  // older checkpoints: no held-out checks yet, not stopped
+    const auto checks = r.pod<std::uint64_t>();
+    if (checks > data.size()) r.fail("adaptive densification record is invalid");
+    st.densify_stop.checks.resize(checks);
+    for (HeldOutCheck& c : st.densify_stop.checks) {
+      c.iteration = r.pod<std::int32_t>();
+      c.psnr = r.pod<double>();
+      c.gaussians = r.pod<std::uint64_t>();
+    }
+    st.densify_stop.stopped_at = r.pod<std::int32_t>();
+    if (st.densify_stop.stopped_at < 0 || st.densify_stop.stopped_at > st.iteration)
+      r.fail("adaptive densification stop iteration is invalid");
   }
   return ck;
 }

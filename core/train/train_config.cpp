@@ -25,6 +25,8 @@ void visit_fields(Config& c, F&& f) {
   f("use_glossy_masks", c.use_glossy_masks);
   f("use_object_masks", c.use_object_masks);
   f("max_train_views", c.max_train_views);
+  f("glossy_mask_dir", c.glossy_mask_dir);
+  f("auto_detect_glossy", c.auto_detect_glossy);
   f("random_init_points", c.random_init_points);
   f("random_init_box_ratio", c.random_init_box_ratio);
   f("lr_position_init", c.lr.position_init);
@@ -56,6 +58,11 @@ void visit_fields(Config& c, F&& f) {
   f("reset_opacity", c.densify.reset_opacity);
   f("prune_max_screen_radius", c.densify.max_screen_radius);
   f("prune_max_world_scale", c.densify.max_world_scale);
+  f("densify_stop", c.densify.stop);
+  f("densify_holdout_every", c.densify.holdout_every);
+  f("densify_stop_check_interval", c.densify.stop_check_interval);
+  f("densify_stop_window", c.densify.stop_window);
+  f("densify_stop_min_gain", c.densify.stop_min_gain);
   f("filter_3d", c.filter_3d);
   f("filter_3d_interval", c.filter_3d_interval);
   f("filter_2d", c.filter_2d);
@@ -70,6 +77,8 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
+  f("intrinsic_coarse_tracing", c.intrinsic.coarse_tracing);
+  f("intrinsic_coarse_max_level", c.intrinsic.coarse_max_level);
   f("intrinsic_normal_prior", c.intrinsic.normal_prior);
   f("intrinsic_normal_prior_final", c.intrinsic.normal_prior_final);
   f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
@@ -78,6 +87,15 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_region", c.intrinsic.region);
   f("intrinsic_label", c.intrinsic.label);
   f("intrinsic_normals", c.intrinsic.normals);
+  f("intrinsic_auto_mask_fraction", c.intrinsic.auto_mask_fraction);
+  f("intrinsic_detect_neighbours", c.intrinsic.detect_neighbours);
+  f("intrinsic_detect_threshold", c.intrinsic.detect_threshold);
+  f("intrinsic_detect_depth_tolerance", c.intrinsic.detect_depth_tolerance);
+  f("intrinsic_detect_search_radius", c.intrinsic.detect_search_radius);
+  f("intrinsic_detect_fraction", c.intrinsic.detect_fraction);
+  f("intrinsic_detect_width", c.intrinsic.detect_width);
+  f("intrinsic_detect_after", c.intrinsic.detect_after);
+  f("intrinsic_detect_plane_tolerance", c.intrinsic.detect_plane_tolerance);
   f("inpaint_appearance_weight", c.inpaint_appearance_weight);
   f("inpaint_material_weight", c.inpaint_material_weight);
   f("nan_policy", c.nan_policy);
@@ -111,6 +129,11 @@ void TrainConfig::validate(const std::string& what) const {
   if (max_sh_degree < 0 || max_sh_degree > 3) fail("max_sh_degree must lie in 0..3");
   if (densify.interval < 1) fail("densify_interval must be at least 1");
   if (!(densify_until_fraction >= 0 && densify_until_fraction <= 1)) fail("densify_until_fraction must lie in [0, 1]");
+  if (densify.stop != "fixed" && densify.stop != "adaptive") fail("densify_stop must be fixed or adaptive");
+  if (densify.holdout_every < 2) fail("densify_holdout_every must be at least 2 (some views must stay in training)");
+  if (densify.stop_check_interval < 1) fail("densify_stop_check_interval must be at least 1");
+  if (densify.stop_window < 1) fail("densify_stop_window must be at least 1");
+  if (!std::isfinite(densify.stop_min_gain)) fail("densify_stop_min_gain must be finite (dB)");
   if (densify.opacity_reset_interval < 1) fail("opacity_reset_interval must be at least 1");
   if (densify.split_count < 1 || densify.split_count > 8) fail("split_count must lie in 1..8");
   if (!(densify.min_opacity >= 0 && densify.min_opacity < 1)) fail("prune_min_opacity must lie in [0, 1)");
@@ -131,6 +154,19 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(in.env_initial > 0)) fail("intrinsic_env_initial must be positive");
   if (in.net_hidden_layers < 0 || in.net_hidden_layers > 16) fail("intrinsic_net_hidden_layers must lie in 0..16");
   if (!(in.ray_offset >= 0)) fail("intrinsic_ray_offset must be >= 0");
+  if (in.coarse_max_level < 1 || in.coarse_max_level > 3) fail("intrinsic_coarse_max_level must lie in 1..3");
+  if (!(in.auto_mask_fraction >= 0 && in.auto_mask_fraction <= 1) || !(in.detect_fraction >= 0 && in.detect_fraction <= 1))
+    fail("intrinsic_auto_mask_fraction and intrinsic_detect_fraction must lie in [0, 1]");
+  if (in.detect_neighbours < 1 || in.detect_neighbours > 16) fail("intrinsic_detect_neighbours must lie in 1..16");
+  if (!(in.detect_threshold >= 0) || !std::isfinite(in.detect_threshold))
+    fail("intrinsic_detect_threshold must be finite and >= 0");
+  if (!(in.detect_depth_tolerance > 0) || !std::isfinite(in.detect_depth_tolerance))
+    fail("intrinsic_detect_depth_tolerance must be finite and positive");
+  if (in.detect_search_radius < 0 || in.detect_search_radius > 8) fail("intrinsic_detect_search_radius must lie in 0..8");
+  if (in.detect_width < 0) fail("intrinsic_detect_width must be >= 0 (0 = the training size)");
+  if (in.detect_after < 0) fail("intrinsic_detect_after must be >= 0");
+  if (!(in.detect_plane_tolerance >= 0) || !std::isfinite(in.detect_plane_tolerance))
+    fail("intrinsic_detect_plane_tolerance must be finite and >= 0");
   for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
                   in.region, in.region_rough, in.label})
     if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");

@@ -40,6 +40,10 @@ struct IntrinsicSettings {
   int net_hidden_layers = 6;       // 3x3 layers of the roughness net
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
+  // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
+  // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
+  bool coarse_tracing = false;
+  int coarse_max_level = 2;
   // Loss weights (0 = off).
   float normal_prior = 0.5f;       // decays to normal_prior_final between warmup and normal_prior_until
   float normal_prior_final = 0.001f;
@@ -50,6 +54,21 @@ struct IntrinsicSettings {
                                    // off: it did not help on steel_snowman, see README)
   float label = 1.0f;              // BCE of the rendered label against the object masks
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
+  // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction
+  // of their pixels are glossy. Without: glossy regions detected by multi-view photo-consistency
+  // (render/train/glossy_detection.h): a pixel is glossy when its colour lies more than detect_threshold
+  // (mean over RGB) outside what the detect_neighbours nearest views show around the same surface point,
+  // and the scene is when detect_fraction of the covered pixels are. Tuned on ../shared/datasets at 128 px
+  // (README "--mode auto").
+  float auto_mask_fraction = 0.005f;
+  int detect_neighbours = 2;
+  float detect_threshold = 0.03f;
+  float detect_depth_tolerance = 0.03f;  // relative depth difference of "the same surface point"
+  int detect_search_radius = 1;          // pixels: colour range of this window (geometry errors)
+  float detect_fraction = 0.002f;
+  int detect_width = 128;                // detection at this image width at most (0 = training size)
+  int detect_after = 4000;               // iterations (not scaled) before detecting, at most half the run
+  float detect_plane_tolerance = 0.05f;  // masks grown over the detections' plane(s), x camera distance (0 = off)
 };
 
 struct TrainConfig {
@@ -71,6 +90,13 @@ struct TrainConfig {
   bool use_glossy_masks = true;
   bool use_object_masks = true;
   int max_train_views = 0;
+  // Glossy masks read from this folder (gloss_<view name>.png at the training size) instead of the data
+  // set's: where --mode auto keeps the masks it detected (RUN/detected_gloss). Empty = the data set's.
+  std::string glossy_mask_dir;
+  // Set by --mode auto when the data have no glossy masks: the run trains radiance through the warm-up,
+  // then detects glossy regions and switches to intrinsic (mode "intrinsic", glossy_mask_dir = the
+  // detected masks) or stays radiance; the decision clears it, so a resumed run never detects twice.
+  bool auto_detect_glossy = false;
 
   // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
   int random_init_points = 100000;

@@ -10,10 +10,12 @@
 
 #include "core/compute/memory.h"
 #include "core/io/file_bytes.h"
+#include "core/io/json_file.h"
 #include "core/scene/filter3d.h"
 #include "core/train/checkpoint.h"
 #include "core/train/depth_normal_loss.h"
 #include "core/train/finite_check.h"
+#include "core/train/held_out_views.h"
 #include "core/train/image_losses.h"
 #include "core/train/intrinsic_losses.h"
 #include "core/train/lr_schedule.h"
@@ -121,6 +123,8 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
   config_.validate("training configuration");
   if (config_.mode == "auto") throw Error("training: mode 'auto' must be resolved from the data set before training");
   if (views_.empty()) throw Error("training: no training views");
+  if (densify_stop_plan(config_, densify_until(), intrinsic()).active())
+    held_out_view_indices(views_.size(), config_.densify.holdout_every);  // throws for a single view
   for (const TrainView& v : views_)
     if (v.image.size() != size_t(3) * v.camera.width * v.camera.height)
       throw Error(v.name, "training image size does not match its camera");
@@ -144,6 +148,31 @@ TrainerState Trainer::initial_state(const TrainConfig& config, GaussianModel mod
   return s;
 }
 
+void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRenderer> renderer,
+                          const std::function<void(std::vector<TrainView>&)>& update_views) {
+  if (!renderer) throw Error("training: no renderer");
+  if (renderer->device() != device_) throw Error("training: the new renderer lives on another device");
+  config.validate("training configuration");
+  if (config.mode == "auto") throw Error("training: mode 'auto' must be resolved before switching to it");
+  const std::vector<ParamGroup> before = active_groups();
+  const size_t n_views = views_.size();
+  config_ = std::move(config);
+  renderer_ = std::move(renderer);
+  state_.model.max_sh_degree = config_.max_sh_degree;
+  if (update_views) update_views(views_);
+  if (views_.size() != n_views) throw Error("training: switching modes must keep the training views");
+  for (const TrainView& v : views_) {
+    const size_t hw = size_t(v.camera.width) * size_t(v.camera.height);
+    if (!v.glossy_mask.empty() && v.glossy_mask.size() != hw) throw Error(v.name, "glossy mask size does not match its camera");
+    if (!v.normal_prior.empty() && v.normal_prior.size() != 3 * hw) throw Error(v.name, "normal prior size does not match its camera");
+  }
+  for (ParamGroup g : active_groups())
+    if (std::find(before.begin(), before.end(), g) == before.end()) {
+      reset_moments(state_.model, g);
+      state_.adam.steps[size_t(g)] = 0;
+    }
+}
+
 std::vector<Camera> Trainer::cameras() const {
   std::vector<Camera> c;
   c.reserve(views_.size());
@@ -159,12 +188,16 @@ StepStats Trainer::step() {
 
   if (it % config_.sh_degree_interval == 0) m.sh_degree = std::min(m.sh_degree + 1, m.max_sh_degree);
 
-  // The next view of a random permutation of all views (a new one each epoch).
+  // The next view of a random permutation of all views (a new one each epoch), without the views the
+  // adaptive Gaussian budget holds out while it densifies.
+  const DensifyStopPlan stop_plan = densify_stop_plan(config_, densify_until(), intrinsic());
   if (state_.view_stack.empty()) {
-    state_.view_stack.resize(views_.size());
-    for (size_t i = 0; i < views_.size(); ++i) state_.view_stack[i] = std::uint32_t(i);
+    state_.view_stack = epoch_views(views_.size(), stop_plan.holds_out(it, state_.densify_stop)
+                                                       ? held_out_view_indices(views_.size(), stop_plan.holdout_every)
+                                                       : std::vector<std::uint32_t>{});
     std::shuffle(state_.view_stack.begin(), state_.view_stack.end(), state_.rng);
   }
+  out.view = int(state_.view_stack.back());
   const TrainView& view = views_[state_.view_stack.back()];
   state_.view_stack.pop_back();
   const Camera& cam = view.camera;
@@ -276,10 +309,16 @@ StepStats Trainer::step() {
   // the window (otherwise the Gaussians it silenced would never be removed, only dimmed).
   const DensifySettings& ds = config_.densify;
   const int until = densify_until();
+  if (stop_plan.checks_at(it, state_.densify_stop)) {  // adaptive budget: measure, maybe stop growing
+    const double psnr = held_out_psnr(*renderer_, m, views_, held_out_view_indices(views_.size(), ds.holdout_every));
+    out.densify_note = record_held_out_check(state_.densify_stop, stop_plan, it, psnr, m.count());
+    out.held_out_check = true;
+  }
   if (it <= until) {
     if (it >= ds.from_iter && it % ds.interval == 0) {
       out.densify = densify_and_prune(m, state_.stats, ds, extent_, it > ds.opacity_reset_interval,
-                                      config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it));
+                                      config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it),
+                                      /*grow=*/!state_.densify_stop.stopped());
       if (m.count() == 0)
         throw Error(format_iteration_problem(
             it, "pruning removed every Gaussian (opacities below " + std::to_string(ds.min_opacity) +
@@ -588,6 +627,13 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
       if (o.on_progress) o.on_progress(progress(it_per_s));
       return RunResult::Stopped;
     }
+    if (o.before_step) {
+      const auto t0 = clock::now();
+      o.before_step(*this);
+      const auto t1 = clock::now();
+      state_.elapsed_s += std::chrono::duration<double>(t1 - t0).count();
+      last += t1 - t0;
+    }
     const StepStats s = step();
     if (s.skipped) {
       if (o.on_skip)
@@ -596,6 +642,18 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
         std::fprintf(stderr, "\nwarning: %s\n", s.problem.c_str());
       last = clock::now();
       continue;
+    }
+    if (s.held_out_check && !o.run_dir.empty()) {
+      std::vector<std::string> names;
+      for (std::uint32_t i : held_out_view_indices(views_.size(), config_.densify.holdout_every)) names.push_back(views_[i].name);
+      write_json_file(o.run_dir / "densify_stop.json",
+                      densify_stop_json(state_.densify_stop, densify_stop_plan(config_, densify_until(), intrinsic()), names));
+    }
+    if (!s.densify_note.empty()) {
+      if (o.on_note)
+        o.on_note(s.densify_note);
+      else
+        std::printf("\n%s\n", s.densify_note.c_str());
     }
     const auto now = clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();

@@ -16,6 +16,7 @@
 #include "core/scene/gaussians.h"
 #include "core/train/adam.h"
 #include "core/train/densify.h"
+#include "core/train/densify_stop.h"
 #include "core/train/differentiable_renderer.h"
 #include "core/train/param_groups.h"
 #include "core/train/train_config.h"
@@ -62,6 +63,7 @@ struct TrainerState {
   double elapsed_s = 0;                  // training time so far, over all sessions
   double lr_scale = 1.0;                 // lowered by each step skipped for non-finite values
   int skipped_steps = 0;                 // in all; consecutive ones are counted in the trainer
+  DensifyStopState densify_stop;         // the adaptive Gaussian budget's held-out checks and decision
 };
 
 struct TrainProgress {
@@ -77,6 +79,11 @@ struct StepStats {
   double normal_prior = 0, smoothness = 0, region = 0, label = 0;
   double appearance = 0, material = 0;  // stage 2 (0 when off)
   DensifyCounts densify;  // after == 0 when this step did not densify
+  int view = -1;          // the training view of this step
+  // The adaptive Gaussian budget measured its held-out views in this step; densify_note says what it
+  // decided when it stopped densification or the window closed (core/train/densify_stop.h).
+  bool held_out_check = false;
+  std::string densify_note;
   // A step skipped for non-finite values (nan_policy recover): what was found, where; nothing was updated.
   bool skipped = false;
   std::string problem;
@@ -104,6 +111,10 @@ class Trainer {
     std::function<void(const TrainProgress&)> on_progress;  // called every progress_every iterations and at the end
     int progress_every = 10;
     std::function<void(const std::string&)> on_skip;  // a step skipped for non-finite values (default: stderr)
+    std::function<void(const std::string&)> on_note;  // StepStats::densify_note (default: stdout)
+    // Called before every step (--mode auto's switch after the warm-up: render/train/auto_mode.h); its time
+    // counts as training time but not as iteration time.
+    std::function<void(Trainer&)> before_step;
   };
   // Steps until config.iterations or until *stop. Writes a checkpoint every config.checkpoint_interval
   // iterations, at the end and when stopped; appends to run_dir/log.csv every config.log_interval.
@@ -119,6 +130,14 @@ class Trainer {
   // The normal-prior weight at an iteration (the 0.5 -> 0.001 decay of S1.5, scaled to the run's length).
   double normal_prior_weight(int iteration) const;
   bool intrinsic() const { return config_.mode == "intrinsic"; }
+
+  // Continues the run under another configuration and renderer (--mode auto switching a radiance run to
+  // intrinsic after the warm-up); `update_views` may set the views' glossy masks and normal priors. The
+  // renderer must live on the model's device. Parameter groups the previous renderer did not train (the
+  // material extras of a radiance run) restart with zero Adam moments and step counts.
+  void switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRenderer> renderer,
+                   const std::function<void(std::vector<TrainView>&)>& update_views = {});
+  const std::shared_ptr<DifferentiableRenderer>& renderer() const { return renderer_; }
 
   const TrainConfig& config() const { return config_; }
   TrainerState& state() { return state_; }

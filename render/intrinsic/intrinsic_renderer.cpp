@@ -10,6 +10,7 @@
 #include "core/scene/gaussians.h"
 #include "core/train/lr_schedule.h"
 #include "core/util/error.h"
+#include "render/intrinsic/coarse_tracing.h"
 #include "render/intrinsic/own_state_io.h"
 #include "render/train/raster_renderer.h"
 
@@ -56,20 +57,33 @@ class StageTimer {
   std::chrono::steady_clock::time_point t0_;
 };
 
+// An uninitialised ray list of n rays on device d.
+ReflectionRays ray_list(std::size_t n, Device d) {
+  ReflectionRays r;
+  r.pixels = Buffer<std::uint32_t>(n, d);
+  r.origins = Buffer<float>(3 * n, d);
+  r.directions = Buffer<float>(3 * n, d);
+  r.count = n;
+  return r;
+}
+
 }  // namespace
 
 // What the shading pass keeps for backward().
 struct IntrinsicRenderer::Frame {
   Camera camera;
   SurfaceImages surface;
-  ReflectionRays rays;
+  ReflectionRays rays;                          // the traced rays (coarse tracing: first pass, then the rest)
   Buffer<float> emit;                           // [N] region weight of each Gaussian (rough ones emit)
   Buffer<float> ray_color, ray_depth, ray_alpha;  // per ray
   Buffer<float> L_raw, V_raw;                   // traced_to_images
   Buffer<float> L, V;                           // what shade() read (filtered or raw)
   Buffer<float> filtered;                       // [4][H][W] filter output
   Buffer<float> rs;                             // [H][W] screen roughness
+  Buffer<float> mass;                           // [H][W] filter mass (coarse tracing left rays out), or empty
+  std::size_t glossy = 0;                       // glossy pixels (rays.count of them were traced)
   bool use_filter = false;
+  const Buffer<float>* mass_or_null() const { return mass.empty() ? nullptr : &mass; }
   ShadeOutputs shaded;
 };
 
@@ -93,7 +107,10 @@ IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, De
 
 IntrinsicRenderer::~IntrinsicRenderer() = default;
 
-void IntrinsicRenderer::begin_iteration(int iteration) { shading_ = iteration > shading_from_; }
+void IntrinsicRenderer::begin_iteration(int iteration) {
+  shading_ = iteration > shading_from_;
+  frame_seed_ = std::uint32_t(iteration);  // coarse tracing's representatives move from one iteration to the next
+}
 
 RenderedImages IntrinsicRenderer::forward(const GaussianView& gaussians, const Camera& camera) {
   if (gaussians.n_extras != extra::kCount)
@@ -114,6 +131,29 @@ RenderedImages IntrinsicRenderer::forward(const GaussianView& gaussians, const C
   return r;
 }
 
+void IntrinsicRenderer::trace_rays(const ReflectionRays& rays, std::size_t first, std::size_t count,
+                                   Buffer<float>& color, Buffer<float>& depth, Buffer<float>& alpha, std::size_t at) {
+  if (count == 0) return;
+  TraceOutputs out;
+  out.color = color.data() + 3 * at;
+  out.depth = depth.data() + at;
+  out.alpha = alpha.data() + at;
+  tracer_.trace({rays.origins.data() + 3 * first, rays.directions.data() + 3 * first, count}, out);
+}
+
+void IntrinsicRenderer::net_forward(Frame& f, const Buffer<float>& distance) {
+  // The net's input: (roughness, traced hit distance, 1 / view depth), distances in scene extents.
+  const GBuffer& g = raster_.gbuffer;
+  const std::size_t hw = g.pixels();
+  std::vector<float> in(3 * hw);
+  device_copy(in.data(), Device::CPU, g.extras.data() + std::size_t(extra::kRoughness) * hw, device_, hw * sizeof(float));
+  distance.download(in.data() + hw);
+  const std::vector<float> depth = g.depth.to_host(), alpha = g.alpha.to_host();
+  for (std::size_t p = 0; p < hw; ++p)
+    in[2 * hw + p] = depth[p] > 1e-6f && alpha[p] > 1e-4f ? std::min(extent_ * alpha[p] / depth[p], 100.0f) : 0.0f;
+  net_.forward(Buffer<float>(in, device_), g.height, g.width, f.rs);
+}
+
 void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps) {
   auto f = std::make_unique<Frame>();
   const GBuffer& g = raster_.gbuffer;
@@ -121,56 +161,102 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
   const std::size_t hw = g.pixels();
   f->camera = camera;
   f->surface = surface_from_gbuffer(g, kChannels);
+  f->use_filter = config_.intrinsic.screen_space_filter;
+  ReflectionRays glossy;
   {
     StageTimer t(profile_, device_, times_.rays);
-    f->rays = make_reflection_rays(camera, f->surface, shading_settings_, device_);
+    glossy = make_reflection_rays(camera, f->surface, shading_settings_, device_);
   }
-  const std::size_t n = f->rays.count;
-  times_.rays_traced = n;
-  std::optional<StageTimer> trace_timer(std::in_place, profile_, device_, times_.trace);
+  const std::size_t n_glossy = glossy.count;
+  f->glossy = n_glossy;
+  const bool coarse = f->use_filter && config_.intrinsic.coarse_tracing && n_glossy > 0;
+  const CoarseTracingSettings cs{std::min(config_.intrinsic.coarse_max_level, filter_.levels() - 2), filter_.levels(),
+                                 frame_seed_};
 
   // Trace: every Gaussian occludes, rough ones (region weight m) emit. No extras needed on the rays.
   {
+    StageTimer t(profile_, device_, times_.trace);
     const std::vector<float> ex = download(gaussians.extras, std::size_t(gaussians.count) * extra::kCount, device_);
     std::vector<float> emit(std::size_t(gaussians.count));
     for (std::size_t i = 0; i < emit.size(); ++i) emit[i] = ex[i * extra::kCount + extra::kRegion];
     f->emit = Buffer<float>(emit, device_);
+    if (n_glossy > 0) {
+      GaussianView plain = gaussians;
+      plain.extras = nullptr;
+      plain.n_extras = 0;
+      tracer_.build(plain, f->emit.data());
+    }
   }
-  f->ray_color = Buffer<float>(3 * n, device_);
-  f->ray_depth = Buffer<float>(n, device_);
-  f->ray_alpha = Buffer<float>(n, device_);
-  if (n > 0) {
-    GaussianView plain = gaussians;
-    plain.extras = nullptr;
-    plain.n_extras = 0;
-    tracer_.build(plain, f->emit.data());
-    TraceOutputs out;
-    out.color = f->ray_color.data();
-    out.depth = f->ray_depth.data();
-    out.alpha = f->ray_alpha.data();
-    tracer_.trace({f->rays.origins.data(), f->rays.directions.data(), n}, out);
+  // First (with coarse tracing: the representatives of every 2^max_level block) or only pass.
+  RaySelection first;
+  ReflectionRays first_rays;
+  Buffer<float> first_color, first_depth, first_alpha;
+  if (coarse) {
+    {
+      StageTimer t(profile_, device_, times_.rays);
+      first = select_block_rays(glossy, W, H, nullptr, cs);
+      first_rays = ray_list(first.count, device_);
+      gather_rays(glossy, first, first_rays, 0);
+    }
+    StageTimer t(profile_, device_, times_.trace);
+    first_color = Buffer<float>(3 * first.count, device_);
+    first_depth = Buffer<float>(first.count, device_);
+    first_alpha = Buffer<float>(first.count, device_);
+    trace_rays(first_rays, 0, first.count, first_color, first_depth, first_alpha, 0);
+  } else {
+    StageTimer t(profile_, device_, times_.trace);
+    f->rays = std::move(glossy);
+    f->ray_color = Buffer<float>(3 * n_glossy, device_);
+    f->ray_depth = Buffer<float>(n_glossy, device_);
+    f->ray_alpha = Buffer<float>(n_glossy, device_);
+    trace_rays(f->rays, 0, n_glossy, f->ray_color, f->ray_depth, f->ray_alpha, 0);
   }
-  traced_to_images(f->rays, W, H, f->ray_color, f->ray_alpha, traced_settings_, f->L_raw, f->V_raw);
-  trace_timer.reset();
+
+  if (f->use_filter) {
+    {
+      StageTimer t(profile_, device_, times_.filter);
+      const Buffer<float> distance =
+          coarse ? representative_distance(glossy, &first, first_depth, first_alpha, W, H, cs.max_level, extent_)
+                 : representative_distance(f->rays, nullptr, f->ray_depth, f->ray_alpha, W, H, 0, extent_);
+      net_forward(*f, distance);
+    }
+    if (coarse) {  // the final selection from R_s: the first pass plus the rays it adds
+      RaySelection all, added;
+      {
+        StageTimer t(profile_, device_, times_.rays);
+        all = select_block_rays(glossy, W, H, &f->rs, cs);
+        added = selection_difference(all, first);
+        f->rays = ray_list(all.count, device_);
+        gather_rays(glossy, first, f->rays, 0);
+        gather_rays(glossy, added, f->rays, first.count);
+        if (all.count < n_glossy) f->mass = selection_mass(glossy, all, W, H);
+      }
+      StageTimer t(profile_, device_, times_.trace);
+      f->ray_color = Buffer<float>(3 * all.count, device_);
+      f->ray_depth = Buffer<float>(all.count, device_);
+      f->ray_alpha = Buffer<float>(all.count, device_);
+      device_copy(f->ray_color.data(), device_, first_color.data(), device_, first_color.bytes());
+      device_copy(f->ray_depth.data(), device_, first_depth.data(), device_, first_depth.bytes());
+      device_copy(f->ray_alpha.data(), device_, first_alpha.data(), device_, first_alpha.bytes());
+      trace_rays(f->rays, first.count, added.count, f->ray_color, f->ray_depth, f->ray_alpha, first.count);
+    }
+  }
+  times_.rays_traced = f->rays.count;
+  times_.rays_glossy = n_glossy;
+  ++ray_totals_.frames;
+  ray_totals_.glossy += n_glossy;
+  ray_totals_.traced += f->rays.count;
+  {
+    StageTimer t(profile_, device_, times_.trace);
+    traced_to_images(f->rays, W, H, f->ray_color, f->ray_alpha, traced_settings_, f->L_raw, f->V_raw);
+  }
 
   std::optional<StageTimer> filter_timer(std::in_place, profile_, device_, times_.filter);
-  f->use_filter = config_.intrinsic.screen_space_filter;
   if (f->use_filter) {
-    // The net's input: (roughness, traced hit distance, 1 / view depth), distances in scene extents.
-    const std::vector<float> ex = g.extras.to_host(), depth = g.depth.to_host(), alpha = g.alpha.to_host();
-    const std::vector<std::uint32_t> pix = f->rays.pixels.to_host();
-    const std::vector<float> rd = f->ray_depth.to_host(), ra = f->ray_alpha.to_host();
-    std::vector<float> in(3 * hw, 0.0f);
-    std::copy_n(ex.begin() + std::ptrdiff_t(extra::kRoughness * hw), hw, in.begin());
-    for (std::size_t i = 0; i < n; ++i)
-      in[hw + pix[i]] = ra[i] > 1e-4f ? rd[i] / ra[i] / extent_ : 0.0f;
-    for (std::size_t p = 0; p < hw; ++p)
-      in[2 * hw + p] = depth[p] > 1e-6f && alpha[p] > 1e-4f ? std::min(extent_ * alpha[p] / depth[p], 100.0f) : 0.0f;
-    net_.forward(Buffer<float>(in, device_), H, W, f->rs);
     Buffer<float> x(4 * hw, device_);
     device_copy(x.data(), device_, f->L_raw.data(), device_, 3 * hw * sizeof(float));
     device_copy(x.data() + 3 * hw, device_, f->V_raw.data(), device_, hw * sizeof(float));
-    filter_.forward(x, 4, H, W, g.normal, f->rs, f->filtered);
+    filter_.forward(x, 4, H, W, g.normal, f->rs, f->filtered, f->mass_or_null());
     f->L = Buffer<float>(3 * hw, device_);
     f->V = Buffer<float>(hw, device_);
     device_copy(f->L.data(), device_, f->filtered.data(), device_, 3 * hw * sizeof(float));
@@ -352,6 +438,7 @@ IntrinsicMaps IntrinsicRenderer::render_maps(const GaussianView& gaussians, cons
   m.visibility = f.V.to_host();
   if (f.use_filter) m.screen_roughness = f.rs.to_host();
   m.rays = f.rays.count;
+  m.glossy_pixels = f.glossy;
   return m;
 }
 
@@ -384,7 +471,7 @@ std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussi
   if (f.use_filter) {
     ssf::GlossyFilter<float> filter(filter_.config());
     Buffer<float> filtered;
-    filter.forward(Buffer<float>(label, device_), 1, H, W, g.normal, f.rs, filtered);
+    filter.forward(Buffer<float>(label, device_), 1, H, W, g.normal, f.rs, filtered, f.mass_or_null());
     label = filtered.to_host();
   }
   // Weight like the glossy term: (1 - M) F, F = F0 + (1 - F0)(1 - cos)^5 with cos = n . (-view ray).

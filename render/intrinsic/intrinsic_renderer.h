@@ -6,6 +6,8 @@
 //   -> reflection rays of the glossy pixels (make_reflection_rays)
 //   -> trace them through the Gaussians, rough ones emitting (GaussianTracer, emit = region weight m)
 //   -> L_ind, V (traced_to_images) -> screen-space filter at R_s = Net(roughness, traced depth, 1 / depth)
+//      (with coarse tracing, coarse_tracing.h: one ray per block of pixels the filter blurs anyway, traced
+//      in two passes around the net, and a weighted pyramid that ignores the untraced pixels)
 //   -> C = D + (1 - M) F (L_ind' + L_dir' V')  (shade; L_dir' from the environment map)
 //
 // and the backward pass walks it in reverse into the Gaussians (through the G-buffer and the traced hits),
@@ -15,7 +17,8 @@
 //
 // The depth inputs of the roughness net are treated as constants (the net steers the blur level; its
 // gradient to roughness is kept). The per-pixel glue between stages (emit weights, the net's input image)
-// runs on the host; on CUDA that costs two small transfers per iteration.
+// runs on the host; on CUDA that costs a few small transfers per iteration.
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -41,7 +44,8 @@ struct IntrinsicMaps {
   std::vector<float> visibility;  // V' [H][W]
   std::vector<float> env;         // L_dir' [3][H][W]
   std::vector<float> screen_roughness;  // R_s [H][W] (empty without the filter)
-  std::size_t rays = 0;           // traced rays (glossy pixels)
+  std::size_t rays = 0;           // traced rays
+  std::size_t glossy_pixels = 0;  // pixels with a reflection ray (= rays unless coarse tracing saved some)
 };
 
 // Wall time of each stage of the last forward / backward (ms), when profiling is on (CUDA is synchronised
@@ -49,9 +53,16 @@ struct IntrinsicMaps {
 struct IntrinsicTimes {
   double raster = 0, rays = 0, trace = 0, filter = 0, shade = 0;                        // forward
   double shade_back = 0, filter_back = 0, trace_back = 0, raster_back = 0;              // backward
-  std::size_t rays_traced = 0;
+  std::size_t rays_traced = 0;  // reflection rays traced in the forward pass ...
+  std::size_t rays_glossy = 0;  // ... of this many glossy pixels (the difference: saved by coarse tracing)
   double forward_total() const { return raster + rays + trace + filter + shade; }
   double backward_total() const { return shade_back + filter_back + trace_back + raster_back; }
+};
+
+// Reflection rays of every shaded frame since the renderer was made (or reset_ray_totals()).
+struct IntrinsicRayTotals {
+  std::uint64_t frames = 0, glossy = 0, traced = 0;
+  double saved_fraction() const { return glossy ? 1.0 - double(traced) / double(glossy) : 0.0; }
 };
 
 class IntrinsicRenderer final : public DifferentiableRenderer {
@@ -86,7 +97,9 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   std::vector<float> reflected_label(const GaussianView& gaussians, const Camera& camera);
 
   void set_profile(bool on) { profile_ = on; }
-  const IntrinsicTimes& times() const { return times_; }
+  const IntrinsicTimes& times() const { return times_; }  // stage times (when profiling) and ray counts
+  const IntrinsicRayTotals& ray_totals() const { return ray_totals_; }
+  void reset_ray_totals() { ray_totals_ = {}; }
 
   EnvironmentMap& environment() { return env_; }
   ssf::RoughnessNet<float>& net() { return net_; }
@@ -94,6 +107,9 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
  private:
   struct Frame;
   void shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps);
+  void trace_rays(const ReflectionRays& rays, std::size_t first, std::size_t count, Buffer<float>& color,
+                  Buffer<float>& depth, Buffer<float>& alpha, std::size_t at);
+  void net_forward(Frame& f, const Buffer<float>& distance);
 
   TrainConfig config_;
   float extent_;
@@ -103,6 +119,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   TracedImageSettings traced_settings_;
   int shading_from_ = 0;
   bool shading_ = false;
+  std::uint32_t frame_seed_ = 0;  // coarse tracing: which pixel of a block is traced (the iteration)
 
   EnvironmentMap env_;
   FlatAdam env_adam_;
@@ -113,6 +130,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
 
   bool profile_ = false;
   IntrinsicTimes times_;
+  IntrinsicRayTotals ray_totals_;
   RasterOutput raster_;
   std::unique_ptr<Frame> frame_;  // the shading pass's intermediates, kept for backward()
 };

@@ -36,6 +36,7 @@
 #include "render/removal/reference_views.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
+#include "render/train/training_setup.h"
 
 namespace goris {
 
@@ -163,8 +164,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   const TrainConfig config = read_run_config(run_dir);
   const Device device = resolve_device(o.device);
   const DatasetOptions dopt = dataset_options(config);
-  const Dataset ds = load_dataset(config.data, dopt);
+  Dataset ds = load_dataset(config.data, dopt);
   if (ds.train.empty()) throw Error(config.data, "the data set has no training views");
+  select_training_data(config, ds);  // stage 2 sees the views and masks stage 1 trained with
   const float extent = scene_extent(ds);
   std::vector<Camera> cameras;
   for (const View& v : ds.train) cameras.push_back(v.camera);

@@ -37,4 +37,13 @@ void check_finite(const char* op, const char* name, const Buffer<T>& b) {
   if (bad != b.size()) throw Error(op, std::string(name) + " has a NaN or infinite value at index " + std::to_string(bad));
 }
 
+// Values must be >= 0 (weights). Checked where the buffer lives on the CPU; on CUDA the callers' own
+// construction guarantees it (an extra transfer per call would cost more than the check is worth).
+template <class T>
+void check_non_negative(const char* op, const char* name, const Buffer<T>& b) {
+  if (b.device() != Device::CPU) return;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b[i] < T(0)) throw Error(op, std::string(name) + " has a negative value at index " + std::to_string(i));
+}
+
 }  // namespace goris::ssf

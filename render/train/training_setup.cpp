@@ -10,6 +10,7 @@
 #include "core/train/train_setup.h"
 #include "core/util/error.h"
 #include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/auto_mode.h"
 #include "render/train/run_renderer.h"
 
 namespace goris {
@@ -31,7 +32,8 @@ void select_training_data(const TrainConfig& config, Dataset& dataset) {
     train = std::move(kept);
   }
   for (View& v : train) {
-    if (!config.use_glossy_masks) v.glossy_mask.reset();
+    // glossy_mask_dir replaces the data set's masks (prepare_training loads them).
+    if (!config.use_glossy_masks || !config.glossy_mask_dir.empty()) v.glossy_mask.reset();
     if (!config.use_object_masks) v.object_mask.reset();
   }
 }
@@ -45,16 +47,12 @@ PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, s
   p.dataset = load_dataset(config.data, dopt);
   if (p.dataset.train.empty()) throw Error(config.data, "the data set has no training views");
   select_training_data(config, p.dataset);
-  if (config.mode == "auto") {
-    // Intrinsic when the data set has glossy masks (what the intrinsic losses need).
-    const bool glossy = std::any_of(p.dataset.train.begin(), p.dataset.train.end(),
-                                    [](const View& v) { return v.glossy_mask.has_value(); });
-    config.mode = glossy ? "intrinsic" : "radiance";
-    p.auto_mode_reason = glossy ? "the data set has glossy masks" : "no glossy masks in the data set";
-    config.validate("training options");
-  }
   p.extent = scene_extent(p.dataset);
   std::vector<TrainView> views = load_train_views(p.dataset.train, dopt, on_view);
+  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);
+  // "auto": from the glossy masks, or radiance until the detection after the warm-up (auto_mode.h).
+  p.auto_mode_reason = resolve_auto_mode(config, views);
+  config.validate("training options");
   for (const TrainView& v : views) {
     p.glossy_views += !v.glossy_mask.empty();
     p.mask_views += !v.object_mask.empty();

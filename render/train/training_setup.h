@@ -1,7 +1,8 @@
 #pragma once
 // A run folder and a training configuration turned into a Trainer ready to run: shared by `goris train`
 // (app/goris/cmd_train.cpp) and the editor's training session (ui/trainer_session.h), so both train the
-// same way. It loads the data set, resolves mode "auto", loads the training images (and normal priors in
+// same way. It loads the data set, resolves mode "auto" (render/train/auto_mode.h: the callers pass
+// apply_auto_mode as Trainer::RunOptions::before_step for the decision after the warm-up), loads the training images (and normal priors in
 // intrinsic mode), builds the initial model or takes a checkpoint's state, and makes the differentiable
 // renderer the configuration asks for (render/train/run_renderer.h) with its own parameters restored when
 // resuming. What differs between the callers (new or resumed run, how the iteration target is given, what
@@ -33,7 +34,7 @@ struct PreparedTraining {
   TrainConfig config;  // as trained: mode "auto" resolved
   Dataset dataset;
   float extent = 1.0f;
-  std::shared_ptr<DifferentiableRenderer> renderer;
+  std::shared_ptr<DifferentiableRenderer> renderer;  // as prepared (--mode auto may switch: trainer->renderer())
   std::unique_ptr<Trainer> trainer;
   // For the user: how "auto" decided (empty when the mode was given), the intrinsic inputs found, and how
   // the initial model was made (empty when resumed).
@@ -43,7 +44,8 @@ struct PreparedTraining {
 };
 
 // Applies config.use_glossy_masks / use_object_masks / max_train_views to the loaded data set's training
-// views (prepare_training calls it; the views' mask paths are dropped, the subset is spread evenly).
+// views (prepare_training calls it; the views' mask paths are dropped, the subset is spread evenly). With
+// config.glossy_mask_dir the data set's glossy masks are dropped too (prepare_training reads that folder).
 void select_training_data(const TrainConfig& config, Dataset& dataset);
 
 // `config` names the data set and the iteration target (it is validated here); `resumed` continues from a

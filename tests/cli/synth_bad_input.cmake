@@ -1,5 +1,6 @@
-# `goris synth` bad input: a missing Blender names the apt command, an unknown preset lists the presets,
-# and nothing is written under --out. Needs no Blender.
+# `goris synth` bad input: a missing Blender names the apt command, an unknown preset lists the presets, a
+# table roughness out of [0, 1] or for a preset without a table is refused, and nothing is written under
+# --out. Needs no Blender.
 file(REMOVE_RECURSE "${WORK}")
 function(expect_fail what)
   execute_process(COMMAND "${GORIS}" synth ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -13,6 +14,8 @@ function(expect_fail what)
 endfunction()
 expect_fail("sudo apt-get install blender" --out "${WORK}/a" --blender "${WORK}/no-blender")
 expect_fail("twin-mirrors" --preset nope --out "${WORK}/b")
-if(EXISTS "${WORK}/a" OR EXISTS "${WORK}/b")
+expect_fail("--table-roughness" --table-roughness 1.5 --out "${WORK}/c")
+expect_fail("preset 'lambert-room' has no table top" --preset lambert-room --table-roughness 0 --out "${WORK}/d")
+if(EXISTS "${WORK}/a" OR EXISTS "${WORK}/b" OR EXISTS "${WORK}/c" OR EXISTS "${WORK}/d")
   message(FATAL_ERROR "a failed goris synth left files under --out")
 endif()

@@ -1,5 +1,5 @@
-// The glossy filter and the roughness net on CUDA against the CPU reference on the same inputs (forward,
-// backward, one Adam step). Skipped (with a message) where no CUDA device is present.
+// The glossy filter (plain and weighted) and the roughness net on CUDA against the CPU reference on the same
+// inputs (forward, backward, one Adam step). Skipped (with a message) where no CUDA device is present.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -53,6 +53,36 @@ TEST(SsfCuda, GlossyFilterMatchesCpu) {
   expect_close(out[0], out[1], "output");
   expect_close(gx[0], gx[1], "dL/dX");
   expect_close(grs[0], grs[1], "dL/dR_s");
+}
+
+TEST(SsfCuda, WeightedGlossyFilterMatchesCpu) {
+  // Coarse tracing's weighted pyramid: masses on a 2x2 lattice (0 elsewhere) and some fractional ones.
+  GORIS_REQUIRE_GPU();
+  std::mt19937 rng(7);
+  const int C = 4, H = 61, W = 50;
+  const std::size_t plane = std::size_t(H) * W;
+  const std::vector<float> x = random_vec(C * plane, rng, 0, 2), n = random_vec(3 * plane, rng, -1, 1),
+                           rs = random_vec(plane, rng, 0, 1), g = random_vec(C * plane, rng, -1, 1);
+  std::vector<float> mass(plane, 0.0f);
+  for (int y = 0; y < H; y += 2)
+    for (int c = 0; c < W; c += 2) mass[std::size_t(y) * W + c] = 1.0f;
+  for (std::size_t p = 5; p < plane; p += 13) mass[p] = 0.5f;
+  Buffer<float> out[2], gx[2], grs[2];
+  int i = 0;
+  for (Device d : {Device::CPU, Device::CUDA}) {
+    GlossyFilter<float> f;
+    const Buffer<float> m(mass, d);
+    f.forward(Buffer<float>(x, d), C, H, W, Buffer<float>(n, d), Buffer<float>(rs, d), out[i], &m);
+    gx[i] = Buffer<float>(C * plane, d);
+    grs[i] = Buffer<float>(plane, d);
+    gx[i].fill_zero();
+    grs[i].fill_zero();
+    f.backward(Buffer<float>(g, d), &gx[i], &grs[i]);
+    ++i;
+  }
+  expect_close(out[0], out[1], "weighted output");
+  expect_close(gx[0], gx[1], "weighted dL/dX");
+  expect_close(grs[0], grs[1], "weighted dL/dR_s");
 }
 
 TEST(SsfCuda, RoughnessNetMatchesCpu) {

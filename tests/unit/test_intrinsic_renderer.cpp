@@ -1,7 +1,7 @@
 // The intrinsic renderer end to end (rasterize -> reflection rays -> trace -> filter -> shade, and back):
-// warm-up behaviour, the composite gradient against finite differences (float; each stage is checked in
-// double precision in its own test), the saved environment map / net state, and a few intrinsic training
-// iterations.
+// warm-up behaviour, the composite gradient against finite differences with and without coarse tracing
+// (float; each stage is checked in double precision in its own test), coarse tracing's ray counts, the
+// saved environment map / net state, and a few intrinsic training iterations.
 #include <cmath>
 #include <algorithm>
 #include <random>
@@ -149,8 +149,11 @@ TEST(IntrinsicRenderer, WarmUpRendersTheRasterizedColourAndShadingTracesGlossyPi
   EXPECT_GT(occluded, 5u);
 }
 
-TEST(IntrinsicRenderer, CompositeGradientMatchesFiniteDifferences) {
-  const TrainConfig cfg = intrinsic_config(100);
+namespace {
+
+// The composite gradient of one shaded frame against central differences; *traced and *glossy get the
+// renderer's ray counts of that frame.
+void check_composite_gradient(const TrainConfig& cfg, std::size_t* traced, std::size_t* glossy) {
   GaussianModel m = floor_and_blob(2);
   IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
   {  // a non-constant environment, so texels matter differently
@@ -237,6 +240,63 @@ TEST(IntrinsicRenderer, CompositeGradientMatchesFiniteDifferences) {
   double net_sum = 0;
   for (float g : net_grad) net_sum += std::abs(g);
   EXPECT_GT(net_sum, 0.0) << "the roughness net received no gradient";
+  *traced = r.times().rays_traced;
+  *glossy = r.times().rays_glossy;
+}
+
+}  // namespace
+
+TEST(IntrinsicRenderer, CompositeGradientMatchesFiniteDifferences) {
+  std::size_t traced = 0, glossy = 0;
+  check_composite_gradient(intrinsic_config(100), &traced, &glossy);
+  EXPECT_EQ(traced, glossy);
+  EXPECT_GT(glossy, 100u);
+}
+
+TEST(IntrinsicRenderer, CoarseTracingSavesRaysAndKeepsTheGradientExact) {
+  // The fresh roughness net puts R_s near 0.5 (blur level ~2): most of the floor shares rays in 4x4 blocks.
+  // The selection is a constant of the frame, so the finite differences see the same rays.
+  TrainConfig cfg = intrinsic_config(100);
+  cfg.intrinsic.coarse_tracing = true;
+  std::size_t traced = 0, glossy = 0;
+  check_composite_gradient(cfg, &traced, &glossy);
+  EXPECT_GT(glossy, 100u);
+  EXPECT_LT(traced, glossy / 2);
+  EXPECT_GT(traced, 0u);
+}
+
+TEST(IntrinsicRenderer, CoarseTracingStatsMapsAndReflectedLabel) {
+  TrainConfig cfg = intrinsic_config(10);
+  cfg.intrinsic.coarse_tracing = true;
+  GaussianModel m = floor_and_blob(1);
+  IntrinsicRenderer coarse(cfg, 3.0f, Device::CPU);
+  cfg.intrinsic.coarse_tracing = false;
+  IntrinsicRenderer dense(cfg, 3.0f, Device::CPU);
+  dense.load_own_state(coarse.save_own_state(), "same net");
+  const Camera cam = test_camera(40);
+  const IntrinsicMaps a = coarse.render_maps(m.view(true), cam), b = dense.render_maps(m.view(true), cam);
+  EXPECT_EQ(a.glossy_pixels, b.glossy_pixels);
+  EXPECT_EQ(b.rays, b.glossy_pixels);
+  EXPECT_LT(a.rays, a.glossy_pixels / 2);
+  EXPECT_EQ(coarse.ray_totals().frames, 1u);
+  EXPECT_EQ(coarse.ray_totals().traced, a.rays);
+  EXPECT_GT(coarse.ray_totals().saved_fraction(), 0.5);
+  EXPECT_EQ(dense.ray_totals().saved_fraction(), 0.0);
+  // The blurred frames agree closely: the untraced pixels only feed blurred levels.
+  double err = 0, ref = 0;
+  for (size_t i = 0; i < a.color.size(); ++i) {
+    err += std::abs(double(a.color[i]) - b.color[i]);
+    ref += std::abs(double(b.color[i]));
+  }
+  EXPECT_LT(err, 0.05 * ref);
+  const std::vector<float> e = coarse.reflected_label(m.view(true), cam);
+  ASSERT_EQ(e.size(), a.visibility.size());
+  double label = 0;
+  for (float v : e) {
+    ASSERT_TRUE(std::isfinite(v));
+    label += v;
+  }
+  EXPECT_GT(label, 0.0);
 }
 
 TEST(IntrinsicRenderer, OwnStateRoundTripsAndRejectsForeignFiles) {

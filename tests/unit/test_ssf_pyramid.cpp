@@ -1,5 +1,7 @@
 // Screen-space glossy filter (render/ssf/glossy_filter.h): exactness at R_s = 0, constancy, blur growing with
-// R_s, normal-aware weights, finite-difference gradients in double (X and R_s), and bad input.
+// R_s, normal-aware weights, the weighted pyramid of coarse tracing (unit mass = unweighted, massless pixels
+// ignored, sparse lattice ~ dense blur), finite-difference gradients in double (X and R_s, with and without
+// masses), and bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -200,6 +202,150 @@ TEST(SsfPyramid, GradientsMatchFiniteDifferences) {
   }
 }
 
+// Weighted pyramid (coarse tracing's mass image): masses on a 2x2 lattice, 0 elsewhere, plus some
+// fractional and zero masses so that every branch of the normalisation is exercised.
+template <class T>
+std::vector<T> lattice_mass(int h, int w, std::mt19937& rng, bool fractional) {
+  std::vector<T> m(std::size_t(h) * w, T(0));
+  std::uniform_real_distribution<double> u(0.2, 1.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = std::size_t(y) * w + x;
+      if (y % 2 == 0 && x % 2 == 0) m[p] = T(1);
+      if (fractional && (p % 7 == 2)) m[p] = T(u(rng));
+    }
+  return m;
+}
+
+TEST(SsfPyramid, UnitMassGivesTheUnweightedPyramid) {
+  std::mt19937 rng(11);
+  const int C = 3, H = 21, W = 17;
+  const std::size_t plane = std::size_t(H) * W;
+  const std::vector<double> x = random_vec<double>(C * plane, rng, -1.0, 2.0), n = random_normals<double>(H, W, rng),
+                            rs = random_vec<double>(plane, rng, 0.0, 1.0);
+  GlossyFilter<double> plain, weighted;
+  Buffer<double> a, b;
+  const Buffer<double> ones = buf(std::vector<double>(plane, 1.0));
+  plain.forward(buf(x), C, H, W, buf(n), buf(rs), a);
+  weighted.forward(buf(x), C, H, W, buf(n), buf(rs), b, &ones);
+  ASSERT_TRUE(weighted.weighted());
+  ASSERT_FALSE(plain.weighted());
+  EXPECT_THROW(plain.mass(0), Error);
+  const std::vector<double> ha = a.to_host(), hb = b.to_host();
+  for (std::size_t i = 0; i < ha.size(); ++i) ASSERT_NEAR(ha[i], hb[i], 1e-12) << i;
+  for (int k = 1; k < weighted.levels(); ++k)
+    for (double m : weighted.mass(k).to_host()) ASSERT_NEAR(m, 1.0, 1e-12) << "level " << k;
+}
+
+TEST(SsfPyramid, PixelsWithoutMassNeverEnterTheOutput) {
+  std::mt19937 rng(12);
+  const int C = 2, H = 26, W = 19;
+  const std::size_t plane = std::size_t(H) * W;
+  const std::vector<double> mass = lattice_mass<double>(H, W, rng, true), n = random_normals<double>(H, W, rng),
+                            rs = random_vec<double>(plane, rng, 0.0, 1.0);
+  std::vector<double> x = random_vec<double>(C * plane, rng, -1.0, 1.0);
+  const Buffer<double> m = buf(mass);
+  GlossyFilter<double> f;
+  Buffer<double> out1, out2;
+  f.forward(buf(x), C, H, W, buf(n), buf(rs), out1, &m);
+  for (std::size_t p = 0; p < plane; ++p)
+    if (mass[p] == 0.0)
+      for (int c = 0; c < C; ++c) x[c * plane + p] = 1e3 * (c + 1);  // garbage where nothing was traced
+  f.forward(buf(x), C, H, W, buf(n), buf(rs), out2, &m);
+  EXPECT_EQ(out1.to_host(), out2.to_host());
+  // A constant image stays constant wherever a texel has mass; massless texels are 0.
+  std::vector<double> c(plane, 0.625);
+  f.forward(buf(c), 1, H, W, buf(n), buf(rs), out1, &m);
+  for (int k = 1; k < f.levels(); ++k) {
+    const std::vector<double> l = f.level(k).to_host(), lm = f.mass(k).to_host();
+    for (std::size_t p = 0; p < l.size(); ++p) {
+      ASSERT_GE(lm[p], 0.0);
+      ASSERT_LE(lm[p], 1.0 + 1e-12);
+      ASSERT_NEAR(l[p], lm[p] > 0 ? 0.625 : 0.0, 1e-12) << "level " << k;
+    }
+  }
+  const std::vector<double> o = out1.to_host();
+  for (std::size_t p = 0; p < plane; ++p) {
+    const bool reads_level0 = rs[p] * (f.levels() - 1) < 1.0;
+    if (!reads_level0 || mass[p] > 0) {
+      ASSERT_NEAR(o[p], 0.625, 1e-12) << p;
+    }
+  }
+}
+
+TEST(SsfPyramid, SparseLatticeEstimatesTheDenseBlur) {
+  // A smooth image traced on a 2x2 lattice: at blur levels >= 1 the weighted pyramid stays close to the
+  // fully traced one, while feeding the untraced pixels in as zeros would darken it by about 3/4.
+  const int H = 48, W = 64;
+  const std::size_t plane = std::size_t(H) * W;
+  std::vector<double> x(plane), n(3 * plane, 0.0), mass(plane, 0.0), zeroed(plane, 0.0);
+  for (int y = 0; y < H; ++y)
+    for (int c = 0; c < W; ++c) {
+      const std::size_t p = std::size_t(y) * W + c;
+      x[p] = 0.5 + 0.4 * std::sin(c * 0.2) * std::cos(y * 0.15);
+      n[2 * plane + p] = 1.0;
+      if (y % 2 == 0 && c % 2 == 0) mass[p] = 1.0, zeroed[p] = x[p];
+    }
+  const std::vector<double> rs(plane, 0.4);  // level 1.6: reads levels 1 and 2 only
+  GlossyFilter<double> f;
+  Buffer<double> dense, sparse, naive;
+  const Buffer<double> m = buf(mass);
+  f.forward(buf(x), 1, H, W, buf(n), buf(rs), dense);
+  f.forward(buf(zeroed), 1, H, W, buf(n), buf(rs), sparse, &m);
+  f.forward(buf(zeroed), 1, H, W, buf(n), buf(rs), naive);
+  const std::vector<double> d = dense.to_host(), s = sparse.to_host(), z = naive.to_host();
+  double err = 0, err_naive = 0;
+  for (std::size_t p = 0; p < plane; ++p) {
+    err = std::max(err, std::abs(s[p] - d[p]));
+    err_naive = std::max(err_naive, std::abs(z[p] - d[p]));
+  }
+  EXPECT_LT(err, 0.03);
+  EXPECT_GT(err_naive, 0.2);
+}
+
+TEST(SsfPyramid, WeightedGradientsMatchFiniteDifferences) {
+  for (unsigned seed : {13u, 14u}) {
+    Problem p = make_problem(seed);
+    std::mt19937 rng(seed + 100);
+    const Buffer<double> m = buf(lattice_mass<double>(p.H, p.W, rng, true));
+    auto weighted_loss = [&](const Problem& q) {
+      GlossyFilter<double> f;
+      Buffer<double> out;
+      f.forward(buf(q.x), q.C, q.H, q.W, buf(q.n), buf(q.rs), out, &m);
+      const std::vector<double> o = out.to_host();
+      double l = 0;
+      for (std::size_t i = 0; i < o.size(); ++i) l += o[i] * q.g_out[i];
+      return l;
+    };
+    GlossyFilter<double> f;
+    Buffer<double> out;
+    f.forward(buf(p.x), p.C, p.H, p.W, buf(p.n), buf(p.rs), out, &m);
+    Buffer<double> gx = buf(std::vector<double>(p.x.size(), 0.0)), grs = buf(std::vector<double>(p.rs.size(), 0.0));
+    f.backward(buf(p.g_out), &gx, &grs);
+    const std::vector<double> ax = gx.to_host(), ars = grs.to_host(), mh = m.to_host();
+    const double h = 1e-6;
+    std::size_t massless_zero = 0;
+    for (std::size_t i = 0; i < p.x.size(); ++i) {
+      Problem q = p;
+      q.x[i] += h;
+      const double lp = weighted_loss(q);
+      q.x[i] -= 2 * h;
+      const double fd = (lp - weighted_loss(q)) / (2 * h);
+      ASSERT_NEAR(ax[i], fd, 1e-8) << "dX " << i << " seed " << seed;
+      if (mh[i % mh.size()] == 0.0) massless_zero += ax[i] == 0.0;
+    }
+    EXPECT_GT(massless_zero, p.x.size() / 4);  // untraced pixels get exactly no gradient
+    for (std::size_t i = 0; i < p.rs.size(); ++i) {
+      Problem q = p;
+      q.rs[i] += h;
+      const double lp = weighted_loss(q);
+      q.rs[i] -= 2 * h;
+      const double fd = (lp - weighted_loss(q)) / (2 * h);
+      ASSERT_NEAR(ars[i], fd, 1e-7 * (1 + std::abs(fd))) << "dR_s " << i << " seed " << seed;
+    }
+  }
+}
+
 TEST(SsfPyramid, BadInputThrows) {
   const int C = 2, H = 5, W = 4;
   const std::size_t plane = std::size_t(H) * W;
@@ -225,6 +371,15 @@ TEST(SsfPyramid, BadInputThrows) {
   f.forward(buf(x), C, H, W, buf(n), buf(rs), out);
   Buffer<float> g_small(plane);
   EXPECT_THROW(f.backward(buf(x), &g_small, nullptr), Error);
+  const Buffer<float> short_mass = buf(std::vector<float>(plane - 1, 1.0f));
+  EXPECT_THROW(f.forward(buf(x), C, H, W, buf(n), buf(rs), out, &short_mass), Error);
+  std::vector<float> mass(plane, 1.0f);
+  mass[3] = -0.5f;
+  const Buffer<float> negative = buf(mass);
+  EXPECT_THROW(f.forward(buf(x), C, H, W, buf(n), buf(rs), out, &negative), Error);
+  mass[3] = std::numeric_limits<float>::quiet_NaN();
+  const Buffer<float> nan_mass = buf(mass);
+  EXPECT_THROW(f.forward(buf(x), C, H, W, buf(n), buf(rs), out, &nan_mass), Error);
   EXPECT_THROW(GlossyFilter<float>(PyramidConfig{1, 8}), Error);
   EXPECT_THROW(GlossyFilter<float>(PyramidConfig{kMaxLevels + 1, 8}), Error);
 }

@@ -142,3 +142,44 @@ TEST(SynthPresets, OccludedHidesTheTargetFromMostButNotAllViews) {
     EXPECT_LE(hidden, 40 - 4) << "seed " << seed;  // ...but some see it, so it can be selected
   }
 }
+
+TEST(SynthPresets, TableRoughnessOverridesOnlyTheTableTop) {
+  for (const std::string preset : {"glossy-table", "twin-mirrors", "occluded"}) {
+    SynthOptions o;
+    o.preset = preset;
+    o.seed = 5;
+    const nlohmann::json base = to_json(make_scene(o));
+    for (double r : {0.0, 1.0}) {
+      o.table_roughness = r;
+      nlohmann::json j = to_json(make_scene(o));
+      int tables = 0;
+      for (auto& obj : j["objects"])
+        if (obj["name"] == "table") {
+          EXPECT_EQ(obj["material"]["roughness"].get<double>(), r) << preset;
+          obj["material"]["roughness"] = 0.5;
+          ++tables;
+        }
+      EXPECT_EQ(tables, 1) << preset;
+      nlohmann::json expected = base;  // everything else is the seed's scene unchanged
+      for (auto& obj : expected["objects"])
+        if (obj["name"] == "table") obj["material"]["roughness"] = 0.5;
+      EXPECT_EQ(j.dump(), expected.dump()) << preset << " roughness " << r;
+    }
+  }
+}
+
+TEST(SynthPresets, TableRoughnessOutOfRangeOrWithoutATableIsAnError) {
+  SynthOptions o;
+  o.table_roughness = 1.5;
+  EXPECT_THROW(make_scene(o), goris::Error);
+  o.table_roughness = -0.1;
+  EXPECT_THROW(make_scene(o), goris::Error);
+  o.preset = "lambert-room";
+  o.table_roughness = 0.5;
+  try {
+    make_scene(o);
+    FAIL() << "expected an error";
+  } catch (const goris::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("lambert-room"), std::string::npos) << e.what();
+  }
+}

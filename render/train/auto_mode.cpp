@@ -1,0 +1,185 @@
+#include "render/train/auto_mode.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/image.h"
+#include "core/io/json_file.h"
+#include "core/train/normal_prior.h"
+#include "core/train/run_folder.h"
+#include "core/util/error.h"
+#include "render/train/glossy_detection.h"
+#include "render/train/raster_renderer.h"
+#include "render/train/run_renderer.h"
+
+namespace goris {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string percent(double f) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f %%", 100.0 * f);
+  return buf;
+}
+
+fs::path mask_file(const fs::path& dir, const TrainView& v) { return dir / ("gloss_" + v.name + ".png"); }
+
+void write_masks(const fs::path& dir, const std::vector<TrainView>& views, const GlossyDetection& det) {
+  fs::create_directories(dir);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const Camera& c = views[i].camera;
+    Image m(c.width, c.height, 1);
+    for (size_t p = 0; p < det.masks[i].size(); ++p) m.pixels[p] = float(det.masks[i][p]);
+    save_png(mask_file(dir, views[i]), m);
+  }
+}
+
+void write_summary(const fs::path& dir, const std::vector<TrainView>& views, const GlossyDetection& det,
+                   const GlossyDetectionSettings& s, const AutoDecision& d) {
+  nlohmann::json j;
+  j["iteration"] = d.iteration;
+  j["decision"] = d.glossy ? "intrinsic" : "radiance";
+  j["fraction"] = d.fraction;
+  j["threshold"] = d.threshold;
+  j["covered_pixels"] = d.covered;
+  j["scored_pixels"] = d.scored;
+  j["detected_pixels"] = d.detected;
+  j["planes"] = d.planes;
+  j["mask_pixels"] = d.mask_pixels;
+  j["seconds"] = d.seconds;
+  j["settings"] = {{"neighbours", s.neighbours},         {"pixel_threshold", s.threshold},
+                   {"depth_tolerance", s.depth_tolerance}, {"search_radius", s.search_radius},
+                   {"min_visible", s.min_visible},       {"morph_radius", s.morph_radius},
+                   {"work_width", s.work_width},         {"plane_tolerance", s.grow_planes ? s.plane_tolerance : 0.0f}};
+  nlohmann::json per_view = nlohmann::json::array();
+  for (size_t i = 0; i < views.size(); ++i) {
+    size_t n = 0;
+    for (const std::uint8_t b : det.masks[i]) n += b;
+    per_view.push_back({{"view", views[i].name}, {"mask_fraction", det.masks[i].empty() ? 0.0 : double(n) / double(det.masks[i].size())}});
+  }
+  j["views"] = per_view;
+  write_json_file(dir / "summary.json", j);
+}
+
+}  // namespace
+
+std::optional<double> glossy_mask_fraction(const std::vector<TrainView>& views) {
+  size_t glossy = 0, total = 0;
+  for (const TrainView& v : views) {
+    total += v.glossy_mask.size();
+    for (const float x : v.glossy_mask) glossy += x > 0.5f;
+  }
+  if (total == 0) return std::nullopt;
+  return double(glossy) / double(total);
+}
+
+std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>& views) {
+  if (config.mode != "auto") return {};
+  const std::optional<double> f = glossy_mask_fraction(views);
+  const double threshold = config.intrinsic.auto_mask_fraction;
+  if (f) {
+    const bool glossy = *f > 0 && *f >= threshold;
+    config.mode = glossy ? "intrinsic" : "radiance";
+    return glossy ? "the glossy masks mark " + percent(*f) + " of the pixels, threshold " + percent(threshold)
+                  : "the glossy masks are empty: " + percent(*f) + " of the pixels, threshold " + percent(threshold);
+  }
+  config.mode = "radiance";
+  config.auto_detect_glossy = true;
+  return "no glossy masks: radiance through the warm-up, then glossy regions are detected from the photos after "
+         "iteration " + std::to_string(auto_detection_iteration(config));
+}
+
+int auto_detection_iteration(const TrainConfig& config) {
+  return std::max(config.scaled_iteration(config.intrinsic.warmup),
+                  std::min(config.intrinsic.detect_after, config.iterations / 2));
+}
+
+namespace {
+
+// The warm-up (in full-schedule iterations) that config.scaled_iteration maps to `iteration`, so that the
+// shading phase's schedules (environment-map learning rate, the net's ease-in) start at the switch.
+int warmup_ending_at(const TrainConfig& config, int iteration) {
+  if (config.iterations >= 30000) return iteration;
+  TrainConfig c = config;
+  c.intrinsic.warmup = int(std::lround(double(iteration) * 30000.0 / double(config.iterations)));
+  while (c.scaled_iteration(c.intrinsic.warmup) < iteration) ++c.intrinsic.warmup;
+  while (c.intrinsic.warmup > 0 && c.scaled_iteration(c.intrinsic.warmup - 1) >= iteration) --c.intrinsic.warmup;
+  return c.intrinsic.warmup;
+}
+
+}  // namespace
+
+void load_glossy_mask_folder(const fs::path& dir, std::vector<TrainView>& views) {
+  if (!fs::is_directory(dir)) throw Error(dir.string(), "glossy mask folder (glossy_mask_dir) not found");
+  for (TrainView& v : views) {
+    const fs::path f = mask_file(dir, v);
+    if (!fs::exists(f)) throw Error(f.string(), "missing: the glossy mask of training view " + v.name);
+    const Image m = load_mask(f);
+    if (m.width != v.camera.width || m.height != v.camera.height)
+      throw Error(f.string(), "is " + std::to_string(m.width) + "x" + std::to_string(m.height) + ", the training view is " +
+                                  std::to_string(v.camera.width) + "x" + std::to_string(v.camera.height) +
+                                  " (masks in glossy_mask_dir are stored at the training size)");
+    v.glossy_mask = m.pixels.to_host();
+  }
+}
+
+std::string AutoDecision::message() const {
+  char secs[32];
+  std::snprintf(secs, sizeof secs, "%.1f s", seconds);
+  const std::string found = percent(fraction) + " of the covered pixels look view-dependent, threshold " + percent(threshold);
+  const std::string grown = planes > 0 ? ", grown over " + std::to_string(planes) + (planes == 1 ? " plane" : " planes") +
+                                             " to " + percent(covered ? double(mask_pixels) / double(covered) : 0.0)
+                                       : "";
+  return "--mode auto after iteration " + std::to_string(iteration) + ": " +
+         (glossy ? "glossy regions (" + found + grown + ") -> intrinsic from now on with the masks in " + mask_dir.string()
+                 : "no glossy regions (" + found + ") -> radiance to the end; masks in " + mask_dir.string()) +
+         " (detection " + secs + ")";
+}
+
+std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& run_dir) {
+  const TrainConfig& config = trainer.config();
+  if (!config.auto_detect_glossy || trainer.state().iteration < auto_detection_iteration(config)) return std::nullopt;
+  if (run_dir.empty()) throw Error("--mode auto: the glossy detection needs a run folder for its masks");
+  const auto t0 = std::chrono::steady_clock::now();
+  const GlossyDetectionSettings s = GlossyDetectionSettings::from_config(config);
+  const GlossyDetection det = detect_glossy_regions(trainer.model().view(false), trainer.views(),
+                                                    RasterRenderer::settings_for(config), trainer.device(), s);
+  AutoDecision d;
+  d.iteration = trainer.state().iteration;
+  d.glossy = det.glossy;
+  d.fraction = det.fraction;
+  d.threshold = s.min_fraction;
+  d.covered = det.covered;
+  d.scored = det.scored;
+  d.detected = det.detected;
+  d.planes = det.planes;
+  d.mask_pixels = det.in_masks;
+  d.mask_dir = run_dir / "detected_gloss";
+  write_masks(d.mask_dir, trainer.views(), det);
+
+  TrainConfig next = config;
+  next.auto_detect_glossy = false;
+  if (det.glossy) {
+    next.mode = "intrinsic";
+    next.glossy_mask_dir = d.mask_dir.string();
+    next.intrinsic.warmup = warmup_ending_at(config, d.iteration);
+    trainer.switch_mode(next, make_renderer(next, trainer.extent(), trainer.device()), [&](std::vector<TrainView>& views) {
+      for (size_t i = 0; i < views.size(); ++i) views[i].glossy_mask.assign(det.masks[i].begin(), det.masks[i].end());
+      if (!next.intrinsic.normals.empty()) load_normal_priors(next.intrinsic.normals, views);
+    });
+  } else {
+    trainer.switch_mode(next, trainer.renderer());
+  }
+  d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_summary(d.mask_dir, trainer.views(), det, s, d);
+  write_run_config(run_dir, trainer.config());
+  return d;
+}
+
+}  // namespace goris

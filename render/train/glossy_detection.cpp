@@ -1,0 +1,322 @@
+#include "render/train/glossy_detection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/compute/parallel_for.h"
+#include "core/io/image.h"
+#include "core/train/train_setup.h"
+#include "core/util/error.h"
+#include "render/raster/rasterizer.h"
+
+namespace goris {
+
+GlossyDetectionSettings GlossyDetectionSettings::from_config(const TrainConfig& config) {
+  const IntrinsicSettings& in = config.intrinsic;
+  GlossyDetectionSettings s;
+  s.neighbours = in.detect_neighbours;
+  s.threshold = in.detect_threshold;
+  s.depth_tolerance = in.detect_depth_tolerance;
+  s.search_radius = in.detect_search_radius;
+  s.min_fraction = in.detect_fraction;
+  s.work_width = in.detect_width;
+  s.grow_planes = in.detect_plane_tolerance > 0;
+  s.plane_tolerance = in.detect_plane_tolerance;
+  return s;
+}
+
+std::vector<int> nearest_views(const std::vector<Camera>& cameras, int i, int k) {
+  std::vector<int> order;
+  for (int j = 0; j < int(cameras.size()); ++j)
+    if (j != i) order.push_back(j);
+  const glm::vec3 d = cameras[size_t(i)].forward();
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return glm::dot(cameras[size_t(a)].forward(), d) > glm::dot(cameras[size_t(b)].forward(), d);
+  });
+  order.resize(std::min(order.size(), size_t(std::max(k, 0))));
+  return order;
+}
+
+namespace {
+
+// Bilinear sample of a planar channel at continuous pixel coordinates (centres at +0.5), clamped at the
+// border.
+float bilinear(const float* plane, int w, int h, float u, float v) {
+  const float x = std::clamp(u - 0.5f, 0.0f, float(w - 1)), y = std::clamp(v - 0.5f, 0.0f, float(h - 1));
+  const int x0 = std::min(int(x), w - 1), y0 = std::min(int(y), h - 1);
+  const int x1 = std::min(x0 + 1, w - 1), y1 = std::min(y0 + 1, h - 1);
+  const float fx = x - float(x0), fy = y - float(y0);
+  const float a = plane[size_t(y0) * w + x0] * (1 - fx) + plane[size_t(y0) * w + x1] * fx;
+  const float b = plane[size_t(y1) * w + x0] * (1 - fx) + plane[size_t(y1) * w + x1] * fx;
+  return a * (1 - fy) + b * fy;
+}
+
+// Per channel, the darkest and brightest colour of a photo within a (2r+1)^2 window around each pixel
+// (planar [3][H][W]): the colours a misregistration of up to r pixels could show.
+struct ColourRange {
+  std::vector<float> lo, hi;
+};
+
+ColourRange colour_range(const ConsistencyView& v, int r) {
+  const int w = v.camera.width, h = v.camera.height;
+  const size_t hw = size_t(w) * size_t(h);
+  ColourRange out{std::vector<float>(3 * hw), std::vector<float>(3 * hw)};
+  const cv::Mat box = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * r + 1, 2 * r + 1));
+  for (int c = 0; c < 3; ++c) {
+    const cv::Mat src(h, w, CV_32F, const_cast<float*>(v.image + c * hw));
+    cv::Mat lo(h, w, CV_32F, out.lo.data() + c * hw), hi(h, w, CV_32F, out.hi.data() + c * hw);
+    cv::erode(src, lo, box, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+    cv::dilate(src, hi, box, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+  }
+  return out;
+}
+
+// Per-pixel scores of view i against its neighbours (-1 = fewer than min_visible of them see the point).
+std::vector<float> score_view(const std::vector<ConsistencyView>& views, const std::vector<ColourRange>& ranges, int i,
+                              const std::vector<int>& nbrs, const GlossyDetectionSettings& s) {
+  const ConsistencyView& vi = views[size_t(i)];
+  const Camera& ci = vi.camera;
+  const int w = ci.width, h = ci.height;
+  const size_t hw = size_t(w) * size_t(h);
+  const glm::mat3 rt = glm::transpose(ci.R);
+  std::vector<float> score(hw, -1.0f);
+  parallel_for(Device::CPU, hw, [&](size_t p) {
+    if (!(vi.alpha[p] > 0.5f)) return;
+    const float z = vi.depth[p];
+    if (!(z > 0) || !std::isfinite(z)) return;
+    const float u = float(p % size_t(w)) + 0.5f, v = float(p / size_t(w)) + 0.5f;
+    const glm::vec3 x_world = rt * (glm::vec3((u - ci.cx) / ci.fx * z, (v - ci.cy) / ci.fy * z, z) - ci.t);
+    std::array<float, 16> diffs{};
+    int n = 0;
+    for (const int j : nbrs) {
+      const ConsistencyView& vj = views[size_t(j)];
+      const Camera& cj = vj.camera;
+      const glm::vec3 xc = cj.to_camera(x_world);
+      if (!(xc.z > 0)) continue;
+      const glm::vec2 uv = cj.project_camera(xc);
+      if (!(uv.x >= 0 && uv.y >= 0 && uv.x < float(cj.width) && uv.y < float(cj.height))) continue;
+      // The nearest pixel of view j must see this surface point: covered, at the same depth.
+      const size_t q = size_t(int(uv.y)) * size_t(cj.width) + size_t(int(uv.x));
+      if (!(vj.alpha[q] > 0.5f) || !(std::abs(vj.depth[q] - xc.z) <= s.depth_tolerance * xc.z)) continue;
+      // How far the colour lies outside what view j shows around the projection.
+      const size_t hwj = size_t(cj.width) * size_t(cj.height);
+      const ColourRange& rj = ranges[size_t(j)];
+      float d = 0;
+      for (int c = 0; c < 3; ++c) {
+        const float x = vi.image[c * hw + p];
+        const float lo = bilinear(rj.lo.data() + c * hwj, cj.width, cj.height, uv.x, uv.y);
+        const float hi = bilinear(rj.hi.data() + c * hwj, cj.width, cj.height, uv.x, uv.y);
+        d += std::max({0.0f, x - hi, lo - x});
+      }
+      if (n < int(diffs.size())) diffs[size_t(n++)] = d / 3.0f;
+    }
+    if (n < std::max(s.min_visible, 1)) return;
+    std::sort(diffs.begin(), diffs.begin() + n);
+    score[p] = diffs[size_t((n - 1) / 2)];  // lower median: a pixel must differ in most views
+  }, 64);
+  return score;
+}
+
+// Opening then closing with a disc, restricted to the covered pixels.
+void clean_mask(std::vector<std::uint8_t>& mask, const float* alpha, int w, int h, int radius) {
+  if (radius > 0) {
+    cv::Mat m(h, w, CV_8U, mask.data());
+    const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
+    cv::morphologyEx(m, m, cv::MORPH_OPEN, disc);
+    cv::morphologyEx(m, m, cv::MORPH_CLOSE, disc);
+  }
+  for (size_t p = 0; p < mask.size(); ++p) mask[p] = (mask[p] && alpha[p] > 0.5f) ? 1 : 0;
+}
+
+glm::vec3 surface_point(const ConsistencyView& v, size_t p) {
+  const Camera& c = v.camera;
+  const float z = v.depth[p];
+  const float u = float(p % size_t(c.width)) + 0.5f, y = float(p / size_t(c.width)) + 0.5f;
+  return glm::transpose(c.R) * (glm::vec3((u - c.cx) / c.fx * z, (y - c.cy) / c.fy * z, z) - c.t);
+}
+
+struct Plane {
+  glm::vec3 n{0.0f};
+  float d = 0;  // n . x + d = 0
+  float distance(const glm::vec3& x) const { return std::abs(glm::dot(n, x) + d); }
+};
+
+// The planes that hold most of the detected points (RANSAC, one plane after another on the points left),
+// with the distance tolerance used. Deterministic (fixed seed).
+std::vector<Plane> fit_planes(std::vector<glm::vec3> pts, float tolerance, const GlossyDetectionSettings& s) {
+  std::vector<Plane> planes;
+  const size_t total = pts.size();
+  std::mt19937 rng(12345);
+  while (pts.size() >= size_t(s.plane_min_points) && planes.size() < 4) {
+    std::uniform_int_distribution<size_t> pick(0, pts.size() - 1);
+    Plane best;
+    size_t best_count = 0;
+    for (int it = 0; it < 300; ++it) {
+      const glm::vec3 a = pts[pick(rng)], b = pts[pick(rng)], c = pts[pick(rng)];
+      const glm::vec3 n = glm::cross(b - a, c - a);
+      const float len = glm::length(n);
+      if (!(len > 1e-12f)) continue;
+      Plane pl{n / len, -glm::dot(n / len, a)};
+      size_t count = 0;
+      for (const glm::vec3& x : pts) count += pl.distance(x) <= tolerance;
+      if (count > best_count) {
+        best_count = count;
+        best = pl;
+      }
+    }
+    // A plane must hold most of the detections left (a curved glossy object has none), and a further
+    // plane (the second mirror of a room) a real share of all of them, not a few specks on an object.
+    if (double(best_count) < s.plane_min_share * double(pts.size()) ||
+        (!planes.empty() && double(best_count) < 0.1 * double(total)))
+      break;
+    planes.push_back(best);
+    std::vector<glm::vec3> rest;
+    for (const glm::vec3& x : pts)
+      if (best.distance(x) > tolerance) rest.push_back(x);
+    pts = std::move(rest);
+  }
+  return planes;
+}
+
+// Grows the masks over the planes the detected pixels lie on: a glossy table top or mirror is glossy
+// everywhere, but reflections are only seen (detected) where they show something that changes.
+void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& out, const GlossyDetectionSettings& s) {
+  std::vector<glm::vec3> pts;
+  std::vector<float> dist;
+  for (size_t i = 0; i < views.size(); ++i)
+    for (size_t p = 0; p < out.masks[i].size(); ++p)
+      if (out.masks[i][p]) {
+        pts.push_back(surface_point(views[i], p));
+        dist.push_back(glm::length(pts.back() - views[i].camera.center()));
+      }
+  if (pts.size() < size_t(s.plane_min_points)) return;
+  if (pts.size() > 20000) {  // a spread subset is plenty for the fit
+    std::vector<glm::vec3> sub;
+    const size_t step = pts.size() / 20000 + 1;
+    for (size_t k = 0; k < pts.size(); k += step) sub.push_back(pts[k]);
+    pts = std::move(sub);
+  }
+  std::nth_element(dist.begin(), dist.begin() + long(dist.size() / 2), dist.end());
+  const float tolerance = s.plane_tolerance * dist[dist.size() / 2];
+  const std::vector<Plane> planes = fit_planes(std::move(pts), tolerance, s);
+  out.planes = int(planes.size());
+  for (size_t i = 0; i < views.size(); ++i) {
+    const ConsistencyView& v = views[i];
+    for (size_t p = 0; p < out.masks[i].size(); ++p) {
+      if (out.masks[i][p] || !(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
+      const glm::vec3 x = surface_point(v, p);
+      for (const Plane& pl : planes)
+        if (pl.distance(x) <= tolerance) {
+          out.masks[i][p] = 1;
+          break;
+        }
+    }
+  }
+}
+
+}  // namespace
+
+GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views, const GlossyDetectionSettings& s) {
+  if (s.neighbours < 1 || s.neighbours > 16) throw Error("glossy detection: neighbours must lie in 1..16");
+  std::vector<Camera> cameras;
+  for (size_t i = 0; i < views.size(); ++i) {
+    const ConsistencyView& v = views[i];
+    if (!v.image || !v.depth || !v.alpha)
+      throw Error("glossy detection: view " + std::to_string(i) + " has no image, depth or alpha");
+    if (v.camera.has_distortion() || v.camera.width < 1 || v.camera.height < 1 || !(v.camera.fx > 0) || !(v.camera.fy > 0))
+      throw Error("glossy detection: view " + std::to_string(i) + " needs an undistorted pinhole camera");
+    cameras.push_back(v.camera);
+  }
+  if (s.search_radius < 0) throw Error("glossy detection: the search radius must be >= 0");
+  std::vector<ColourRange> ranges;
+  for (const ConsistencyView& v : views) ranges.push_back(colour_range(v, s.search_radius));
+  GlossyDetection out;
+  for (int i = 0; i < int(views.size()); ++i) {
+    const ConsistencyView& v = views[size_t(i)];
+    const int w = v.camera.width, h = v.camera.height;
+    std::vector<float> score = score_view(views, ranges, i, nearest_views(cameras, i, s.neighbours), s);
+    std::vector<std::uint8_t> mask(score.size(), 0);
+    for (size_t p = 0; p < score.size(); ++p) {
+      out.covered += v.alpha[p] > 0.5f;
+      out.scored += score[p] >= 0;
+      mask[p] = score[p] > s.threshold ? 1 : 0;
+    }
+    clean_mask(mask, v.alpha, w, h, s.morph_radius);
+    out.detected += std::size_t(std::accumulate(mask.begin(), mask.end(), std::size_t(0)));
+    out.masks.push_back(std::move(mask));
+    out.scores.push_back(std::move(score));
+  }
+  out.fraction = out.covered > 0 ? double(out.detected) / double(out.covered) : 0.0;
+  out.glossy = out.detected > 0 && out.fraction >= s.min_fraction;
+  if (s.grow_planes && out.glossy) grow_on_planes(views, out, s);  // masks of a Lambertian scene stay the evidence
+  for (const auto& m : out.masks) out.in_masks += std::size_t(std::accumulate(m.begin(), m.end(), std::size_t(0)));
+  return out;
+}
+
+GlossyDetection detect_glossy_regions(const GaussianView& gaussians, const std::vector<TrainView>& views,
+                                      const RasterSettings& raster, Device device, const GlossyDetectionSettings& s) {
+  // Photos, depth and alpha at the working size, kept on the host.
+  struct Work {
+    std::vector<float> image, depth, alpha;
+  };
+  std::vector<Work> work(views.size());
+  std::vector<ConsistencyView> cv_views(views.size());
+  for (size_t i = 0; i < views.size(); ++i) {
+    const TrainView& v = views[i];
+    const Camera& full = v.camera;
+    if (v.image.size() != size_t(3) * full.width * full.height)
+      throw Error(v.name, "glossy detection: the training image does not match its camera");
+    Camera cam = full;
+    work[i].image = v.image;
+    if (s.work_width > 0 && full.width > s.work_width) {
+      const int ww = s.work_width, wh = std::max(1, int(std::lround(double(full.height) * ww / full.width)));
+      cam = full.resized(ww, wh);
+      work[i].image = to_planar_rgb(resize_image(from_planar(v.image.data(), 3, full.width, full.height), ww, wh));
+    }
+    const RasterOutput r = rasterize(gaussians, cam, raster, device);
+    work[i].depth = r.gbuffer.median_depth.to_host();
+    work[i].alpha = r.gbuffer.alpha.to_host();
+    cv_views[i] = {cam, work[i].image.data(), work[i].depth.data(), work[i].alpha.data()};
+  }
+  GlossyDetection out = detect_glossy_regions(cv_views, s);
+  // Masks back at the views' sizes (bilinear, then > 0.5); the counts and the decision stay those of the
+  // working size.
+  for (size_t i = 0; i < views.size(); ++i) {
+    const Camera& full = views[i].camera;
+    const Camera& cam = cv_views[i].camera;
+    if (cam.width == full.width && cam.height == full.height) continue;
+    Image m(cam.width, cam.height, 1);
+    for (size_t p = 0; p < out.masks[i].size(); ++p) m.pixels[p] = float(out.masks[i][p]);
+    const Image up = resize_image(m, full.width, full.height);
+    std::vector<std::uint8_t> mask(up.pixel_count());
+    for (size_t p = 0; p < mask.size(); ++p) mask[p] = up.pixels[p] > 0.5f ? 1 : 0;
+    out.masks[i] = std::move(mask);
+  }
+  return out;
+}
+
+double MaskAgreement::iou() const {
+  const std::size_t uni = detected + reference - both;
+  return uni > 0 ? double(both) / double(uni) : 1.0;
+}
+double MaskAgreement::recall() const { return reference > 0 ? double(both) / double(reference) : 1.0; }
+double MaskAgreement::precision() const { return detected > 0 ? double(both) / double(detected) : 1.0; }
+
+MaskAgreement compare_masks(const std::vector<std::uint8_t>& detected, const std::vector<float>& reference) {
+  if (detected.size() != reference.size()) throw Error("compare_masks: the masks differ in size");
+  MaskAgreement a;
+  for (size_t p = 0; p < detected.size(); ++p) {
+    const bool d = detected[p] != 0, r = reference[p] > 0.5f;
+    a.detected += d;
+    a.reference += r;
+    a.both += d && r;
+  }
+  return a;
+}
+
+}  // namespace goris

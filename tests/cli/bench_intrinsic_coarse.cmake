@@ -1,0 +1,32 @@
+# Coarse tracing end to end on the embedded default scene: a short intrinsic `goris train` with
+# intrinsic_coarse_tracing=true reports the rays it traced and saved, and `goris bench intrinsic
+# --coarse-tracing both` times the fully traced and the coarse frame of the same view with their ray counts
+# and the PSNR between them; a bad key value is refused.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
+file(REMOVE_RECURSE "${WORK}")
+set(RUN "${WORK}/run")
+
+goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode intrinsic --iters 40 --resolution 48 --device cpu
+         --init-points 3000 --checkpoint-every 0 --set intrinsic_coarse_tracing=true)
+expect_text("${OUT}" "done: 40 iterations")
+expect_text("${OUT}" "reflection rays:")
+expect_text("${OUT}" "saved by coarse tracing")
+file(READ "${RUN}/config.json" cfg)
+expect_text("${cfg}" "\"intrinsic_coarse_tracing\": true")
+
+goris_ok(bench intrinsic "${RUN}" --repeats 1 --coarse-tracing both --device cpu)
+expect_text("${OUT}" "coarse tracing off:")
+expect_text("${OUT}" "coarse tracing on:")
+expect_text("${OUT}" "| coarse tracing | rays traced | rays saved |")
+expect_text("${OUT}" "PSNR of the coarse frame against the fully traced one")
+string(REGEX MATCH "\\| off \\| ([0-9]+) / ([0-9]+) \\| 0\\.0 %" off_row "${OUT}")
+if(NOT off_row OR NOT CMAKE_MATCH_1 EQUAL CMAKE_MATCH_2 OR CMAKE_MATCH_2 EQUAL 0)
+  message(FATAL_ERROR "fully traced row: every glossy pixel should be traced\n${OUT}")
+endif()
+string(REGEX MATCH "\\| on \\| ([0-9]+) / ([0-9]+) \\|" on_row "${OUT}")
+if(NOT on_row OR NOT CMAKE_MATCH_1 LESS CMAKE_MATCH_2)
+  message(FATAL_ERROR "coarse row: fewer rays than glossy pixels expected\n${OUT}")
+endif()
+
+goris_fails("intrinsic_coarse_max_level" train "${RESOURCES}/default_scene" --out "${WORK}/bad" --mode intrinsic
+            --iters 5 --set intrinsic_coarse_max_level=7)
