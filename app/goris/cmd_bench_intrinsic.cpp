@@ -103,12 +103,13 @@ void print_stages(const char* name, const Measured& m) {
 }
 
 void run_bench_intrinsic(const std::string& run, int view_index, int repeats, int threads, const std::string& dev,
-                         const std::string& coarse) {
+                         const std::string& coarse, int coarse_max_level) {
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const std::filesystem::path run_dir = std::filesystem::absolute(run);
-  const TrainConfig config = read_run_config(run_dir);
+  TrainConfig config = read_run_config(run_dir);
+  if (coarse_max_level > 0) config.intrinsic.coarse_max_level = coarse_max_level;
   if (config.mode != "intrinsic") throw Error(run_dir.string(), "is a " + config.mode + " run; train with --mode intrinsic");
   const Device device = resolve_device(dev);
   const DatasetOptions dopt = dataset_options(config);
@@ -163,6 +164,7 @@ void setup_bench_intrinsic(CLI::App& root) {
   auto threads = std::make_shared<int>(0);
   auto device = std::make_shared<std::string>("auto");
   auto coarse = std::make_shared<std::string>("run");
+  auto coarse_level = std::make_shared<int>(0);
   c->add_option("run", *run, "An intrinsic run folder (goris train --mode intrinsic)")->required();
   c->add_option("--view", *view, "Training view index")->capture_default_str();
   c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
@@ -172,7 +174,10 @@ void setup_bench_intrinsic(CLI::App& root) {
                 "run (as the run was trained) | on | off | both (off then on, with the PSNR between the two frames)")
       ->capture_default_str()
       ->check(CLI::IsMember({"run", "on", "off", "both"}));
-  c->callback([=] { run_bench_intrinsic(*run, *view, *repeats, *threads, *device, *coarse); });
+  c->add_option("--coarse-max-level", *coarse_level, "Largest coarse-tracing block 2^N pixels wide (0 = the run's)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 3));
+  c->callback([=] { run_bench_intrinsic(*run, *view, *repeats, *threads, *device, *coarse, *coarse_level); });
 }
 
 }  // namespace

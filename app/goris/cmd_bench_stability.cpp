@@ -1,10 +1,12 @@
 // `goris bench stability --out DIR [--cases all|NAME,...] [--schedule short|medium] [--device D]`: the
-// method's known failure cases end to end (train, select, remove, eval), each step a `goris` child process,
-// so a crash is a recorded failure and the bench goes on. Per case: whether it finished, whether every
-// output is finite (checkpoints with Adam moments, PLYs, environment map and roughness net, rendered test
-// images, metrics), PSNR / SSIM / M-PSNR / M-SSIM after removal, times, NaN-recovery events (training steps
-// the trainer skipped for non-finite values), and how much it degrades against its reference case. Writes
-// results.csv and results.md; a case whose result.json in DIR was made with the same options is reused.
+// method's known failure cases end to end (train, eval of stage 1 against the views with the target,
+// select --masks, remove, eval against the after-removal ground truth; the single-view case, which has no
+// masks to select with, stage 1 only), each step a `goris` child process, so a crash is a recorded failure
+// and the bench goes on. Per case: whether it finished, whether every output is finite (checkpoints with
+// Adam moments, PLYs, environment map and roughness net, rendered test images, metrics), PSNR / SSIM /
+// M-PSNR / M-SSIM, times, NaN-recovery events (training steps the trainer skipped for non-finite values),
+// and how much it degrades against its reference case. Writes results.csv and results.md; a case whose
+// result.json in DIR was made with the same options is reused.
 // Exits 1 when a case crashed or produced a non-finite output; poor metrics are reported, not failures.
 //
 // Scenes: the generated ones (`goris synth`, rendered once into DIR/scenes and reused) and lambert_room /

@@ -22,7 +22,28 @@ DensifyStopPlan densify_stop_plan(const TrainConfig& config, int densify_until, 
   p.window = ds.stop_window;
   p.min_gain = ds.stop_min_gain;
   p.holdout_every = ds.holdout_every;
+  p.min_steps = ds.stop_min_steps;
+  // The schedule alone (no stop yet): where the rule first has window + 1 checks, and how many
+  // densification steps it could turn into prune-only steps from there (the check comes first).
+  auto next_multiple = [](int it, int base, int step) { return base + (it - base + step - 1) / step * step; };
+  int it = p.from;
+  for (int seen = 0; it <= p.until; ++it) {
+    it = std::min({next_multiple(it, p.from, p.check_interval), next_multiple(it, 0, p.densify_interval), p.until});
+    if (++seen == p.window + 1) break;
+  }
+  if (it <= p.until) {
+    p.earliest_stop = it;
+    p.skippable_steps = p.until / p.densify_interval - (it - 1) / p.densify_interval;
+  }
   return p;
+}
+
+std::string DensifyStopPlan::inactive_reason() const {
+  // A run without densification (a stage-2 fine-tune under a copied configuration) has nothing to explain.
+  if (!adaptive || active() || until < from) return {};
+  return std::to_string(skippable_steps) + " densification step(s) after the earliest possible stop (iteration " +
+         std::to_string(earliest_stop) + "), fewer than densify_stop_min_steps = " + std::to_string(min_steps) +
+         ": holding views out would cost more than it could save, so this run densifies as with fixed";
 }
 
 bool DensifyStopPlan::holds_out(int it, const DensifyStopState& s) const {
@@ -31,6 +52,7 @@ bool DensifyStopPlan::holds_out(int it, const DensifyStopState& s) const {
 
 bool DensifyStopPlan::checks_at(int it, const DensifyStopState& s) const {
   if (!active() || s.stopped() || it < from || it > until) return false;
+  // Every check_interval from `from`, each densification step, and the window's last iteration.
   return (it - from) % check_interval == 0 || it % densify_interval == 0 || it == until;
 }
 
@@ -107,6 +129,9 @@ nlohmann::json densify_stop_json(const DensifyStopState& state, const DensifySto
                       {"check_interval", plan.check_interval},
                       {"stop_window", plan.window},
                       {"stop_min_gain_db", std::round(plan.min_gain * 1e6) / 1e6},  // the float key, not 0.100000001
+                      {"inactive_reason", plan.inactive_reason().empty() ? nlohmann::json() : nlohmann::json(plan.inactive_reason())},
+                      {"earliest_stop", plan.earliest_stop},
+                      {"skippable_steps", plan.skippable_steps},
                       {"checks", checks},
                       {"stopped_at", nullptr},
                       {"gaussians_at_stop", nullptr}};

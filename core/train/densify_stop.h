@@ -40,9 +40,15 @@ struct DensifyStopPlan {
   int window = 2;
   double min_gain = 0.1;
   int holdout_every = 8;
+  int earliest_stop = 0;     // the first check at which the rule can decide (window + 1 checks in); 0 = none
+  int skippable_steps = 0;   // densification steps at or after earliest_stop
+  int min_steps = 1;
 
-  // Adaptive with a non-empty window.
-  bool active() const { return adaptive && until >= from; }
+  // Adaptive, and enough densification steps to skip to be worth holding views out.
+  bool active() const { return adaptive && skippable_steps >= min_steps; }
+  // Why an adaptive run with densification acts as a fixed one (empty when it does not, and for runs that
+  // do not densify at all).
+  std::string inactive_reason() const;
   // Whether a new epoch started at iteration `it` leaves the held-out views out: from the start until the
   // stop, or until the window closes.
   bool holds_out(int it, const DensifyStopState& s) const;

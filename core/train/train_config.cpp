@@ -63,6 +63,7 @@ void visit_fields(Config& c, F&& f) {
   f("densify_stop_check_interval", c.densify.stop_check_interval);
   f("densify_stop_window", c.densify.stop_window);
   f("densify_stop_min_gain", c.densify.stop_min_gain);
+  f("densify_stop_min_steps", c.densify.stop_min_steps);
   f("filter_3d", c.filter_3d);
   f("filter_3d_interval", c.filter_3d_interval);
   f("filter_2d", c.filter_2d);
@@ -133,6 +134,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (densify.holdout_every < 2) fail("densify_holdout_every must be at least 2 (some views must stay in training)");
   if (densify.stop_check_interval < 1) fail("densify_stop_check_interval must be at least 1");
   if (densify.stop_window < 1) fail("densify_stop_window must be at least 1");
+  if (densify.stop_min_steps < 1) fail("densify_stop_min_steps must be at least 1");
   if (!std::isfinite(densify.stop_min_gain)) fail("densify_stop_min_gain must be finite (dB)");
   if (densify.opacity_reset_interval < 1) fail("opacity_reset_interval must be at least 1");
   if (densify.split_count < 1 || densify.split_count > 8) fail("split_count must lie in 1..8");

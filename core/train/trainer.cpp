@@ -615,6 +615,25 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
     save_checkpoint(checkpoint_path(o.run_dir, state_.iteration));
     remove_old_checkpoints(o.run_dir, config_.keep_checkpoints);
   };
+  // The adaptive Gaussian budget's record (RUN/densify_stop.json) and decisions for the user.
+  auto tell = [&](const std::string& note) {
+    if (o.on_note)
+      o.on_note(note);
+    else
+      std::printf("\n%s\n", note.c_str());
+  };
+  auto write_densify_record = [&] {
+    if (o.run_dir.empty()) return;
+    const DensifyStopPlan plan = densify_stop_plan(config_, densify_until(), intrinsic());
+    std::vector<std::string> names;
+    if (plan.active())
+      for (std::uint32_t i : held_out_view_indices(views_.size(), plan.holdout_every)) names.push_back(views_[i].name);
+    write_json_file(o.run_dir / "densify_stop.json", densify_stop_json(state_.densify_stop, plan, names));
+  };
+  if (const std::string why = densify_stop_plan(config_, densify_until(), intrinsic()).inactive_reason(); !why.empty()) {
+    write_densify_record();
+    tell("adaptive densification inactive: " + why);
+  }
   // Interval means for the log; a smoothed iteration time (about the last 50 iterations) for the rate.
   double sum_loss = 0, sum_psnr = 0;
   int n_sum = 0;
@@ -643,18 +662,8 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
       last = clock::now();
       continue;
     }
-    if (s.held_out_check && !o.run_dir.empty()) {
-      std::vector<std::string> names;
-      for (std::uint32_t i : held_out_view_indices(views_.size(), config_.densify.holdout_every)) names.push_back(views_[i].name);
-      write_json_file(o.run_dir / "densify_stop.json",
-                      densify_stop_json(state_.densify_stop, densify_stop_plan(config_, densify_until(), intrinsic()), names));
-    }
-    if (!s.densify_note.empty()) {
-      if (o.on_note)
-        o.on_note(s.densify_note);
-      else
-        std::printf("\n%s\n", s.densify_note.c_str());
-    }
+    if (s.held_out_check) write_densify_record();
+    if (!s.densify_note.empty()) tell(s.densify_note);
     const auto now = clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;

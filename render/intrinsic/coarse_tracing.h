@@ -2,11 +2,12 @@
 // Coarse tracing: fewer reflection rays where the screen-space glossy filter blurs anyway.
 //
 // A pixel whose screen roughness R_s makes the filter read pyramid level k >= 1 or coarser (never level 0)
-// only matters through blurred texels, so one ray per aligned 2^k x 2^k block of such pixels is enough:
-// one glossy pixel of the block, picked by a hash of the pixel and a per-frame seed (so that it moves from
-// iteration to iteration), is traced, the others get mass 0 in the filter's weighted pyramid (ssf::GlossyFilter with a mass image), which then averages only traced pixels. A block of size
-// 2^s is used when every glossy pixel in it reads level s or coarser (s <= max_level); blocks nest, so the
-// image splits into disjoint blocks with one ray each, and pixels that read level 0 always keep their ray.
+// only matters through blurred texels, so one ray per aligned 2^k x 2^k block of such pixels is enough. One
+// glossy pixel of the block, picked by a hash of the pixel and a per-frame seed (so that it moves from one
+// iteration to the next), is traced; the others get mass 0 in the filter's weighted pyramid
+// (ssf::GlossyFilter with a mass image), which then averages only traced pixels. A block of size 2^s is
+// used when every glossy pixel in it reads level s or coarser (s <= max_level); blocks nest, so the image
+// splits into disjoint blocks with one ray each, and pixels that read level 0 always keep their ray.
 //
 // R_s comes from the roughness net, whose input needs the traced hit distance, so a frame is traced in two
 // passes: first the representatives of every 2^max_level block (select_block_rays with no R_s), whose

@@ -37,6 +37,7 @@ DensifyStopPlan plan_2k() {
   TrainConfig c;
   c.iterations = 2000;
   c.densify.stop = "adaptive";
+  c.densify.stop_min_steps = 1;  // the default 2 leaves a 2K run fixed (tested below)
   return densify_stop_plan(c, /*densify_until=*/1000, /*intrinsic=*/false);
 }
 
@@ -124,6 +125,30 @@ TEST(DensifyStopRule, ChecksFollowTheScaledScheduleAndSkipResets) {
   TrainConfig f;
   const DensifyStopPlan fixed = densify_stop_plan(f, 12000, false);
   EXPECT_FALSE(fixed.holds_out(10, s) || fixed.checks_at(500, DensifyStopState{}));
+}
+
+TEST(DensifyStopRule, ActsOnlyWithEnoughStepsToSkip) {
+  TrainConfig c;
+  c.densify.stop = "adaptive";
+  c.iterations = 2000;  // checks 500, 533, 566 -> the first stop at 566; only the step at 1000 after it
+  const DensifyStopPlan p2 = densify_stop_plan(c, 1000, true);
+  EXPECT_EQ(p2.earliest_stop, 566);
+  EXPECT_EQ(p2.skippable_steps, 1);
+  EXPECT_FALSE(p2.active());
+  EXPECT_FALSE(p2.holds_out(1, DensifyStopState{}) || p2.checks_at(566, DensifyStopState{}));
+  EXPECT_NE(p2.inactive_reason().find("1 densification step(s) after the earliest possible stop (iteration 566)"),
+            std::string::npos) << p2.inactive_reason();
+  c.iterations = 6000;  // checks every 100: first stop at 700, steps 1000 .. 3000
+  const DensifyStopPlan p6 = densify_stop_plan(c, 3000, false);
+  EXPECT_EQ(p6.earliest_stop, 700);
+  EXPECT_EQ(p6.skippable_steps, 5);
+  EXPECT_TRUE(p6.active());
+  EXPECT_EQ(p6.inactive_reason(), "");
+  c.iterations = 30000;
+  EXPECT_EQ(densify_stop_plan(c, 12000, false).skippable_steps, 22);  // 1500 .. 12000 (checks 500, 1000, 1500)
+  // No densification at all (a stage-2 fine-tune under a copied configuration): nothing to say.
+  EXPECT_EQ(densify_stop_plan(c, 0, false).inactive_reason(), "");
+  EXPECT_FALSE(densify_stop_plan(c, 0, false).active());
 }
 
 TEST(HeldOutViews, EveryNthAtLeastOneNeverAll) {
@@ -218,6 +243,7 @@ struct TinyRun {
     config.densify.stop_check_interval = 15 * 30000 / iterations;
     config.densify.stop_min_gain = min_gain;
     config.densify.grad_threshold = 5e-5f;
+    config.densify.stop_min_steps = 1;  // a tiny schedule has few steps to skip; the guard has its own test
     config.depth_normal_weight = 0;
     config.checkpoint_interval = 0;
     const DatasetOptions o = dataset_options(config);
@@ -304,7 +330,7 @@ TEST(DensifyStop, ResumeAcrossTheDecisionIsBitExact) {
 }
 
 TEST(DensifyStop, RunWritesTheRecordAndTellsTheDecision) {
-  TinyRun run(1000.0f, 90);
+  TinyRun run(1000.0f, 110);
   Trainer t = run.trainer();
   const auto dir = test::scratch_dir("densify_stop_run");
   Trainer::RunOptions o;
@@ -323,6 +349,29 @@ TEST(DensifyStop, RunWritesTheRecordAndTellsTheDecision) {
   EXPECT_EQ(j["checks"][2]["gaussians"], j["gaussians_at_stop"]);
   EXPECT_EQ(j["held_out_views"].size(), 5u);
   EXPECT_EQ(j["held_out_views"][0], run.views[0].name);
+}
+
+TEST(DensifyStop, TooShortAnAdaptiveRunTrainsExactlyAsAFixedOne) {
+  TinyRun fixed_run(0.1f, 100), adaptive_run(0.1f, 100);
+  fixed_run.config.densify.stop = "fixed";
+  adaptive_run.config.densify.stop_min_steps = 2;  // first stop at 80, one step (100) after it
+  Trainer f = fixed_run.trainer();
+  while (!f.finished()) f.step();
+  Trainer a = adaptive_run.trainer();
+  const auto dir = test::scratch_dir("densify_stop_inactive");
+  Trainer::RunOptions o;
+  o.run_dir = dir;
+  std::vector<std::string> notes;
+  o.on_note = [&](const std::string& n) { notes.push_back(n); };
+  ASSERT_EQ(a.run(o), Trainer::RunResult::Finished);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("adaptive densification inactive: 1 densification step(s)"), std::string::npos) << notes[0];
+  EXPECT_TRUE(a.state().densify_stop.checks.empty());
+  EXPECT_EQ(all_values(a.model()), all_values(f.model()));
+  std::ifstream in(dir / "densify_stop.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["inactive_reason"].is_string());
+  EXPECT_TRUE(j["held_out_views"].empty());
 }
 
 namespace {
