@@ -64,6 +64,18 @@ const std::vector<ConfigSpec>& ladder() {
       {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting and lighting-aware masks"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
        "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
+      // Modelling no more than a scene needs: each choice against full (and auto against baseline).
+      {"auto", "auto", {"--mode", "auto"}, "", false,
+       "full where the glossy masks mark >= 0.5 % of the pixels, else radiance and RGB inpainting (--mode auto)"},
+      {"auto-detect", "auto_detect", {"--mode", "auto", "--set", "use_glossy_masks=false"}, "", false,
+       "--mode auto with the glossy masks hidden: glossy regions detected from the photos after the warm-up"},
+      {"sh1", "intrinsic_sh1", {"--mode", "intrinsic", "--set", "max_sh_degree=1"}, "", false,
+       "full with SH degree 1 (the glossy term carries the view dependence)"},
+      {"budget", "intrinsic_budget",
+       {"--mode", "intrinsic", "--set", "densify_stop=adaptive", "--set", "densify_stop_min_steps=1"}, "", false,
+       "full with the adaptive Gaussian budget (densification stops when held-out PSNR stops improving)"},
+      {"coarse", "intrinsic_coarse", {"--mode", "intrinsic", "--set", "intrinsic_coarse_tracing=true"}, "", false,
+       "full with coarse tracing (one reflection ray per block where the glossy filter blurs)"},
   };
   return specs;
 }
@@ -74,6 +86,7 @@ struct Options {
   std::string out;
   std::vector<std::string> schedules = {"short"};
   std::string device = "auto";
+  int resolution = 0;  // training width, 0 = the data set's
 };
 
 // One row of the results: a configuration on a scene under a schedule.
@@ -147,6 +160,7 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
                                    std::to_string(s.train_iters), "--device", o_.device, "--checkpoint-every", "0"};
   args.insert(args.end(), c.train_args.begin(), c.train_args.end());
   args.insert(args.end(), s.extra_train_args.begin(), s.extra_train_args.end());
+  if (o_.resolution > 0) args.insert(args.end(), {"--resolution", std::to_string(o_.resolution)});
   const json options = {{"args", args}};
   Stage1 st{dir / "run", {}};
   // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
@@ -187,6 +201,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                         {"schedule", {s.name, s.train_iters, s.remove_iters, s.export_iters, s.extra_train_args}},
                         {"train", c.train_args},
                         {"ablate", c.ablate},
+                        {"resolution", o_.resolution},
                         {"device", o_.device}};
   if (const auto row = goris::bench::reusable_row(dir, options)) {
     Row old = row_from_json(*row);
@@ -211,6 +226,8 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       r.peak_mib = st.train.peak_mib;
       if (!st.train.ok) throw Error(st.train.error);
       fs::copy(st.run, run, fs::copy_options::recursive);  // each configuration removes in its own copy
+      if (std::string(c.stage1).rfind("auto", 0) == 0)  // what --mode auto decided
+        r.note += "stage 1 finished as " + read_json_object(run / "config.json").value("mode", std::string("?")) + "; ";
       const StepRun sel =
           run_child("select", {"select", run.string(), "--masks", "--device", o_.device}, logs / "select.log");
       r.select_s = sel.seconds;
@@ -267,6 +284,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
     r.status = "failed";
     r.error = e.what();
   }
+  if (r.note.size() >= 2 && r.note.compare(r.note.size() - 2, 2, "; ") == 0) r.note.resize(r.note.size() - 2);
   goris::bench::write_result(dir, options, row_json(r));
   return r;
 }
@@ -275,6 +293,12 @@ std::string step_column(std::string step) {
   std::replace(step.begin(), step.end(), ' ', '_');
   std::replace(step.begin(), step.end(), '-', '_');
   return "remove_" + step + "_s";
+}
+
+std::string config_names() {
+  std::string names;
+  for (const auto& c : ladder()) names += (names.empty() ? "" : ", ") + std::string(c.name);
+  return names;
 }
 
 size_t config_index(const std::string& name) {
@@ -316,6 +340,32 @@ bool Bench::write_chart(const std::vector<Row>& rows, const std::string& title, 
   return true;
 }
 
+// What each configuration saves in time and costs in PSNR against full and against baseline, per scene and
+// schedule (empty when neither reference succeeded).
+std::string choices_table(const std::vector<Row>& rows) {
+  auto find = [&](const Row& like, const char* config) -> const Row* {
+    for (const Row& r : rows)
+      if (r.scene == like.scene && r.schedule == like.schedule && r.config == config && r.status == "ok") return &r;
+    return nullptr;
+  };
+  auto against = [](const Row& r, const Row* ref) {
+    if (!ref || !(ref->total_s() > 0)) return std::string(" | | ");
+    return " | " + fmt(r.total_s() / ref->total_s(), "%.2fx") + " | " + fmt(r.psnr - ref->psnr, "%+.2f");
+  };
+  std::string t;
+  for (const Row& r : rows) {
+    if (r.status != "ok" || r.config == "full" || r.config == "baseline") continue;
+    const Row *full = find(r, "full"), *base = find(r, "baseline");
+    if (!full && !base) continue;
+    t += "| " + md_cell(r.scene) + " | " + r.schedule + " | " + r.config + " | " + fmt(r.total_s(), "%.1f") + " | " +
+         fmt(r.psnr, "%.2f") + against(r, full) + against(r, base) + " |\n";
+  }
+  if (t.empty()) return t;
+  return "\nEach choice against `full` and `baseline` (same scene and schedule): time ratio (total time) and PSNR "
+         "difference after removal.\n\n| scene | schedule | config | total s | PSNR | time vs full | ΔPSNR vs full | "
+         "time vs baseline | ΔPSNR vs baseline |\n|---|---|---|--:|--:|--:|--:|--:|--:|\n" + t;
+}
+
 void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   std::vector<std::string> steps;
   for (int k = 0; k < goris::kRemovalStepCount; ++k) steps.push_back(goris::removal_step_name(goris::RemovalStep(k)));
@@ -338,7 +388,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   write_text(out_ / "results.csv", csv);
 
   std::string md = "# GOR-IS pipeline bench\n\n";
-  md += "Configurations (the paper's ablation ladder):\n\n";
+  md += "Configurations (the paper's ablation ladder, then the choices that model no more than a scene needs):\n\n";
   for (const auto& c : ladder()) md += std::string("- `") + c.name + "`: " + c.description + "\n";
   md += "\nSchedules: ";
   for (size_t i = 0; i < o_.schedules.size(); ++i) {
@@ -367,6 +417,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
     if (!r.note.empty()) notes += "- " + r.scene + " / " + r.config + " / " + r.schedule + ": " + md_cell(r.note) + "\n";
   }
   if (!notes.empty()) md += "\nNotes:\n\n" + notes;
+  md += choices_table(rows);
 
   std::vector<std::string> scenes;
   for (const Row& r : rows)
@@ -413,7 +464,7 @@ void Bench::run() {
       continue;
     }
     const auto it = std::find_if(ladder().begin(), ladder().end(), [&](const ConfigSpec& c) { return c.name == name; });
-    if (it == ladder().end()) throw Error("--configs", "unknown configuration '" + name + "' (baseline, +elt, +ssf, full, distilled, all)");
+    if (it == ladder().end()) throw Error("--configs", "unknown configuration '" + name + "' (" + config_names() + ", all)");
     if (std::find(configs.begin(), configs.end(), &*it) == configs.end()) configs.push_back(&*it);
   }
   if (configs.empty()) throw Error("--configs", "no configuration named");
@@ -461,8 +512,10 @@ void setup_bench_pipeline(CLI::App& root) {
   auto* c = bench.add_subcommand(
       "pipeline", "The ablation ladder end to end per scene and schedule: times, memory, PSNR/SSIM, Pareto chart");
   c->add_option("--data", o->data, "Data set folders (one row block per scene)")->required()->expected(1, -1);
-  c->add_option("--configs", o->configs, "Comma-separated: baseline,+elt,+ssf,full,distilled or all")
-      ->capture_default_str();
+  c->add_option("--configs", o->configs, "Comma-separated: " + config_names() + " or all")->capture_default_str();
+  c->add_option("--resolution", o->resolution, "Train and evaluate at this image width (0 = the data set's)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 8192));
   c->add_option("--out", o->out, "Output folder (results.csv, results.md, chart*.svg/png, runs/)")->required();
   c->add_option("--schedule", o->schedules, "short (500 iterations), medium (2000), full (30000); repeatable")
       ->capture_default_str()

@@ -196,7 +196,8 @@ cv::Mat chart_image(const Chart& chart) {
 
 Rgb palette_color(std::size_t index) {
   static const Rgb colors[] = {{0, 114, 178}, {230, 159, 0}, {0, 158, 115}, {204, 121, 167},
-                               {213, 94, 0},  {86, 180, 233}, {240, 228, 66}, {0, 0, 0}};
+                               {213, 94, 0},  {86, 180, 233}, {240, 228, 66}, {0, 0, 0},
+                               {148, 103, 189}, {140, 86, 75}, {23, 190, 207}, {188, 189, 34}};
   return colors[index % (sizeof colors / sizeof colors[0])];
 }
 
