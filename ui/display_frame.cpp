@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/compute/memory.h"
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
+#include "ui/frame_layout.h"
 
 namespace goris::ui {
 
@@ -27,29 +29,14 @@ float percentile(std::vector<float> v, double q) {
   return v[k];
 }
 
-}  // namespace
-
-DisplayFrame make_display_frame(const GBuffer& gb, const Camera& camera) {
-  DisplayFrame f;
-  f.camera = camera;
-  f.width = gb.width;
-  f.height = gb.height;
-  const size_t hw = gb.pixels();
-  const std::vector<float> color = gb.color.to_host(), alpha = gb.alpha.to_host(), depth = gb.depth.to_host(),
-                           normal = gb.normal.to_host();
-  f.color.assign(hw * 3, 0.0f);
-  interleave(color, 0, 3, hw, f.color, 3, 0);
-
-  f.normal.assign(hw * 3, 0.0f);
+// Depth (camera z) where the alpha is high enough, and the TURBO map's range from its inverse percentiles.
+void set_depth(DisplayFrame& f, const std::vector<float>& alpha, const std::vector<float>& depth) {
+  const size_t hw = f.pixels();
   f.depth.assign(hw, 0.0f);
   std::vector<float> inverse;
   inverse.reserve(hw);
   for (size_t p = 0; p < hw; ++p) {
     if (alpha[p] < DisplayFrame::kMinAlpha) continue;
-    const glm::vec3 n(normal[p], normal[hw + p], normal[2 * hw + p]);
-    const float len = glm::length(n);
-    if (len > 1e-8f)
-      for (int c = 0; c < 3; ++c) f.normal[p * 3 + c] = n[c] / len;
     const float z = depth[p] / alpha[p];
     f.depth[p] = z;
     if (z > 0) inverse.push_back(1.0f / z);
@@ -59,6 +46,32 @@ DisplayFrame make_display_frame(const GBuffer& gb, const Camera& camera) {
     f.inv_depth_far = percentile(inverse, 0.01);
     if (!(f.inv_depth_near > f.inv_depth_far)) f.inv_depth_near = f.inv_depth_far * 1.01f + 1e-6f;
   }
+}
+
+}  // namespace
+
+DisplayFrame make_display_frame(const GBuffer& gb, const Camera& camera) {
+  if (gb.color.device() != Device::CPU) return make_device_display_frame(gb, camera);
+  DisplayFrame f;
+  f.camera = camera;
+  f.width = gb.width;
+  f.height = gb.height;
+  const size_t hw = gb.pixels();
+  const std::vector<float> color = gb.color.to_host(), normal = gb.normal.to_host();
+  f.alpha = gb.alpha.to_host();
+  const std::vector<float>& alpha = f.alpha;
+  f.color.assign(hw * 3, 0.0f);
+  interleave(color, 0, 3, hw, f.color, 3, 0);
+
+  f.normal.assign(hw * 3, 0.0f);
+  for (size_t p = 0; p < hw; ++p) {
+    if (alpha[p] < DisplayFrame::kMinAlpha) continue;
+    const glm::vec3 n(normal[p], normal[hw + p], normal[2 * hw + p]);
+    const float len = glm::length(n);
+    if (len > 1e-8f)
+      for (int c = 0; c < 3; ++c) f.normal[p * 3 + c] = n[c] / len;
+  }
+  set_depth(f, alpha, gb.depth.to_host());
 
   f.diffuse.assign(hw * 3, 0.0f);
   f.fresnel.assign(hw * 3, 0.0f);
@@ -75,6 +88,36 @@ DisplayFrame make_display_frame(const GBuffer& gb, const Camera& camera) {
   return f;
 }
 
+DisplayFrame make_device_display_frame(const GBuffer& gb, const Camera& camera) {
+  namespace fl = frame_layout;
+  DisplayFrame f;
+  f.camera = camera;
+  f.width = gb.width;
+  f.height = gb.height;
+  const size_t hw = gb.pixels();
+  const Device d = gb.color.device();
+  DeviceImages& g = f.gpu;
+  for (Buffer<float>* b : {&g.color, &g.normal, &g.diffuse, &g.fresnel, &g.misc}) *b = Buffer<float>(hw * 4, d);
+  fl::interleave(d, gb.color.data(), 0, 3, hw, g.color.data(), 4, 0);
+  fl::unit_normals(d, gb.normal.data(), gb.alpha.data(), hw, DisplayFrame::kMinAlpha, g.normal.data(), 4);
+  const bool extras = gb.n_extras >= extra::kCount;
+  if (extras) {
+    fl::interleave(d, gb.extras.data(), extra::kDiffuse, 3, hw, g.diffuse.data(), 4, 0);
+    fl::interleave(d, gb.extras.data(), extra::kFresnel, 3, hw, g.fresnel.data(), 4, 0);
+    fl::interleave(d, gb.extras.data(), extra::kRoughness, 1, hw, g.misc.data(), 4, 0);
+    fl::interleave(d, gb.extras.data(), extra::kRegion, 1, hw, g.misc.data(), 4, 1);
+    fl::interleave(d, gb.extras.data(), extra::kLabel, 1, hw, g.misc.data(), 4, 2);
+  } else {
+    for (Buffer<float>* b : {&g.diffuse, &g.fresnel, &g.misc}) b->fill_zero();
+  }
+  fl::interleave(d, gb.alpha.data(), 0, 1, hw, g.misc.data(), 4, 3);
+  for (Buffer<float>* b : {&g.color, &g.normal, &g.diffuse, &g.fresnel}) fl::fill(d, b->data(), hw, 4, 3, 1.0f);
+  // The host needs depth and alpha (picking, the depth range); the copies also wait for the passes above.
+  f.alpha = gb.alpha.to_host();
+  set_depth(f, f.alpha, gb.depth.to_host());
+  return f;
+}
+
 void add_intrinsic_maps(DisplayFrame& f, const IntrinsicMaps& m) {
   const size_t hw = f.pixels();
   if (m.width != f.width || m.height != f.height || m.color.size() != 3 * hw || m.glossy.size() != 3 * hw ||
@@ -82,6 +125,9 @@ void add_intrinsic_maps(DisplayFrame& f, const IntrinsicMaps& m) {
     throw Error("display", "the intrinsic maps (" + std::to_string(m.width) + "x" + std::to_string(m.height) +
                                ") do not match the frame (" + std::to_string(f.width) + "x" +
                                std::to_string(f.height) + ")");
+  // The maps are host images: on a CUDA frame the shaded colour replaces the device colour on the host.
+  f.gpu.color = Buffer<float>();
+  f.color.resize(hw * 3);
   interleave(m.color, 0, 3, hw, f.color, 3, 0);
   for (std::vector<float>* v : {&f.glossy, &f.indirect, &f.env}) v->assign(hw * 3, 0.0f);
   interleave(m.glossy, 0, 3, hw, f.glossy, 3, 0);
@@ -108,13 +154,23 @@ void add_selection_coverage(DisplayFrame& f, const std::vector<float>& coverage)
   for (size_t p = 0; p < coverage.size(); ++p) f.selection[p] = std::clamp(coverage[p], 0.0f, 1.0f);
 }
 
+void add_selection_coverage(DisplayFrame& f, const Buffer<float>& coverage) {
+  if (!f.gpu.any() || coverage.device() != f.gpu.misc.device()) return add_selection_coverage(f, coverage.to_host());
+  if (coverage.size() != f.pixels())
+    throw Error("display", "the selection coverage has " + std::to_string(coverage.size()) + " pixels, the frame " +
+                               std::to_string(f.pixels()));
+  f.gpu.selection = Buffer<float>(coverage.size(), coverage.device());
+  frame_layout::clamp_unit(coverage.device(), coverage.data(), coverage.size(), f.gpu.selection.data());
+  device_synchronize(coverage.device());  // the frame goes to the GUI thread complete
+}
+
 std::optional<PickResult> pick(const DisplayFrame& f, float u, float v) {
   if (!(u >= 0 && v >= 0 && u < float(f.width) && v < float(f.height))) return std::nullopt;
   PickResult r;
   r.x = std::min(int(u), f.width - 1);
   r.y = std::min(int(v), f.height - 1);
   const size_t p = size_t(r.y) * size_t(f.width) + size_t(r.x);
-  r.alpha = f.misc[p * 4 + 3];
+  r.alpha = f.alpha[p];
   r.depth = f.depth[p];
   r.hit = r.alpha >= DisplayFrame::kMinAlpha && r.depth > 0;
   if (r.hit) {

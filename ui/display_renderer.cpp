@@ -51,7 +51,7 @@ DisplayFrame DisplayRenderer::render(const ModelSnapshot& m, const Camera& camer
     v.extras = selection_values_.data();
     v.n_extras = 1;
     const RasterOutput sel = rasterize(v, camera, m.settings(), m.device());
-    add_selection_coverage(frame, sel.gbuffer.extras.to_host());
+    add_selection_coverage(frame, sel.gbuffer.extras);  // stays on the GPU for CUDA frames
   }
   return frame;
 }

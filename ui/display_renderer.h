@@ -2,7 +2,8 @@
 // Renders a model snapshot for the viewports on the calling thread (the render worker's): the rasterized
 // G-buffer; for intrinsic snapshots the intrinsic renderer's maps (shaded colour, G, L_ind, V, L_dir, R_s),
 // with one renderer kept per run and its environment map and net reloaded when a snapshot brings new
-// ones; and, when something is selected, the selection's coverage as one more rasterized channel.
+// ones; and, when something is selected, the selection's coverage as one more rasterized channel. On CUDA
+// the frame's images stay on the GPU (display_frame.h).
 #include <memory>
 #include <string>
 

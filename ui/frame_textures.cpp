@@ -1,7 +1,10 @@
 #include "ui/frame_textures.h"
 
+#include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <vector>
+
+#include "ui/frame_layout.h"
 
 namespace goris::ui {
 
@@ -20,13 +23,55 @@ bool FrameTextures::has(Channel c) const {
   return false;
 }
 
+UploadPath upload_path(Device image_device, bool interop_compiled, bool interop_failed) {
+  if (image_device == Device::CPU) return UploadPath::Host;
+  return interop_compiled && !interop_failed ? UploadPath::Interop : UploadPath::DeviceToHost;
+}
+
+void FrameTextures::before_respecify(const GlTexture& t, int width, int height, int channels) {
+  if (!t.empty() && (t.width() != width || t.height() != height || t.channels() != channels)) interop_.forget(t.id());
+}
+
+void FrameTextures::put(GlTexture& t, int w, int h, int host_channels, const std::vector<float>& host,
+                        const Buffer<float>& device) {
+  if (device.empty()) {
+    before_respecify(t, w, h, host_channels);
+    t.upload(w, h, host_channels, host.data());
+    return;
+  }
+  const int c = frame_layout::interop_channels(host_channels);
+  before_respecify(t, w, h, c);
+  switch (upload_path(device.device(), cuda_compiled(), interop_failed_)) {
+    case UploadPath::Host:
+      t.upload(w, h, c, device.data());
+      return;
+    case UploadPath::Interop:
+      try {
+        t.allocate(w, h, c);
+        interop_.copy(t.id(), w, h, c, device.data());
+        return;
+      } catch (const std::exception& e) {
+        interop_failed_ = true;
+        interop_failure_ = e.what();
+        std::cerr << "goris-studio: CUDA-GL interop unavailable (" << interop_failure_
+                  << "); viewport images now go through host memory\n";
+      }
+      [[fallthrough]];
+    case UploadPath::DeviceToHost: {
+      const std::vector<float> px = device.to_host();
+      t.upload(w, h, c, px.data());
+      return;
+    }
+  }
+}
+
 void FrameTextures::upload(const DisplayFrame& f) {
-  color.upload(f.width, f.height, 3, f.color.data());
-  normal.upload(f.width, f.height, 3, f.normal.data());
-  diffuse.upload(f.width, f.height, 3, f.diffuse.data());
-  fresnel.upload(f.width, f.height, 3, f.fresnel.data());
-  misc.upload(f.width, f.height, 4, f.misc.data());
-  depth.upload(f.width, f.height, 1, f.depth.data());
+  put(color, f.width, f.height, 3, f.color, f.gpu.color);
+  put(normal, f.width, f.height, 3, f.normal, f.gpu.normal);
+  put(diffuse, f.width, f.height, 3, f.diffuse, f.gpu.diffuse);
+  put(fresnel, f.width, f.height, 3, f.fresnel, f.gpu.fresnel);
+  put(misc, f.width, f.height, 4, f.misc, f.gpu.misc);
+  depth.upload(f.width, f.height, 1, f.depth.data());  // host always (picking reads it there)
   has_intrinsic = f.intrinsic();
   has_screen_roughness = has_intrinsic && f.screen_roughness;
   if (has_intrinsic) {
@@ -35,8 +80,8 @@ void FrameTextures::upload(const DisplayFrame& f) {
     env.upload(f.width, f.height, 3, f.env.data());
     light.upload(f.width, f.height, 2, f.light.data());
   }
-  has_selection = !f.selection.empty();
-  if (has_selection) selection.upload(f.width, f.height, 1, f.selection.data());
+  has_selection = f.has_selection();
+  if (has_selection) put(selection, f.width, f.height, 1, f.selection, f.gpu.selection);
   width = f.width;
   height = f.height;
   inv_depth_near = f.inv_depth_near;

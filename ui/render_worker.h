@@ -2,7 +2,8 @@
 // Renders the viewports' view on a worker thread so that the GUI keeps its frame rate: the GUI posts the
 // latest (model snapshot, camera) and picks up finished frames; a request that is overtaken before it
 // starts is dropped. Rendering uses the engine on the snapshot's device (ui/display_renderer.h: the
-// rasterizer, the intrinsic renderer for intrinsic runs, the selection's coverage).
+// rasterizer, the intrinsic renderer for intrinsic runs, the selection's coverage); frames of a CUDA
+// snapshot keep their images on the GPU for FrameTextures' interop copy.
 #include <condition_variable>
 #include <cstdint>
 #include <memory>

@@ -24,9 +24,12 @@ GlTexture& GlTexture::operator=(GlTexture&& o) noexcept {
   return *this;
 }
 
-void GlTexture::upload(int width, int height, int channels, const float* data) {
-  static constexpr GLenum kInternal[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
-  static constexpr GLenum kFormat[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+namespace {
+constexpr GLenum kInternal[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
+constexpr GLenum kFormat[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+}  // namespace
+
+bool GlTexture::prepare(int width, int height, int channels, const float* data) {
   if (channels < 1 || channels > 4 || width <= 0 || height <= 0)
     throw Error("texture upload: bad size " + std::to_string(width) + "x" + std::to_string(height) + "x" +
                 std::to_string(channels));
@@ -40,16 +43,25 @@ void GlTexture::upload(int width, int height, int channels, const float* data) {
   }
   glBindTexture(GL_TEXTURE_2D, id_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  if (width != width_ || height != height_ || channels != channels_) {
-    glTexImage2D(GL_TEXTURE_2D, 0, GLint(kInternal[channels - 1]), width, height, 0, kFormat[channels - 1], GL_FLOAT,
-                 data);
-    width_ = width;
-    height_ = height;
-    channels_ = channels;
-  } else {
+  if (width == width_ && height == height_ && channels == channels_) return false;
+  glTexImage2D(GL_TEXTURE_2D, 0, GLint(kInternal[channels - 1]), width, height, 0, kFormat[channels - 1], GL_FLOAT,
+               data);
+  width_ = width;
+  height_ = height;
+  channels_ = channels;
+  return true;
+}
+
+void GlTexture::upload(int width, int height, int channels, const float* data) {
+  if (!prepare(width, height, channels, data))
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, kFormat[channels - 1], GL_FLOAT, data);
-  }
   check_gl("texture upload");
+}
+
+bool GlTexture::allocate(int width, int height, int channels) {
+  const bool changed = prepare(width, height, channels, nullptr);
+  check_gl("texture allocation");
+  return changed;
 }
 
 void GlTexture::bind(int unit) const {
