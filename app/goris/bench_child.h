@@ -45,7 +45,8 @@ StepRun run_eval(const std::filesystem::path& run_dir, const std::string& device
 
 // Stage-1, fine-tune and distillation iterations of a named schedule: short (500 stage-1 iterations),
 // medium (2000), full (30000) and the hidden `tiny` of the CLI tests (30, seconds long, with extra options
-// that shrink the model). Stage 2 scales with stage 1 like `goris remove` does (4000 and 2000 at 30K).
+// that shrink the model). Stage 2 scales with stage 1 like `goris remove` does (4000 at 30K); the
+// distillation too (2000 at 30K) but never below 500 iterations.
 struct Schedule {
   std::string name;
   int train_iters = 0, remove_iters = 0, export_iters = 0;

@@ -1,0 +1,82 @@
+// `goris detect RUN [--checkpoint FILE] [--device D] [--out DIR]`: what `--mode auto` would decide on a
+// trained model - the glossy-region detection from the photos (render/train/glossy_detection.h) on the
+// run's latest (or a given) checkpoint, with the run's detection settings. Prints the evidence, the planes
+// and the decision, and the agreement with the data set's own glossy masks when it has them; --out writes
+// the masks (gloss_<view>.png) for a look.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/goris/command.h"
+#include "core/io/dataset.h"
+#include "core/io/image.h"
+#include "core/train/checkpoint.h"
+#include "core/train/train_setup.h"
+#include "core/util/error.h"
+#include "render/train/glossy_detection.h"
+#include "render/train/raster_renderer.h"
+#include "render/train/training_setup.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace goris;
+
+struct Options {
+  std::string run, checkpoint, device = "auto", out;
+};
+
+void run_detect(const Options& o) {
+  fs::path ck = o.checkpoint;
+  if (ck.empty()) {
+    const auto latest = latest_checkpoint(o.run);
+    if (!latest) throw Error(o.run, "has no checkpoint (RUN/checkpoints/iter_*.ckpt); train with --checkpoint-every");
+    ck = *latest;
+  }
+  const Device device = resolve_device(o.device);
+  Checkpoint c = read_checkpoint(ck, device);
+  TrainConfig config = c.config;
+  config.use_glossy_masks = true;  // the data set's own masks, when it has them, are the reference
+  config.glossy_mask_dir.clear();
+  Dataset ds = load_dataset(config.data, dataset_options(config));
+  select_training_data(config, ds);
+  const std::vector<TrainView> views = load_train_views(ds.train, dataset_options(config));
+  const GlossyDetectionSettings s = GlossyDetectionSettings::from_config(config);
+  const GlossyDetection det = detect_glossy_regions(c.state.model.view(false), views,
+                                                    RasterRenderer::settings_for(config), device, s);
+  std::printf("%s (iteration %d): %.2f %% of the covered pixels look view-dependent (threshold %.2f %%), "
+              "%zu detected of %zu scored, %d plane(s), masks %zu pixels -> %s\n",
+              ck.c_str(), c.state.iteration, 100.0 * det.fraction, 100.0 * s.min_fraction, det.detected, det.scored,
+              det.planes, det.in_masks, det.glossy ? "intrinsic" : "radiance");
+  MaskAgreement all;
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (views[i].glossy_mask.size() != det.masks[i].size()) continue;
+    const MaskAgreement a = compare_masks(det.masks[i], views[i].glossy_mask);
+    all.detected += a.detected, all.reference += a.reference, all.both += a.both;
+  }
+  if (all.reference > 0)
+    std::printf("against the data set's glossy masks: IoU %.3f, recall %.3f, precision %.3f\n", all.iou(), all.recall(),
+                all.precision());
+  if (!o.out.empty()) {
+    fs::create_directories(o.out);
+    for (size_t i = 0; i < views.size(); ++i) {
+      Image m(views[i].camera.width, views[i].camera.height, 1);
+      for (size_t p = 0; p < det.masks[i].size(); ++p) m.pixels[p] = float(det.masks[i][p]);
+      save_png(fs::path(o.out) / ("gloss_" + views[i].name + ".png"), m);
+    }
+    std::printf("wrote %zu masks to %s\n", views.size(), o.out.c_str());
+  }
+}
+
+void setup_detect(CLI::App& root) {
+  auto o = std::make_shared<Options>();
+  auto* c = root.add_subcommand("detect", "What --mode auto would decide on a trained run: glossy regions from the photos");
+  c->add_option("run", o->run, "A run folder with checkpoints")->required();
+  c->add_option("--checkpoint", o->checkpoint, "A checkpoint file (default: the run's latest)");
+  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->add_option("--out", o->out, "Write the detected masks (gloss_<view>.png) here");
+  c->callback([o] { run_detect(*o); });
+}
+
+}  // namespace
+GORIS_COMMAND(47, setup_detect);
