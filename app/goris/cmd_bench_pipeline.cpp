@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -145,6 +146,7 @@ class Bench {
                  const Row* full);
   void evaluate(Row& r, const fs::path& run_dir, const fs::path& logs);
   void write_outputs(const std::vector<Row>& rows, bool final) const;
+  std::string stage1_notes(const std::vector<Row>& rows) const;
   bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem) const;
 
   Options o_;
@@ -366,6 +368,26 @@ std::string choices_table(const std::vector<Row>& rows) {
          "time vs baseline | ΔPSNR vs baseline |\n|---|---|---|--:|--:|--:|--:|--:|--:|\n" + t;
 }
 
+// What the stage-1 runs said about the choices (read from their logs, so reused rows have them too): rays
+// traced and saved per shaded frame, the adaptive budget's stop, --mode auto's decision.
+std::string Bench::stage1_notes(const std::vector<Row>& rows) const {
+  std::set<fs::path> seen;
+  std::string t;
+  for (const Row& r : rows) {
+    const auto spec = std::find_if(ladder().begin(), ladder().end(), [&](const ConfigSpec& c) { return c.name == r.config; });
+    if (spec == ladder().end()) continue;
+    const fs::path log = out_ / "runs" / r.scene / r.schedule / (std::string("stage1_") + spec->stage1) / "train.log";
+    if (!seen.insert(log).second || !fs::exists(log)) continue;
+    std::ifstream in(log);
+    for (std::string line; std::getline(in, line);) {
+      const bool wanted = line.rfind("reflection rays:", 0) == 0 || line.rfind("adaptive densification", 0) == 0 ||
+                          line.rfind("--mode auto", 0) == 0;
+      if (wanted) t += "- " + md_cell(r.scene) + " / " + r.schedule + " / stage 1 `" + spec->stage1 + "`: " + md_cell(line) + "\n";
+    }
+  }
+  return t.empty() ? t : "\nStage-1 runs (from their logs):\n\n" + t;
+}
+
 void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   std::vector<std::string> steps;
   for (int k = 0; k < goris::kRemovalStepCount; ++k) steps.push_back(goris::removal_step_name(goris::RemovalStep(k)));
@@ -418,6 +440,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   }
   if (!notes.empty()) md += "\nNotes:\n\n" + notes;
   md += choices_table(rows);
+  md += stage1_notes(rows);
 
   std::vector<std::string> scenes;
   for (const Row& r : rows)

@@ -72,6 +72,9 @@ expect_text("${md}" "| time vs full | ΔPSNR vs full | time vs baseline | ΔPSNR
 expect_text("${md}" "| default_scene | tiny | auto |")
 expect_text("${md}" "| default_scene | tiny | sh1 |")
 expect_text("${md}" "default_scene / auto / tiny: stage 1 finished as intrinsic")
+expect_text("${md}" "Stage-1 runs (from their logs):")
+expect_text("${md}" "default_scene / tiny / stage 1 `auto`: --mode auto: intrinsic (the glossy masks mark")
+expect_text("${md}" "default_scene / tiny / stage 1 `intrinsic`: reflection rays: ")
 file(READ "${OUTDIR}/runs/default_scene/tiny/sh1/run/config.json" sh1_config)
 expect_text("${sh1_config}" "\"max_sh_degree\": 1")
 
