@@ -1,12 +1,13 @@
-// `goris detect RUN [--checkpoint FILE] [--device D] [--out DIR]`: what `--mode auto` would decide on a
-// trained model - the glossy-region detection from the photos (render/train/glossy_detection.h) on the
-// run's latest (or a given) checkpoint, with the run's detection settings. Prints the evidence, the planes
-// and the decision, and the agreement with the data set's own glossy masks when it has them; --out writes
-// the masks (gloss_<view>.png) for a look.
+// `goris detect RUN [--checkpoint FILE] [--device D] [--out DIR] [--set KEY=VALUE ...]`: what `--mode auto`
+// would decide on a trained model - the glossy-region detection from the photos
+// (render/train/glossy_detection.h) on the run's latest (or a given) checkpoint, with the run's detection
+// settings or others given with --set. Prints the evidence, the planes and the decision, and the agreement
+// with the data set's own glossy masks when it has them; --out writes the masks (gloss_<view>.png).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "app/goris/command.h"
 #include "core/io/dataset.h"
@@ -24,6 +25,7 @@ using namespace goris;
 
 struct Options {
   std::string run, checkpoint, device = "auto", out;
+  std::vector<std::string> sets;  // detection settings to try (intrinsic_detect_*)
 };
 
 void run_detect(const Options& o) {
@@ -38,6 +40,7 @@ void run_detect(const Options& o) {
   TrainConfig config = c.config;
   config.use_glossy_masks = true;  // the data set's own masks, when it has them, are the reference
   config.glossy_mask_dir.clear();
+  apply_config_overrides(o.sets, config);
   Dataset ds = load_dataset(config.data, dataset_options(config));
   select_training_data(config, ds);
   const std::vector<TrainView> views = load_train_views(ds.train, dataset_options(config));
@@ -75,6 +78,7 @@ void setup_detect(CLI::App& root) {
   c->add_option("--checkpoint", o->checkpoint, "A checkpoint file (default: the run's latest)");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->add_option("--out", o->out, "Write the detected masks (gloss_<view>.png) here");
+  c->add_option("--set", o->sets, "KEY=VALUE: another detection setting to try (intrinsic_detect_*), repeatable");
   c->callback([o] { run_detect(*o); });
 }
 

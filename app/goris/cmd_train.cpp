@@ -42,24 +42,6 @@ struct Options {
   bool resume = false;
 };
 
-// --set KEY=VALUE: VALUE as JSON (number, true/false, "string" or [1,2,3]), else as a plain string.
-void apply_overrides(const std::vector<std::string>& sets, TrainConfig& config) {
-  nlohmann::json j = config;
-  for (const std::string& kv : sets) {
-    const size_t eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) throw Error("--set " + kv + ": expected KEY=VALUE");
-    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    if (!j.contains(key)) throw Error("--set " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
-    nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
-    j[key] = v.is_discarded() ? nlohmann::json(value) : v;
-  }
-  try {
-    from_json(j, config);
-  } catch (const Error& e) {
-    throw Error(std::string("--set: ") + e.what());
-  }
-}
-
 std::string shell_quote(const std::string& s) {
   if (s.find_first_of(" \t'\"$\\") == std::string::npos) return s;
   std::string q = "'";
@@ -105,7 +87,7 @@ void run_train(const Options& o) {
     if (o.resolution) config.resolution = *o.resolution;
     if (o.downscale) config.downscale = *o.downscale;
     if (o.init_points) config.random_init_points = *o.init_points;
-    apply_overrides(o.sets, config);
+    apply_config_overrides(o.sets, config);
   }
   if (o.iters) config.iterations = *o.iters;
   if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;

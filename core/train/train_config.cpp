@@ -93,6 +93,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_detect_threshold", c.intrinsic.detect_threshold);
   f("intrinsic_detect_depth_tolerance", c.intrinsic.detect_depth_tolerance);
   f("intrinsic_detect_search_radius", c.intrinsic.detect_search_radius);
+  f("intrinsic_detect_morph_radius", c.intrinsic.detect_morph_radius);
   f("intrinsic_detect_fraction", c.intrinsic.detect_fraction);
   f("intrinsic_detect_width", c.intrinsic.detect_width);
   f("intrinsic_detect_after", c.intrinsic.detect_after);
@@ -165,6 +166,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(in.detect_depth_tolerance > 0) || !std::isfinite(in.detect_depth_tolerance))
     fail("intrinsic_detect_depth_tolerance must be finite and positive");
   if (in.detect_search_radius < 0 || in.detect_search_radius > 8) fail("intrinsic_detect_search_radius must lie in 0..8");
+  if (in.detect_morph_radius < 0 || in.detect_morph_radius > 8) fail("intrinsic_detect_morph_radius must lie in 0..8");
   if (in.detect_width < 0) fail("intrinsic_detect_width must be >= 0 (0 = the training size)");
   if (in.detect_after < 0) fail("intrinsic_detect_after must be >= 0");
   if (!(in.detect_plane_tolerance >= 0) || !std::isfinite(in.detect_plane_tolerance))
@@ -212,6 +214,23 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
   });
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known.count(it.key())) throw Error("training configuration: unknown key '" + it.key() + "'");
+}
+
+void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config) {
+  nlohmann::json j = config;
+  for (const std::string& kv : sets) {
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw Error("--set " + kv + ": expected KEY=VALUE");
+    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (!j.contains(key)) throw Error("--set " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
+    nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
+    j[key] = v.is_discarded() ? nlohmann::json(value) : v;
+  }
+  try {
+    from_json(j, config);
+  } catch (const Error& e) {
+    throw Error(std::string("--set: ") + e.what());
+  }
 }
 
 }  // namespace goris

@@ -3,6 +3,7 @@
 // in the run folder and inside every checkpoint, so a run can be resumed or repeated exactly.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
@@ -65,6 +66,7 @@ struct IntrinsicSettings {
   float detect_threshold = 0.03f;
   float detect_depth_tolerance = 0.03f;  // relative depth difference of "the same surface point"
   int detect_search_radius = 1;          // pixels: colour range of this window (geometry errors)
+  int detect_morph_radius = 1;           // opening/closing of the detections (thin geometric-error lines)
   float detect_fraction = 0.002f;
   int detect_width = 128;                // detection at this image width at most (0 = training size)
   int detect_after = 4000;               // iterations (not scaled) before detecting, at most half the run
@@ -147,5 +149,8 @@ struct TrainConfig {
 void to_json(nlohmann::json& j, const TrainConfig& c);
 // Missing keys keep their defaults; unknown keys are errors (typos must not pass silently).
 void from_json(const nlohmann::json& j, TrainConfig& c);
+// `--set KEY=VALUE` overrides of config.json keys (VALUE as JSON: number, true/false, "string" or [1,2,3],
+// else a plain string); goris::Error naming the setting for an unknown key or a value that fails validation.
+void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config);
 
 }  // namespace goris

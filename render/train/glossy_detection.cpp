@@ -23,6 +23,7 @@ GlossyDetectionSettings GlossyDetectionSettings::from_config(const TrainConfig& 
   s.threshold = in.detect_threshold;
   s.depth_tolerance = in.detect_depth_tolerance;
   s.search_radius = in.detect_search_radius;
+  s.morph_radius = in.detect_morph_radius;
   s.min_fraction = in.detect_fraction;
   s.work_width = in.detect_width;
   s.grow_planes = in.detect_plane_tolerance > 0;
