@@ -78,6 +78,18 @@ expect_text("${md}" "default_scene / tiny / stage 1 `intrinsic`: reflection rays
 file(READ "${OUTDIR}/runs/default_scene/tiny/sh1/run/config.json" sh1_config)
 expect_text("${sh1_config}" "\"max_sh_degree\": 1")
 
+# --report-only: tables from what is there; a configuration without a result is listed, nothing runs.
+goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full,coarse --out "${OUTDIR}"
+         --schedule tiny --device cpu --report-only)
+expect_text("${OUT}" "default_scene / tiny / coarse: not run (--report-only)")
+string(FIND "${OUT}" "goris train" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "--report-only trained:\n${OUT}")
+endif()
+file(READ "${OUTDIR}/results.md" md)
+expect_text("${md}" "| default_scene | coarse | tiny | not run |")
+expect_text("${md}" "| default_scene | full | tiny | ok (reused) |")
+
 # A configuration that fails (here: a copy of the scene without its training masks, so `goris select --masks`
 # fails) is recorded with its error; the bench goes on, writes its tables and exits non-zero.
 file(COPY "${RESOURCES}/default_scene/" DESTINATION "${WORK}/nomask")
