@@ -88,6 +88,7 @@ struct Options {
   std::vector<std::string> schedules = {"short"};
   std::string device = "auto";
   int resolution = 0;  // training width, 0 = the data set's
+  int init_points = 0;  // random initial points, 0 = goris train's default
   bool report_only = false;  // tables and charts from the results in DIR; nothing runs
 };
 
@@ -164,6 +165,7 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   args.insert(args.end(), c.train_args.begin(), c.train_args.end());
   args.insert(args.end(), s.extra_train_args.begin(), s.extra_train_args.end());
   if (o_.resolution > 0) args.insert(args.end(), {"--resolution", std::to_string(o_.resolution)});
+  if (o_.init_points > 0) args.insert(args.end(), {"--init-points", std::to_string(o_.init_points)});
   const json options = {{"args", args}};
   Stage1 st{dir / "run", {}};
   // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
@@ -199,13 +201,14 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
   Row r;
   r.scene = scene, r.config = c.name, r.schedule = s.name, r.train_iters = s.train_iters, r.device = o_.device;
   const fs::path dir = out_ / "runs" / scene / s.name / c.name, logs = dir / "logs", run = dir / "run";
-  const json options = {{"data", data},
+  json options = {{"data", data},
                         {"config", c.name},
                         {"schedule", {s.name, s.train_iters, s.remove_iters, s.export_iters, s.extra_train_args}},
                         {"train", c.train_args},
                         {"ablate", c.ablate},
                         {"resolution", o_.resolution},
                         {"device", o_.device}};
+  if (o_.init_points > 0) options["init_points"] = o_.init_points;  // absent by default: older results stay reusable
   if (const auto row = goris::bench::reusable_row(dir, options)) {
     Row old = row_from_json(*row);
     old.reused = true;
@@ -545,6 +548,9 @@ void setup_bench_pipeline(CLI::App& root) {
   c->add_option("--resolution", o->resolution, "Train and evaluate at this image width (0 = the data set's)")
       ->capture_default_str()
       ->check(CLI::Range(0, 8192));
+  c->add_option("--init-points", o->init_points, "Random initial points of every stage 1 (0 = goris train's default)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000000));
   c->add_option("--out", o->out, "Output folder (results.csv, results.md, chart*.svg/png, runs/)")->required();
   c->add_option("--schedule", o->schedules, "short (500 iterations), medium (2000), full (30000); repeatable")
       ->capture_default_str()
