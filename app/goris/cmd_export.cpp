@@ -25,6 +25,7 @@ struct Options {
   std::string run, ply, baked, renders, path = "test", device = "auto";
   int frames = 0, iters = 2000, extra_views = -1;
   float geometry_lr_scale = 0.0f;
+  float sh_lr_scale = 20.0f;  // DistillSettings' default
   std::uint64_t seed = 0;
 };
 
@@ -74,6 +75,7 @@ void run_export(const Options& o) {
     s.iterations = o.iters;
     s.extra_views = o.extra_views;
     s.geometry_lr_scale = o.geometry_lr_scale;
+    s.sh_lr_scale = o.sh_lr_scale;
     s.seed = o.seed;
     s.progress_every = tty ? 10 : 100;
     auto progress = [tty](const DistillProgress& p) {
@@ -137,6 +139,9 @@ void setup_export(CLI::App& root) {
                 "Position/scale/rotation/opacity learning rates during distillation, as a factor of the run's "
                 "(default 0: geometry frozen)")
       ->check(CLI::NonNegativeNumber)
+      ->needs(baked);
+  c->add_option("--sh-lr", o->sh_lr_scale, "SH learning rates during distillation, as a factor of the run's (default 20)")
+      ->check(CLI::PositiveNumber)
       ->needs(baked);
   c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")->needs(baked);
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));

@@ -76,6 +76,8 @@ TrainConfig distill_config(const TrainConfig& run_config, const DistillSettings&
   c.lr.scale *= g;
   c.lr.rotation *= g;
   c.lr.opacity *= g;
+  c.lr.sh_dc *= s.sh_lr_scale;
+  c.lr.sh_rest *= s.sh_lr_scale;
   c.checkpoint_interval = 0;
   return c;
 }
@@ -118,6 +120,8 @@ DistillResult distill_to_sh(const GaussianModel& start, const DistillTeacher& te
   if (s.iterations < 0) throw Error("distillation", "the number of iterations must be >= 0");
   if (!(s.geometry_lr_scale >= 0) || !std::isfinite(s.geometry_lr_scale))
     throw Error("distillation", "the geometry learning-rate scale must be finite and >= 0");
+  if (!(s.sh_lr_scale > 0) || !std::isfinite(s.sh_lr_scale))
+    throw Error("distillation", "the SH learning-rate scale must be finite and > 0");
   if (start.count() == 0) throw Error("distillation", "the model has no Gaussians");
   const auto t_total = Clock::now();
   auto report = [&](const DistillProgress& p) {

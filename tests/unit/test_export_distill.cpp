@@ -191,7 +191,8 @@ TEST(ExportDistill, GeometryLearnsOnlyWhenAsked) {
   const TrainConfig frozen = distill_config(run_config(), DistillSettings{});
   EXPECT_EQ(frozen.lr.position_init, 0.0f);
   EXPECT_EQ(frozen.lr.opacity, 0.0f);
-  EXPECT_EQ(frozen.lr.sh_dc, run_config().lr.sh_dc);
+  EXPECT_EQ(frozen.lr.sh_dc, run_config().lr.sh_dc * DistillSettings{}.sh_lr_scale);
+  EXPECT_EQ(frozen.lr.sh_rest, run_config().lr.sh_rest * DistillSettings{}.sh_lr_scale);
   EXPECT_EQ(frozen.mode, "radiance");
   EXPECT_EQ(frozen.max_sh_degree, 3);
 }
@@ -227,4 +228,9 @@ TEST(ExportDistill, BadInput) {
   DistillSettings bad_lr = s;
   bad_lr.geometry_lr_scale = -1;
   expect_error(grey, train, holdout, bad_lr, "learning-rate");
+  DistillSettings bad_sh = s;
+  bad_sh.sh_lr_scale = std::nanf("");
+  expect_error(grey, train, holdout, bad_sh, "SH learning-rate scale");
+  bad_sh.sh_lr_scale = 0;
+  expect_error(grey, train, holdout, bad_sh, "SH learning-rate scale");
 }
