@@ -11,6 +11,7 @@
 #include "core/io/npy_write.h"
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
+#include "core/util/fnv1a.h"
 
 namespace goris {
 
@@ -30,11 +31,8 @@ fs::path selection_json_path(const fs::path& run_dir) { return run_dir / "select
 
 std::string model_fingerprint(const GaussianModel& model) {
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&](std::uint8_t b) {
-    h ^= b;
-    h *= 1099511628211ull;
-  };
+  Fnv1a hash;
+  auto mix = [&](std::uint8_t b) { hash.byte(b); };
   const std::uint64_t n = model.count();
   for (int k = 0; k < 8; ++k) mix(std::uint8_t(n >> (8 * k)));
   for (float f : pos) {
@@ -43,7 +41,7 @@ std::string model_fingerprint(const GaussianModel& model) {
     for (int k = 0; k < 4; ++k) mix(std::uint8_t(u >> (8 * k)));
   }
   char b[17];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(hash.value));
   return b;
 }
 

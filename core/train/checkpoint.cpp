@@ -12,6 +12,7 @@
 
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
+#include "core/util/fnv1a.h"
 
 namespace goris {
 
@@ -19,15 +20,6 @@ namespace {
 
 constexpr char kMagic[8] = {'G', 'O', 'R', 'I', 'S', 'C', 'K', 'P'};
 constexpr std::uint32_t kVersion = 3;  // 2: + learning-rate scale and skipped steps; 3: + adaptive densification record
-
-std::uint64_t fnv1a(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 class Writer {
  public:

@@ -22,6 +22,7 @@
 #include "core/util/error.h"
 #include "render/train/raster_renderer.h"
 #include "tests/support/test_support.h"
+#include "core/util/fnv1a.h"
 
 using namespace goris;
 
@@ -373,17 +374,6 @@ TEST(DensifyStop, TooShortAnAdaptiveRunTrainsExactlyAsAFixedOne) {
   EXPECT_TRUE(j["inactive_reason"].is_string());
   EXPECT_TRUE(j["held_out_views"].empty());
 }
-
-namespace {
-std::uint64_t fnv1a(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-}  // namespace
 
 TEST(DensifyStop, VersionTwoCheckpointsStillLoad) {
   // A version-3 file with an empty record, turned into the version-2 layout: the record (8-byte count +
