@@ -114,7 +114,7 @@ void run_train(const Options& o) {
                 "from iteration %d\n",
                 prep.glossy_views, views.size(), prep.mask_views,
                 config.intrinsic.normals.empty() ? "none" : config.intrinsic.normals.c_str(),
-                config.scaled_iteration(config.intrinsic.warmup) + 1);
+                config.shading_from() + 1);
   if (!prep.initial_model.empty()) std::printf("initial model: %s\n", prep.initial_model.c_str());
   write_run_config(run_dir, config);
   std::printf("training %s (%s, %zu views at %dx%d, extent %.3g) on %s for %d iterations -> %s\n", data.string().c_str(),

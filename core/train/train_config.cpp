@@ -1,5 +1,6 @@
 #include "core/train/train_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -68,6 +69,7 @@ void visit_fields(Config& c, F&& f) {
   f("filter_3d_interval", c.filter_3d_interval);
   f("filter_2d", c.filter_2d);
   f("intrinsic_warmup", c.intrinsic.warmup);
+  f("intrinsic_warmup_min_fraction", c.intrinsic.warmup_min_fraction);
   f("intrinsic_env_resolution", c.intrinsic.env_resolution);
   f("intrinsic_env_initial", c.intrinsic.env_initial);
   f("intrinsic_lr_env", c.intrinsic.lr_env);
@@ -152,6 +154,8 @@ void TrainConfig::validate(const std::string& what) const {
   if (nan_max_skips < 1) fail("nan_max_skips must be at least 1");
   const IntrinsicSettings& in = intrinsic;
   if (in.warmup < 0) fail("intrinsic_warmup must be >= 0");
+  if (!(in.warmup_min_fraction >= 0 && in.warmup_min_fraction <= 1))
+    fail("intrinsic_warmup_min_fraction must be in [0, 1]");
   if (in.env_resolution < 1 || in.env_resolution > 4096 || (in.env_resolution & (in.env_resolution - 1)))
     fail("intrinsic_env_resolution must be a power of two in 1..4096");
   if (!(in.env_initial > 0)) fail("intrinsic_env_initial must be positive");
@@ -182,6 +186,20 @@ void TrainConfig::validate(const std::string& what) const {
 int TrainConfig::scaled_iteration(int full) const {
   if (iterations >= 30000) return full;
   return int(std::lround(double(full) * double(iterations) / 30000.0));
+}
+
+int TrainConfig::shading_from() const {
+  const int floor = int(std::lround(double(intrinsic.warmup_min_fraction) * double(iterations)));
+  return std::max(scaled_iteration(intrinsic.warmup), std::min(intrinsic.warmup, floor));
+}
+
+int TrainConfig::shading_phase_iteration(int full) const {
+  const int from = shading_from();
+  if (full <= intrinsic.warmup) return from;
+  if (intrinsic.warmup >= 30000) return std::max(from, std::min(full, iterations));
+  if (iterations >= 30000 && from == intrinsic.warmup) return full;
+  const double t = double(full - intrinsic.warmup) / double(30000 - intrinsic.warmup);
+  return from + int(std::lround(t * double(std::max(iterations - from, 0))));
 }
 
 void to_json(nlohmann::json& j, const TrainConfig& c) {

@@ -27,10 +27,14 @@ struct LearningRates {
 };
 
 // Stage 1 in intrinsic mode (DESIGN.md §5-§6, paper S1.5). Iteration numbers are those of a full 30K
-// schedule; shorter runs scale them by iterations / 30000 (see TrainConfig::scaled_iteration) so a demo keeps
-// the same proportions (warm-up = the first 13 %).
+// schedule; shorter runs scale them by iterations / 30000 (see TrainConfig::scaled_iteration), except the
+// warm-up: a short run keeps warmup_min_fraction of itself in radiance mode (TrainConfig::shading_from), and the
+// shading phase's own schedule points follow it (TrainConfig::shading_phase_iteration).
 struct IntrinsicSettings {
   int warmup = 4000;               // radiance-only iterations before shading with tracing starts
+  // ... but at least this fraction of a shorter run (never longer than `warmup` itself). The paper's 13 %
+  // leaves a 2K run 267 radiance iterations: too few for the geometry the shading needs (README, "warm-up").
+  float warmup_min_fraction = 0.5f;
   int env_resolution = 64;         // cube map face size (paper 256; 64 suffices at the data sets' 256 px)
   float env_initial = 0.5f;        // initial radiance of every texel
   float lr_env = 0.01f;            // environment map: 0.01 -> 0.001 exponentially over the shading phase
@@ -141,6 +145,11 @@ struct TrainConfig {
 
   // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
   int scaled_iteration(int full_schedule_iteration) const;
+  // The last radiance-only iteration of intrinsic mode: max(scaled warm-up, min(warm-up, min_fraction x run)).
+  int shading_from() const;
+  // A full-schedule iteration of the shading phase (>= the warm-up) mapped onto this run's shading phase,
+  // [shading_from(), iterations]; earlier ones map to shading_from().
+  int shading_phase_iteration(int full_schedule_iteration) const;
 
   // Throws goris::Error(what, problem) for a value outside its range.
   void validate(const std::string& what) const;

@@ -394,7 +394,7 @@ std::vector<ParamGroup> Trainer::active_groups() const {
 
 double Trainer::normal_prior_weight(int it) const {
   const IntrinsicSettings& in = config_.intrinsic;
-  const int from = config_.scaled_iteration(in.warmup), until = config_.scaled_iteration(in.normal_prior_until);
+  const int from = config_.shading_from(), until = config_.shading_phase_iteration(in.normal_prior_until);
   if (in.normal_prior <= 0) return 0.0;
   if (it <= from || until <= from) return it <= from ? in.normal_prior : in.normal_prior_final;
   if (it >= until) return in.normal_prior_final;

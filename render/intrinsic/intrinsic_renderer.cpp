@@ -101,7 +101,7 @@ IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, De
   shading_settings_.ray_offset =
       config.intrinsic.ray_offset > 0 ? config.intrinsic.ray_offset : ShadingSettings::default_ray_offset(extent);
   traced_settings_.divide_opaque = config.intrinsic.divide_opaque;
-  shading_from_ = config.scaled_iteration(config.intrinsic.warmup);
+  shading_from_ = config.shading_from();
   env_.update();
 }
 
@@ -391,7 +391,7 @@ void IntrinsicRenderer::step_own_parameters(int iteration) {
   env_adam_.step(env_.params(), env_.grads(), lr_env, "environment map");
   env_.zero_grad();
   if (frame_->use_filter) {
-    const int ease_until = std::max(config_.scaled_iteration(config_.intrinsic.net_ease_until), shading_from_ + 1);
+    const int ease_until = std::max(config_.shading_phase_iteration(config_.intrinsic.net_ease_until), shading_from_ + 1);
     const float t = std::clamp(float(iteration - shading_from_) / float(ease_until - shading_from_), 0.0f, 1.0f);
     net_adam_.step(net_.params(), net_.grads(), config_.intrinsic.lr_net * t, "roughness net");
     net_.zero_grad();

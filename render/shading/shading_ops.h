@@ -7,6 +7,7 @@
 #include "core/compute/parallel_for.h"
 #include "core/compute/primitives.h"
 #include "render/envmap/cube_map_math.h"
+#include "render/envmap/deferred_texel_grads.h"
 #include "render/shading/shading_math.h"
 #include "render/shading/shading_types.h"
 
@@ -171,12 +172,16 @@ void shade(Device d, const Camera& cam, const SurfaceImagesT<T>& s, const T* L, 
   });
 }
 
-// Backward of shade: surface grads +=, dL / dV written (zero off the surface), env_grad += dL/dtexels.
+// Backward of shade: surface grads +=, dL / dV written (zero off the surface), env_grad += dL/dtexels
+// (CUDA: atomic; CPU: in a fixed order, see deferred_texel_grads.h).
 template <class T>
 void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, const T* L, const T* V,
                     const envmap::CubeMipsT<T>& env, const ShadingSettings& st, const T* dcolor,
                     const SurfaceGradsT<T>& g, T* dL, T* dV, T* env_grad) {
   const std::size_t P = s.pixels();
+  envmap::DeferredTexelGrads<T> texels(d, env_grad, P);
+  T* const direct = texels.direct();
+  T* const records = texels.records();
   parallel_for(d, P, [=] GORIS_HD(std::size_t p) {
     const Vec3<T> dC = plane3(dcolor, P, p);
     if (g.color) add_plane3(g.color, P, p, dC);
@@ -196,7 +201,8 @@ void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, con
     const Vec3<T> df0 = dF * (T(1) - c.k);
     Vec3<T> dwr;
     T drough;
-    envmap::cube_lookup_vjp(env, c.geo.wr, c.rough, dLdir, env_grad, &dwr, &drough);
+    envmap::cube_lookup_vjp(env, c.geo.wr, c.rough, dLdir, direct, &dwr, &drough);
+    envmap::DeferredTexelGrads<T>::record(records, p, c.geo.wr, c.rough, dLdir);
     // Through the normalisation by alpha: x_hat = x * scale.
     const T sc = c.mat.scale;
     if (g.region) g.region[p] += dM * sc;
@@ -206,6 +212,7 @@ void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, con
       g.alpha[p] -= (dM * c.mat.M + glm::dot(df0, c.mat.f0) + drough * c.mat.r) * sc;
     if (g.normal) add_plane3(g.normal, P, p, reflection_vjp_to_camera_normal(c.geo, dwr));
   });
+  texels.flush(env);
 }
 
 }  // namespace goris::shading::ops

@@ -1,8 +1,8 @@
 #pragma once
 // CPU drivers of the tracer, templated on the scalar type and on the hit collector (Embree, the LBVH, or
 // brute force): rays run in parallel with oneTBB, each thread with its own hit list. The backward pass sums
-// per-Gaussian gradient records in per-thread scratch (no atomics), limited in threads by a memory cap, then
-// turns them into parameter gradients.
+// per-Gaussian gradient records in per-slot scratch (no atomics, a fixed sum order), limited in slots by a
+// memory cap, then turns them into parameter gradients.
 #include <algorithm>
 #include <cstdint>
 #include <type_traits>
@@ -114,29 +114,37 @@ void backward_cpu(const TraceScene<T>& sc, const GaussiansT<T>& g, const TraceRa
                   const TraceRayGradsT<T>& ray_grads, T* grad_emit, std::size_t max_scratch_bytes,
                   MakeCollector&& make_collector) {
   const std::size_t stride = std::size_t(record_stride(sc.sh_degree, sc.n_extras));
-  const std::size_t per_thread = std::max<std::size_t>(1, std::size_t(sc.count) * stride * sizeof(T));
-  const int threads = int(std::clamp<std::size_t>(max_scratch_bytes / per_thread, 1,
-                                                  std::size_t(tbb::info::default_concurrency())));
-  tbb::enumerable_thread_specific<std::vector<T>> records(std::vector<T>(std::size_t(sc.count) * stride, T(0)));
+  const std::size_t per_slot = std::max<std::size_t>(1, std::size_t(sc.count) * stride * sizeof(T));
+  const int slots = int(std::clamp<std::size_t>(max_scratch_bytes / per_slot, 1,
+                                                std::size_t(tbb::info::default_concurrency())));
+  // Deterministic sums: slot s owns the blocks of 32 rays b = s, s + slots, ... (interleaved, so the slots
+  // get similar work) and its own records, summed below in slot order. Which thread runs a slot does not
+  // change the result, so a run repeats bit for bit on the same machine (thread-local records did not:
+  // the ray-to-thread assignment changes from run to run).
+  constexpr std::size_t kBlock = 32;
+  const std::size_t blocks = (rays.count + kBlock - 1) / kBlock;
+  std::vector<std::vector<T>> records(static_cast<std::size_t>(slots));
   tbb::enumerable_thread_specific<HitScratch<T>> scratch(round_capacity(k, sc.count));
-  tbb::task_arena arena(threads);
+  tbb::task_arena arena(slots);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.count, 32), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(0, slots, [&](int slot) {
       DenormalsOff ftz;
       HitList<T> list = scratch.local().list();
       auto collect = make_collector();
-      DenseAcc<T> acc{records.local().data()};
+      records[std::size_t(slot)].assign(std::size_t(sc.count) * stride, T(0));
+      DenseAcc<T> acc{records[std::size_t(slot)].data()};
       RayUpstream<T> up;
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        Vec3<T> dorig(T(0)), ddir(T(0));
-        if (load_upstream(grad_out.color, grad_out.depth, grad_out.alpha, grad_out.extras, sc.n_extras, i, up))
-          trace_ray_backward(sc, ray_vec(rays.origins, i), ray_vec(rays.directions, i), rays.t_min, up, list,
-                             collect, acc, dorig, ddir);
-        for (int c = 0; c < 3; ++c) {
-          if (ray_grads.origins) ray_grads.origins[3 * i + c] = dorig[c];
-          if (ray_grads.directions) ray_grads.directions[3 * i + c] = ddir[c];
+      for (std::size_t b = std::size_t(slot); b < blocks; b += std::size_t(slots))
+        for (std::size_t i = b * kBlock, end = std::min(rays.count, i + kBlock); i < end; ++i) {
+          Vec3<T> dorig(T(0)), ddir(T(0));
+          if (load_upstream(grad_out.color, grad_out.depth, grad_out.alpha, grad_out.extras, sc.n_extras, i, up))
+            trace_ray_backward(sc, ray_vec(rays.origins, i), ray_vec(rays.directions, i), rays.t_min, up, list,
+                               collect, acc, dorig, ddir);
+          for (int c = 0; c < 3; ++c) {
+            if (ray_grads.origins) ray_grads.origins[3 * i + c] = dorig[c];
+            if (ray_grads.directions) ray_grads.directions[3 * i + c] = ddir[c];
+          }
         }
-      }
     });
   });
   std::vector<const T*> parts;

@@ -96,21 +96,24 @@ std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>&
 }
 
 int auto_detection_iteration(const TrainConfig& config) {
-  return std::max(config.scaled_iteration(config.intrinsic.warmup),
+  return std::max(config.shading_from(),
                   std::min(config.intrinsic.detect_after, config.iterations / 2));
 }
 
 namespace {
 
-// The warm-up (in full-schedule iterations) that config.scaled_iteration maps to `iteration`, so that the
-// shading phase's schedules (environment-map learning rate, the net's ease-in) start at the switch.
+// The smallest warm-up (in full-schedule iterations) whose TrainConfig::shading_from is `iteration` or later,
+// so that the shading phase's schedules (environment-map learning rate, the net's ease-in) start at the switch.
+// shading_from grows monotonically with the warm-up, so a bisection finds it.
 int warmup_ending_at(const TrainConfig& config, int iteration) {
-  if (config.iterations >= 30000) return iteration;
   TrainConfig c = config;
-  c.intrinsic.warmup = int(std::lround(double(iteration) * 30000.0 / double(config.iterations)));
-  while (c.scaled_iteration(c.intrinsic.warmup) < iteration) ++c.intrinsic.warmup;
-  while (c.intrinsic.warmup > 0 && c.scaled_iteration(c.intrinsic.warmup - 1) >= iteration) --c.intrinsic.warmup;
-  return c.intrinsic.warmup;
+  int lo = 0, hi = std::max(30000, iteration) * std::max(1, 30000 / std::max(config.iterations, 1) + 1);
+  while (lo < hi) {
+    c.intrinsic.warmup = lo + (hi - lo) / 2;
+    if (c.shading_from() >= iteration) hi = c.intrinsic.warmup;
+    else lo = c.intrinsic.warmup + 1;
+  }
+  return lo;
 }
 
 }  // namespace

@@ -272,6 +272,8 @@ TEST(AutoMode, DetectionWaitsForTheGeometry) {
   c.iterations = 4000;  // warm-up 533, but the geometry needs longer: half the run
   EXPECT_EQ(auto_detection_iteration(c), 2000);
   c.intrinsic.detect_after = 0;
+  EXPECT_EQ(auto_detection_iteration(c), 2000);  // the warm-up keeps half of a short run too
+  c.intrinsic.warmup_min_fraction = 0;
   EXPECT_EQ(auto_detection_iteration(c), 533);
   c.intrinsic.detect_after = 4000;
   c.intrinsic.warmup = 20000;  // a longer warm-up wins
@@ -358,7 +360,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   EXPECT_NE(as_intrinsic(t.renderer().get()), nullptr);
   EXPECT_FALSE(t.config().auto_detect_glossy);
   EXPECT_EQ(fs::path(t.config().glossy_mask_dir), run / "detected_gloss");
-  EXPECT_EQ(t.config().scaled_iteration(t.config().intrinsic.warmup), 20) << "shading starts at the switch";
+  EXPECT_EQ(t.config().shading_from(), 20) << "shading starts at the switch";
   EXPECT_FALSE(apply_auto_mode(t, run).has_value()) << "decided twice";
   // Masks: files at the training size, the views' glossy masks, the summary, config.json.
   for (const TrainView& v : t.views()) {

@@ -16,6 +16,7 @@
 #include "render/raster/rasterizer.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/train/raster_renderer.h"
+#include "tests/support/model_values.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
@@ -119,6 +120,7 @@ struct WeightedSum {
 TEST(IntrinsicRenderer, WarmUpRendersTheRasterizedColourAndShadingTracesGlossyPixels) {
   TrainConfig cfg = intrinsic_config(3000);
   cfg.intrinsic.warmup = 4000;  // scaled: 400 of 3000
+  cfg.intrinsic.warmup_min_fraction = 0.1f;  // the floor, 300, is below it
   GaussianModel m = floor_and_blob(1);
   IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
   EXPECT_EQ(r.shading_from(), 400);
@@ -320,14 +322,10 @@ TEST(IntrinsicRenderer, OwnStateRoundTripsAndRejectsForeignFiles) {
   expect_error([&] { b.load_own_state("not a state file at all", "junk.bin"); }, "junk.bin");
 }
 
-TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
-  // Targets rendered by the intrinsic renderer from the scene itself; training starts from a perturbed copy.
-  TrainConfig cfg = intrinsic_config(40);
-  cfg.densify.from_iter = 1 << 30;
-  cfg.densify.until_iter = 0;
-  cfg.densify.opacity_reset_interval = 1 << 30;
-  cfg.depth_normal_weight = 0;
-  GaussianModel truth = floor_and_blob(4);
+namespace {
+
+// Three views of `truth` shaded by the intrinsic renderer, with its region / label as glossy / object masks.
+std::vector<TrainView> shaded_views(const TrainConfig& cfg, GaussianModel truth) {
   auto target_renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
   target_renderer->set_shading(true);
   std::vector<TrainView> views;
@@ -347,11 +345,30 @@ TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
     }
     views.push_back(std::move(v));
   }
+  return views;
+}
+
+// floor_and_blob(4) with its colour and label off: what the training has to recover.
+GaussianModel perturbed_start() {
   GaussianModel start = floor_and_blob(4);
   for (size_t i = 0; i < start.count(); ++i) {
     start.values(Param::Sh)[48 * i] += 0.3f;
     start.values(Param::ExtraLogit)[extra::kCount * i + extra::kLabel] = 0.0f;
   }
+  return start;
+}
+
+}  // namespace
+
+TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
+  // Targets rendered by the intrinsic renderer from the scene itself; training starts from a perturbed copy.
+  TrainConfig cfg = intrinsic_config(40);
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  cfg.depth_normal_weight = 0;
+  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  GaussianModel start = perturbed_start();
   auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
   Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, std::move(start)));
   auto mean_l1 = [&] {  // over all views, shaded
@@ -371,6 +388,27 @@ TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
   EXPECT_TRUE(std::isfinite(last.loss));
   EXPECT_LT(last.label, first.label);
   EXPECT_LT(mean_l1(), 0.7 * l1_before);
+}
+
+TEST(IntrinsicRenderer, CpuTrainingRepeatsBitForBit) {
+  // Two trainings from the same start, densification included, end identical (model, Adam moments,
+  // environment map and net): the tracer's and the environment map's gradient sums have a fixed order.
+  TrainConfig cfg = intrinsic_config(24);
+  cfg.densify.from_iter = 6;
+  cfg.densify.interval = 6;
+  cfg.densify.until_iter = 18;
+  cfg.densify.grad_threshold = 1e-6f;
+  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  auto train = [&] {
+    auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
+    Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, perturbed_start()));
+    while (!t.finished()) t.step();
+    return std::make_pair(goris::test::all_values(t.model()), renderer->save_own_state());
+  };
+  const auto a = train(), b = train();
+  EXPECT_GT(a.first.size(), goris::test::all_values(perturbed_start()).size()) << "densification should add";
+  EXPECT_EQ(a.first, b.first);
+  EXPECT_TRUE(a.second == b.second) << "environment map / net differ";
 }
 
 TEST(IntrinsicRenderer, DetachedExtrasGradientsReachTheExtrasAlone) {

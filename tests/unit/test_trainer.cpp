@@ -18,10 +18,13 @@
 #include "core/train/trainer.h"
 #include "core/util/error.h"
 #include "render/train/raster_renderer.h"
+#include "tests/support/model_values.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
+
+using goris::test::all_values;
 
 namespace {
 
@@ -111,17 +114,6 @@ double mean_psnr(Trainer& t) {
     sum += psnr_from_mse(mse<float>(img.color, v.image.data(), v.image.size()));
   }
   return sum / double(t.views().size());
-}
-
-std::vector<float> all_values(const GaussianModel& m) {
-  std::vector<float> out;
-  for (int p = 0; p < kParamCount; ++p) {
-    for (const Buffer<float>* b : {&m.tensor(Param(p)).value, &m.tensor(Param(p)).adam_m, &m.tensor(Param(p)).adam_v}) {
-      const auto h = b->to_host();
-      out.insert(out.end(), h.begin(), h.end());
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -359,6 +351,30 @@ TEST(Checkpoint, BadFilesAreRejectedWithTheirName) {
   EXPECT_THROW(read_checkpoint(dir / "short.ckpt", Device::CPU), Error);
   EXPECT_FALSE(std::filesystem::exists(dir / "good.ckpt.tmp"));
   EXPECT_NO_THROW(read_checkpoint(dir / "good.ckpt", Device::CPU));
+}
+
+TEST(TrainConfig, ShortRunsKeepHalfOfThemselvesInTheWarmUp) {
+  TrainConfig c;
+  c.iterations = 30000;  // the paper's schedule as given
+  EXPECT_EQ(c.shading_from(), 4000);
+  EXPECT_EQ(c.shading_phase_iteration(10000), 10000);
+  EXPECT_EQ(c.shading_phase_iteration(2000), 4000);
+  c.iterations = 60000;  // longer runs keep the absolute warm-up
+  EXPECT_EQ(c.shading_from(), 4000);
+  c.iterations = 2000;  // scaled 267, but half the run: 1000
+  EXPECT_EQ(c.shading_from(), 1000);
+  // The shading phase's points follow: 10000 of [4000, 30000] is 6/26 of the way through [1000, 2000].
+  EXPECT_EQ(c.shading_phase_iteration(10000), 1231);
+  EXPECT_EQ(c.shading_phase_iteration(30000), 2000);
+  EXPECT_EQ(c.shading_phase_iteration(4000), 1000);
+  c.iterations = 8000;  // half the run is more than the warm-up itself: 4000
+  EXPECT_EQ(c.shading_from(), 4000);
+  c.intrinsic.warmup_min_fraction = 0;  // the paper's proportions
+  c.iterations = 2000;
+  EXPECT_EQ(c.shading_from(), 267);
+  EXPECT_EQ(c.shading_phase_iteration(10000), 267 + 400);
+  c.intrinsic.warmup_min_fraction = 1.5f;
+  EXPECT_THROW(c.validate("config"), Error);
 }
 
 TEST(TrainConfig, JsonRoundTripAndValidation) {
