@@ -1,5 +1,5 @@
 # `goris train --mode auto` on the embedded default scene: with its glossy masks (they mark the table:
-# intrinsic from the start), and with them hidden (radiance through the warm-up, then the glossy
+# intrinsic from the start, the same model as --mode intrinsic), and with them hidden (radiance through the warm-up, then the glossy
 # detection decides; the masks and summary land in RUN/detected_gloss, config.json carries the decision,
 # and --resume continues in the decided mode).
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
@@ -9,8 +9,16 @@ set(DATA "${RESOURCES}/default_scene")
 set(common --resolution 32 --device cpu --init-points 3000 --iters 40 --set intrinsic_warmup=15000
     --set intrinsic_env_resolution=8 --set intrinsic_net_hidden_layers=1)
 
-goris_ok(train "${DATA}" --out "${WORK}/masks" --mode auto --iters 2 --resolution 32 --device cpu --init-points 3000)
+goris_ok(train "${DATA}" --out "${WORK}/masks" --mode auto ${common})
 expect_text("${OUT}" "--mode auto: intrinsic (the glossy masks mark")
+# ... and then trains exactly what --mode intrinsic trains: CPU training repeats bit for bit, so the two
+# models are the same file (a glossy scene's `auto` costs and scores what `full` does).
+goris_ok(train "${DATA}" --out "${WORK}/intrinsic" --mode intrinsic ${common})
+file(SHA256 "${WORK}/masks/point_cloud.ply" auto_ply)
+file(SHA256 "${WORK}/intrinsic/point_cloud.ply" intrinsic_ply)
+if(NOT auto_ply STREQUAL intrinsic_ply)
+  message(FATAL_ERROR "--mode auto with glossy masks and --mode intrinsic trained different models")
+endif()
 
 set(RUN "${WORK}/detect")
 goris_ok(train "${DATA}" --out "${RUN}" --mode auto ${common} --set use_glossy_masks=false)
