@@ -6,6 +6,10 @@
 // crop given by the bounding box of the mask pixels >= 0.5, grown by 10% of its width / height on each
 // side (at least 4 pixels) and clamped to the image; views whose mask is empty are left out of the
 // masked means. A crop rather than the exact mask keeps SSIM's 11x11 windows meaningful at the edges.
+//
+// Runs with material channels on a data set with true normals (`goris synth`: train/gt/normal_XXX.exr) also
+// get "intrinsic_ground_truth": normal angular error, roughness and F0 on the training views' glossy
+// surface (render/train/intrinsic_accuracy.h).
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -31,6 +35,8 @@
 #include "core/util/bench.h"
 #include "core/util/error.h"
 #include "core/compute/memory.h"
+#include "core/train/normal_prior.h"
+#include "render/train/intrinsic_accuracy.h"
 #include "render/train/run_renderer.h"
 #include "render/train/raster_renderer.h"
 
@@ -85,6 +91,45 @@ double mean_of(const std::vector<double>& v) {
 }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// Normals for every run (a radiance run's geometry has normals too); materials only where they were learned.
+// Adds j["intrinsic_ground_truth"] when the data set has true normals (train/gt/normal_*.exr).
+std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& config, const Dataset& ds,
+                                                        GaussianModel& model, Device device, nlohmann::json& j) {
+  const auto gt_dir = ground_truth_normal_dir(config.data);
+  if (!gt_dir) return std::nullopt;
+  std::vector<TrainView> tv;
+  for (const View& v : ds.train) {
+    if (!v.glossy_mask) continue;
+    TrainView t;
+    t.name = v.name;
+    t.camera = v.camera;
+    t.glossy_mask = load_view_glossy_mask(v).pixels.to_host();
+    tv.push_back(std::move(t));
+  }
+  if (tv.empty()) return std::nullopt;
+  load_normal_priors(*gt_dir, tv);
+  const IntrinsicAccuracy acc =
+      measure_intrinsic_accuracy(model.view(true), tv, RasterRenderer::settings_for(config), device,
+                                 glossy_reference_from_scene(fs::path(config.data) / "scene.json"));
+  nlohmann::json ja = {{"views", acc.views},
+                       {"pixels", acc.pixels},
+                       {"normal_mean_deg", acc.normal_mean_deg},
+                       {"normal_median_deg", acc.normal_median_deg},
+                       {"where", "training views, glossy mask >= 0.5, alpha >= 0.5; truth " + gt_dir->string()}};
+  if (config.mode == "intrinsic") {
+    ja["roughness_mean"] = acc.roughness_mean;
+    ja["f0_mean"] = {acc.f0_mean.x, acc.f0_mean.y, acc.f0_mean.z};
+    if (acc.reference) {
+      ja["roughness_reference"] = acc.reference->roughness;
+      ja["roughness_mae"] = acc.roughness_mae;
+      ja["f0_reference"] = {acc.reference->f0.x, acc.reference->f0.y, acc.reference->f0.z};
+      ja["f0_mae"] = acc.f0_mae;
+    }
+  }
+  j["intrinsic_ground_truth"] = ja;
+  return acc;
+}
 
 void run_eval(const Options& o) {
   const fs::path run_dir = fs::absolute(o.run);
@@ -183,6 +228,8 @@ void run_eval(const Options& o) {
     if (rep.is_object() && rep.contains("peak_host_memory_mib")) j["removal_peak_host_memory_mib"] = rep["peak_host_memory_mib"];
   }
   j["stage_seconds"] = stages;
+  const std::optional<IntrinsicAccuracy> acc = intrinsic_ground_truth(config, ds, model, device, j);
+  const bool materials = config.mode == "intrinsic";
   j["per_view"] = per_view;
 
   const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
@@ -190,7 +237,18 @@ void run_eval(const Options& o) {
   std::printf("%s split (%zu views at %dx%d, gt %s): PSNR %.2f dB  SSIM %.4f", o.split.c_str(), views.size(),
               views[0].camera.width, views[0].camera.height, o.gt.c_str(), mean_of(psnrs), mean_of(ssims));
   if (!m_psnrs.empty()) std::printf("  M-PSNR %.2f dB  M-SSIM %.4f (%zu views)", mean_of(m_psnrs), mean_of(m_ssims), m_psnrs.size());
-  std::printf("\nmetrics: %s\n", out.string().c_str());
+  std::printf("\n");
+  if (acc) {
+    std::printf("against the true intrinsics (%zu training views, %zu glossy pixels): normal error %.1f deg mean, %.1f "
+                "median", acc->views, acc->pixels, acc->normal_mean_deg, acc->normal_median_deg);
+    if (materials) std::printf("; roughness %.3f", acc->roughness_mean);
+    if (materials && acc->reference)
+      std::printf(" (true %.3f, MAE %.3f); F0 MAE %.3f (true %.2f %.2f %.2f)", double(acc->reference->roughness),
+                  acc->roughness_mae, acc->f0_mae, double(acc->reference->f0.x), double(acc->reference->f0.y),
+                  double(acc->reference->f0.z));
+    std::printf("\n");
+  }
+  std::printf("metrics: %s\n", out.string().c_str());
 }
 
 void setup_eval(CLI::App& root) {
