@@ -21,7 +21,9 @@ struct LearningRates {
   float opacity = 0.05f;
   float scale = 5e-3f;
   float rotation = 1e-3f;
-  float materials = 2.5e-3f;
+  // F0, roughness, diffuse. 4x the SH colour's rate: at 2K-4K iterations the colour's rate left steel at
+  // roughness ~0.5 and the table's look in D (README "learning rates of the materials").
+  float materials = 0.01f;
   float region = 5e-3f;
   float label = 0.01f;
 };
@@ -37,8 +39,8 @@ struct IntrinsicSettings {
   float warmup_min_fraction = 0.5f;
   int env_resolution = 64;         // cube map face size (paper 256; 64 suffices at the data sets' 256 px)
   float env_initial = 0.5f;        // initial radiance of every texel
-  float lr_env = 0.01f;            // environment map: 0.01 -> 0.001 exponentially over the shading phase
-  float lr_env_final = 0.001f;
+  float lr_env = 0.03f;            // environment map: 0.03 -> 0.003 exponentially over the shading phase
+  float lr_env_final = 0.003f;
   float lr_net = 1e-5f;            // roughness net, eased in between warmup and net_ease_until
   int net_ease_until = 10000;
   bool screen_space_filter = true; // L_ind and V through the screen-space glossy filter (+ssf)

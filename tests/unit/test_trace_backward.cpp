@@ -159,7 +159,8 @@ TEST(TraceBackward, RoundSizeAndScratchCapDoNotChangeGradients) {
   }
   TraceSettings one_thread;
   one_thread.max_grad_scratch_bytes = 1;  // one accumulator: a single worker
-  expect_close(tracer_grads(p, one_thread), ref, 1e-6, "scratch cap");
+  // The same terms summed in another grouping (one slot instead of one per thread): float rounding only.
+  expect_close(tracer_grads(p, one_thread), ref, 5e-6, "scratch cap");
 }
 
 TEST(TraceBackward, ParameterGradientsAccumulateRayGradientsAreWritten) {
