@@ -5,10 +5,10 @@
 //  - Data with glossy masks: intrinsic when the masks mark a glossy region (at least
 //    intrinsic_auto_mask_fraction of their pixels > 0.5), otherwise radiance ("the glossy masks are empty").
 //  - Data without glossy masks (or use_glossy_masks false): radiance with config.auto_detect_glossy set.
-//    Once the geometry has settled (auto_detection_iteration: the warm-up, intrinsic_warmup scaled to the
-//    run, but not before intrinsic_detect_after iterations or half the run, whichever comes first - on
-//    ../shared/datasets/lambert_room a 4K-iteration run's geometry at the scaled warm-up, 533, is a blur
-//    that makes every edge look view-dependent) apply_auto_mode, called before every step, detects
+//    Once the geometry has settled (auto_detection_iteration: the end of the warm-up, TrainConfig::
+//    shading_from, but not before intrinsic_detect_after iterations or half the run, whichever comes first
+//    - on ../shared/datasets/lambert_room a 4K-iteration run's geometry at the paper's scaled warm-up, 533,
+//    is a blur that makes every edge look view-dependent) apply_auto_mode, called before every step, detects
 //    glossy regions from the photos (render/train/glossy_detection.h), writes the masks to
 //    RUN/detected_gloss/gloss_<view>.png with RUN/detected_gloss/summary.json, and either switches the
 //    trainer to intrinsic with those masks as the views' glossy masks (the model's material extras start
@@ -42,7 +42,7 @@ std::optional<double> glossy_mask_fraction(const std::vector<TrainView>& views);
 // user. No-op returning "" for any other mode.
 std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>& views);
 
-// The iteration after which the detection runs: max(scaled warm-up, min(intrinsic_detect_after,
+// The iteration after which the detection runs: max(TrainConfig::shading_from(), min(intrinsic_detect_after,
 // iterations / 2)).
 int auto_detection_iteration(const TrainConfig& config);
 
