@@ -71,6 +71,7 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
   wait4(pid, &status, 0, &ru);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.peak_mib = double(ru.ru_maxrss) / 1024.0;  // Linux: KiB
+  r.cpu_seconds = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   if (!r.ok) {
     const std::string how = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))

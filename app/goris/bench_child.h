@@ -12,13 +12,15 @@
 
 namespace goris::bench {
 
-// One child process: whether it exited 0, its wall time, its peak resident memory and, when it failed, a
-// message "STEP failed (exit code N | killed by signal S): <its error line> [log LOG]".
+// One child process: whether it exited 0, its wall time, its peak resident memory, when it failed a message
+// "STEP failed (exit code N | killed by signal S): <its error line> [log LOG]", and its CPU time (user +
+// system, all threads): unlike wall time it barely moves when other jobs share the machine.
 struct StepRun {
   bool ok = false;
   double seconds = 0;
   double peak_mib = 0;
   std::string error;
+  double cpu_seconds = 0;
 };
 
 // Runs `goris ARGS` with stdout and stderr in `log` (created or truncated), printing the command line and

@@ -90,6 +90,7 @@ struct Options {
   int resolution = 0;  // training width, 0 = the data set's
   int init_points = 0;  // random initial points, 0 = goris train's default
   bool report_only = false;  // tables and charts from the results in DIR; nothing runs
+  std::string time_axis = "auto";  // wall | cpu | auto (cpu on the CPU when every row has it, else wall)
 };
 
 // One row of the results: a configuration on a scene under a schedule.
@@ -100,9 +101,17 @@ struct Row {
   double gaussians = std::nan(""), psnr = std::nan(""), ssim = std::nan(""), m_psnr = std::nan(""),
          m_ssim = std::nan("");
   double train_s = 0, select_s = 0, remove_s = 0, export_s = 0, eval_s = 0, peak_mib = 0;
+  double cpu_s = std::nan("");  // CPU seconds of train + select + remove (+ export); NaN in older results
   std::map<std::string, double> remove_steps;
   std::string note;
   double total_s() const { return train_s + select_s + remove_s + export_s; }
+};
+
+// The time the chart and the choices table compare: wall seconds, or the steps' CPU seconds.
+struct TimeAxis {
+  bool cpu = false;
+  double of(const Row& r) const { return cpu ? r.cpu_s : r.total_s(); }
+  const char* name() const { return cpu ? "CPU" : "total"; }
 };
 
 json row_json(const Row& r) {
@@ -111,7 +120,7 @@ json row_json(const Row& r) {
           {"remove_iters", r.remove_iters}, {"gaussians", r.gaussians}, {"psnr", r.psnr},  {"ssim", r.ssim},
           {"m_psnr", r.m_psnr},     {"m_ssim", r.m_ssim},         {"train_s", r.train_s},     {"select_s", r.select_s},
           {"remove_s", r.remove_s}, {"export_s", r.export_s},     {"eval_s", r.eval_s},       {"peak_mib", r.peak_mib},
-          {"remove_steps", r.remove_steps}, {"note", r.note}};
+          {"cpu_s", r.cpu_s},       {"remove_steps", r.remove_steps}, {"note", r.note}};
 }
 
 Row row_from_json(const json& j) {
@@ -123,7 +132,7 @@ Row row_from_json(const json& j) {
   r.train_iters = j.value("train_iters", 0), r.remove_iters = j.value("remove_iters", 0);
   r.gaussians = d("gaussians"), r.psnr = d("psnr"), r.ssim = d("ssim"), r.m_psnr = d("m_psnr"), r.m_ssim = d("m_ssim");
   r.train_s = d("train_s"), r.select_s = d("select_s"), r.remove_s = d("remove_s"), r.export_s = d("export_s");
-  r.eval_s = d("eval_s"), r.peak_mib = d("peak_mib");
+  r.eval_s = d("eval_s"), r.peak_mib = d("peak_mib"), r.cpu_s = d("cpu_s");
   if (j.contains("remove_steps") && j["remove_steps"].is_object())
     for (auto it = j["remove_steps"].begin(); it != j["remove_steps"].end(); ++it)
       if (it.value().is_number()) r.remove_steps[it.key()] = it.value().get<double>();
@@ -149,7 +158,9 @@ class Bench {
   void evaluate(Row& r, const fs::path& run_dir, const fs::path& logs);
   void write_outputs(const std::vector<Row>& rows, bool final) const;
   std::string stage1_notes(const std::vector<Row>& rows) const;
-  bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem) const;
+  bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem,
+                   const TimeAxis& axis) const;
+  TimeAxis time_axis(const std::vector<Row>& rows) const;
 
   Options o_;
   fs::path out_;
@@ -172,7 +183,7 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   if (fs::exists(dir / "stage1.json")) {
     const json j = read_json_object(dir / "stage1.json");
     if (j.value("options", json()) == options && j.value("ok", false)) {
-      st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), ""};
+      st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), "", json_number(j, "cpu_seconds")};
       std::printf("    train    reused %s\n", st.run.string().c_str());
       return stage1_[key] = st;
     }
@@ -180,8 +191,12 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   fs::remove_all(dir);
   fs::create_directories(dir);
   st.train = run_child("train", args, dir / "train.log");
-  write_text(dir / "stage1.json", json{{"options", options}, {"ok", st.train.ok}, {"seconds", st.train.seconds},
-                                       {"peak_mib", st.train.peak_mib}, {"error", st.train.error}}
+  write_text(dir / "stage1.json", json{{"options", options},
+                                       {"ok", st.train.ok},
+                                       {"seconds", st.train.seconds},
+                                       {"cpu_seconds", st.train.cpu_seconds},
+                                       {"peak_mib", st.train.peak_mib},
+                                       {"error", st.train.error}}
                                           .dump(2));
   return stage1_[key] = st;
 }
@@ -227,13 +242,14 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
     fs::path removal;
     if (c.distill && full && full->status == "ok") {
       // distilled = full + export: the full configuration's stage 1 and 2 are its own first steps.
-      r.train_s = full->train_s, r.select_s = full->select_s, r.remove_s = full->remove_s;
+      r.train_s = full->train_s, r.select_s = full->select_s, r.remove_s = full->remove_s, r.cpu_s = full->cpu_s;
       r.remove_steps = full->remove_steps, r.remove_iters = full->remove_iters, r.peak_mib = full->peak_mib;
       removal = out_ / "runs" / scene / s.name / "full" / "run" / "removal";
       r.note = "stages 1-2 of full (" + removal.parent_path().string() + "); ";
     } else {
       const Stage1 st = stage1(scene, data, s, c);
       r.train_s = st.train.seconds;
+      r.cpu_s = st.train.cpu_seconds;
       r.peak_mib = st.train.peak_mib;
       if (!st.train.ok) throw Error(st.train.error);
       fs::copy(st.run, run, fs::copy_options::recursive);  // each configuration removes in its own copy
@@ -242,6 +258,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       const StepRun sel =
           run_child("select", {"select", run.string(), "--masks", "--device", o_.device}, logs / "select.log");
       r.select_s = sel.seconds;
+      r.cpu_s += sel.cpu_seconds;
       r.peak_mib = std::max(r.peak_mib, sel.peak_mib);
       if (!sel.ok) throw Error(sel.error);
       std::vector<std::string> rm = {"remove", run.string(), "--iters", std::to_string(s.remove_iters), "--device",
@@ -249,6 +266,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       if (*c.ablate) rm.insert(rm.end(), {"--ablate", c.ablate});
       const StepRun rem = run_child("remove", rm, logs / "remove.log");
       r.remove_s = rem.seconds;
+      r.cpu_s += rem.cpu_seconds;
       r.peak_mib = std::max(r.peak_mib, rem.peak_mib);
       if (!rem.ok) throw Error(rem.error);
       removal = run / "removal";
@@ -269,6 +287,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                                     std::to_string(s.export_iters), "--device", o_.device},
                                    logs / "export.log");
       r.export_s = ex.seconds;
+      r.cpu_s += ex.cpu_seconds;
       r.peak_mib = std::max(r.peak_mib, ex.peak_mib);
       if (!ex.ok) throw Error(ex.error);
       // The baked PLY is a plain 3DGS model: evaluate it as a radiance run whose point cloud it is.
@@ -319,21 +338,24 @@ size_t config_index(const std::string& name) {
 }
 
 // False when no row has a result to draw (no chart then).
-bool Bench::write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem) const {
+bool Bench::write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem,
+                        const TimeAxis& axis) const {
   goris::Chart chart;
   chart.title = title;
-  chart.x_label = "total time: train + select + remove (+ export), seconds (log scale)";
+  chart.x_label = std::string(axis.cpu ? "CPU time" : "total time") +
+                  ": train + select + remove (+ export), seconds (log scale)";
   chart.y_label = "PSNR after removal (dB)";
   std::vector<goris::TimeQuality> pts;
   std::set<std::string> configs_seen;
   for (const Row& r : rows) {
-    if (r.status != "ok" || !std::isfinite(r.psnr) || !(r.total_s() > 0)) continue;
+    const double t = axis.of(r);
+    if (r.status != "ok" || !std::isfinite(r.psnr) || !(t > 0)) continue;
     const size_t ci = config_index(r.config);
     size_t si = std::find(o_.schedules.begin(), o_.schedules.end(), r.schedule) - o_.schedules.begin();
-    chart.markers.push_back({r.total_s(), r.psnr, goris::palette_color(ci), goris::marker_shape(si),
-                             r.config + " / " + r.schedule + ": " + fmt(r.psnr, "%.2f") + " dB, " +
-                                 fmt(r.total_s(), "%.1f") + " s"});
-    pts.push_back({r.total_s(), r.psnr});
+    chart.markers.push_back({t, r.psnr, goris::palette_color(ci), goris::marker_shape(si),
+                             r.config + " / " + r.schedule + ": " + fmt(r.psnr, "%.2f") + " dB, " + fmt(t, "%.1f") +
+                                 " s"});
+    pts.push_back({t, r.psnr});
     configs_seen.insert(r.config);
   }
   if (chart.markers.empty()) return false;
@@ -353,28 +375,29 @@ bool Bench::write_chart(const std::vector<Row>& rows, const std::string& title, 
 
 // What each configuration saves in time and costs in PSNR against full and against baseline, per scene and
 // schedule (empty when neither reference succeeded).
-std::string choices_table(const std::vector<Row>& rows) {
+std::string choices_table(const std::vector<Row>& rows, const TimeAxis& axis) {
   auto find = [&](const Row& like, const char* config) -> const Row* {
     for (const Row& r : rows)
       if (r.scene == like.scene && r.schedule == like.schedule && r.config == config && r.status == "ok") return &r;
     return nullptr;
   };
-  auto against = [](const Row& r, const Row* ref) {
-    if (!ref || !(ref->total_s() > 0)) return std::string(" | | ");
-    return " | " + fmt(r.total_s() / ref->total_s(), "%.2fx") + " | " + fmt(r.psnr - ref->psnr, "%+.2f");
+  auto against = [&](const Row& r, const Row* ref) {
+    if (!ref || !(axis.of(*ref) > 0)) return std::string(" | | ");
+    return " | " + fmt(axis.of(r) / axis.of(*ref), "%.2fx") + " | " + fmt(r.psnr - ref->psnr, "%+.2f");
   };
   std::string t;
   for (const Row& r : rows) {
     if (r.status != "ok" || r.config == "full" || r.config == "baseline") continue;
     const Row *full = find(r, "full"), *base = find(r, "baseline");
     if (!full && !base) continue;
-    t += "| " + md_cell(r.scene) + " | " + r.schedule + " | " + r.config + " | " + fmt(r.total_s(), "%.1f") + " | " +
+    t += "| " + md_cell(r.scene) + " | " + r.schedule + " | " + r.config + " | " + fmt(axis.of(r), "%.1f") + " | " +
          fmt(r.psnr, "%.2f") + against(r, full) + against(r, base) + " |\n";
   }
   if (t.empty()) return t;
-  return "\nEach choice against `full` and `baseline` (same scene and schedule): time ratio (total time) and PSNR "
-         "difference after removal.\n\n| scene | schedule | config | total s | PSNR | time vs full | ΔPSNR vs full | "
-         "time vs baseline | ΔPSNR vs baseline |\n|---|---|---|--:|--:|--:|--:|--:|--:|\n" + t;
+  return "\nEach choice against `full` and `baseline` (same scene and schedule): time ratio (" +
+         std::string(axis.cpu ? "CPU" : "total wall") + " time) and PSNR difference after removal.\n\n| scene | schedule "
+         "| config | " + axis.name() + " s | PSNR | time vs full | ΔPSNR vs full | time vs baseline | ΔPSNR vs "
+         "baseline |\n|---|---|---|--:|--:|--:|--:|--:|--:|\n" + t;
 }
 
 // What the stage-1 runs said about the choices (read from their logs, so reused rows have them too): rays
@@ -404,7 +427,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   std::string csv = "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim,"
                     "train_s,select_s,remove_s";
   for (const auto& s : steps) csv += "," + step_column(s);
-  csv += ",export_s,eval_s,total_s,peak_host_mib,reused,error,note\n";
+  csv += ",export_s,eval_s,total_s,cpu_s,peak_host_mib,reused,error,note\n";
   for (const Row& r : rows) {
     csv += csv_field(r.scene) + "," + csv_field(r.config) + "," + r.schedule + "," + r.status + "," +
            csv_field(r.device) + "," + std::to_string(r.train_iters) + "," + std::to_string(r.remove_iters) + "," +
@@ -413,7 +436,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
            fmt(r.select_s, "%.2f") + "," + fmt(r.remove_s, "%.2f");
     for (const auto& s : steps) csv += "," + (r.remove_steps.count(s) ? fmt(r.remove_steps.at(s), "%.2f") : "");
     csv += "," + fmt(r.export_s, "%.2f") + "," + fmt(r.eval_s, "%.2f") + "," + fmt(r.total_s(), "%.2f") + "," +
-           fmt(r.peak_mib, "%.0f") + "," + (r.reused ? "yes" : "no") + "," + csv_field(r.error) + "," +
+           fmt(r.cpu_s, "%.2f") + "," + fmt(r.peak_mib, "%.0f") + "," + (r.reused ? "yes" : "no") + "," + csv_field(r.error) + "," +
            csv_field(r.note) + "\n";
   }
   write_text(out_ / "results.csv", csv);
@@ -428,18 +451,21 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
           std::to_string(s.remove_iters) + " fine-tune, " + std::to_string(s.export_iters) + " distillation";
   }
   md += ". Device requested: `" + o_.device + "`.\n\n";
+  const TimeAxis axis = time_axis(rows);
   md += "Times are wall seconds of each step's process; total = train + select + remove (+ export), evaluation "
-        "excluded. Stage 1 is trained once per kind and shared (its time is counted in each configuration that "
+        "excluded; CPU = the same steps' CPU seconds (user + system, all threads), which other jobs on the machine "
+        "barely change. The chart and the ratios below use " + std::string(axis.cpu ? "CPU" : "total wall") +
+        " time. Stage 1 is trained once per kind and shared (its time is counted in each configuration that "
         "uses it). Metrics: test views against the after-removal ground truth; M-PSNR / M-SSIM inside the "
         "target's region. Peak memory: the largest resident set of any step's process.\n\n";
-  md += "| scene | config | schedule | status | train s | select s | remove s | export s | eval s | total s | peak MiB "
-        "| Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | device |\n";
-  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+  md += "| scene | config | schedule | status | train s | select s | remove s | export s | eval s | total s | CPU s "
+        "| peak MiB | Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | device |\n";
+  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
   for (const Row& r : rows)
     md += "| " + md_cell(r.scene) + " | " + r.config + " | " + r.schedule + " | " + r.status + (r.reused ? " (reused)" : "") +
           " | " + fmt(r.train_s, "%.1f") + " | " + fmt(r.select_s, "%.1f") + " | " + fmt(r.remove_s, "%.1f") + " | " +
           fmt(r.export_s, "%.1f") + " | " + fmt(r.eval_s, "%.1f") + " | " + fmt(r.total_s(), "%.1f") + " | " +
-          fmt(r.peak_mib, "%.0f") + " | " + fmt(r.gaussians, "%.0f") + " | " + fmt(r.psnr, "%.2f") + " | " +
+          fmt(r.cpu_s, "%.1f") + " | " + fmt(r.peak_mib, "%.0f") + " | " + fmt(r.gaussians, "%.0f") + " | " + fmt(r.psnr, "%.2f") + " | " +
           fmt(r.ssim, "%.4f") + " | " + fmt(r.m_psnr, "%.2f") + " | " + fmt(r.m_ssim, "%.4f") + " | " +
           md_cell(r.device) + " |\n";
   std::string notes;
@@ -448,7 +474,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
     if (!r.note.empty()) notes += "- " + r.scene + " / " + r.config + " / " + r.schedule + ": " + md_cell(r.note) + "\n";
   }
   if (!notes.empty()) md += "\nNotes:\n\n" + notes;
-  md += choices_table(rows);
+  md += choices_table(rows, axis);
   md += stage1_notes(rows);
 
   std::vector<std::string> scenes;
@@ -458,32 +484,52 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   std::vector<Row> means;
   for (const auto& c : ladder())
     for (const auto& s : o_.schedules) {
-      Row m;
+      Row m;  // its time is the mean of the rows' times on the chosen axis (kept in train_s and cpu_s alike)
       m.config = c.name, m.schedule = s, m.status = "ok", m.psnr = 0;
       int n = 0;
       for (const Row& r : rows)
         if (r.config == c.name && r.schedule == s && r.status == "ok" && std::isfinite(r.psnr)) {
-          m.psnr += r.psnr, m.train_s += r.total_s(), ++n;
+          m.psnr += r.psnr, m.train_s += axis.of(r), ++n;
         }
       if (n == 0) continue;
-      m.psnr /= n, m.train_s /= n;
+      m.psnr /= n, m.train_s /= n, m.cpu_s = m.train_s;
       means.push_back(m);
     }
   std::vector<std::string> missing;  // charts with nothing to draw
   const std::string title = scenes.size() == 1 ? "PSNR against time: " + scenes[0]
                                                : "PSNR against time: mean over " + std::to_string(scenes.size()) + " scenes";
-  if (write_chart(means, title, out_ / "chart")) md += "\n![PSNR against total time](chart.png)\n";
+  if (write_chart(means, title, out_ / "chart", axis)) md += "\n![PSNR against time](chart.png)\n";
   else missing.push_back("chart");
   for (const auto& sc : scenes) {
     std::vector<Row> mine;
     for (const Row& r : rows)
       if (r.scene == sc) mine.push_back(r);
-    if (write_chart(mine, "PSNR against time: " + sc, out_ / ("chart_" + sc))) md += "\n![" + sc + "](chart_" + sc + ".png)\n";
+    if (write_chart(mine, "PSNR against time: " + sc, out_ / ("chart_" + sc), axis)) md += "\n![" + sc + "](chart_" + sc + ".png)\n";
     else missing.push_back("chart_" + sc);
   }
   write_text(out_ / "results.md", md);
   if (final)
     for (const auto& m : missing) std::printf("no successful configuration with a PSNR: no %s.svg/png\n", m.c_str());
+}
+
+TimeAxis Bench::time_axis(const std::vector<Row>& rows) const {
+  TimeAxis a;
+  if (o_.time_axis == "wall") return a;
+  bool all_cpu = true, any = false;  // rows from before CPU times were recorded have none
+  for (const Row& r : rows)
+    if (r.status == "ok") any = true, all_cpu = all_cpu && r.cpu_s > 0;
+  if (o_.time_axis == "cpu") {
+    if (any && !all_cpu) throw Error("--time-axis cpu", "some results have no CPU time (written before it was "
+                                                        "recorded): rerun them, or use --time-axis wall");
+    a.cpu = true;
+    return a;
+  }
+  // auto: CPU seconds measure the work when the steps ran on the CPU; on a GPU they measure the host's waiting.
+  bool on_cpu = true;
+  for (const Row& r : rows)
+    if (r.status == "ok") on_cpu = on_cpu && r.device == "cpu";
+  a.cpu = any && all_cpu && on_cpu;
+  return a;
 }
 
 void Bench::run() {
@@ -562,6 +608,11 @@ void setup_bench_pipeline(CLI::App& root) {
           },
           "short|medium|full"));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  c->add_option("--time-axis", o->time_axis,
+                 "Time of the chart and the ratios: wall, cpu (the steps' CPU seconds: fairer on a shared machine) or "
+                 "auto (cpu when every result ran on the CPU and has it)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "wall", "cpu"}));
   c->add_flag("--report-only", o->report_only,
               "Write the tables and charts from the results already in --out; configurations without one are "
               "listed as not run");
