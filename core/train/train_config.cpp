@@ -196,8 +196,8 @@ int TrainConfig::shading_from() const {
 int TrainConfig::shading_phase_iteration(int full) const {
   const int from = shading_from();
   if (full <= intrinsic.warmup) return from;
-  if (intrinsic.warmup >= 30000) return std::max(from, std::min(full, iterations));
-  if (iterations >= 30000 && from == intrinsic.warmup) return full;
+  if (intrinsic.warmup >= 30000) return std::max(from, std::min(full, iterations));  // no phase to map onto
+  if (iterations >= 30000) return full;  // the schedule as given (shading_from() is the warm-up itself)
   const double t = double(full - intrinsic.warmup) / double(30000 - intrinsic.warmup);
   return from + int(std::lround(t * double(std::max(iterations - from, 0))));
 }

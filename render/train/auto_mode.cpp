@@ -107,7 +107,8 @@ namespace {
 // shading_from grows monotonically with the warm-up, so a bisection finds it.
 int warmup_ending_at(const TrainConfig& config, int iteration) {
   TrainConfig c = config;
-  int lo = 0, hi = std::max(30000, iteration) * std::max(1, 30000 / std::max(config.iterations, 1) + 1);
+  // At hi the scaled warm-up alone reaches `iteration`.
+  int lo = 0, hi = int(std::min<long long>(1LL << 30, 30000LL * iteration / std::max(config.iterations, 1) + 30000));
   while (lo < hi) {
     c.intrinsic.warmup = lo + (hi - lo) / 2;
     if (c.shading_from() >= iteration) hi = c.intrinsic.warmup;
