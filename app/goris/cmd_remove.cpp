@@ -22,7 +22,7 @@ namespace {
 using namespace goris;
 
 struct Options {
-  std::string run, inpainter = "telea", inpainted, device = "auto";
+  std::string run, inpainter = "telea", inpainted, device = "auto", lighting_fresnel = "relative";
   std::vector<std::string> ablate;
   int iters = 0;
 };
@@ -36,6 +36,7 @@ void run_remove(const Options& o) {
     while (std::getline(ss, item, ',')) ro.ablate.insert(item);
   }
   ro.finetune_iterations = o.iters;
+  ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.device = o.device;
   const bool tty = isatty(STDERR_FILENO);
   int last_step = -1;
@@ -89,6 +90,9 @@ void setup_remove(CLI::App& root) {
                             "{out}\" to run your own per map");
   c->add_option("--inpainted", o->inpainted, "Folder of ready-made inpainted maps (VIEW_MAP.png)")->excludes(inp);
   c->add_option("--ablate", o->ablate, "Switch off a part: material (RGB-only inpainting), lamask (no lighting-aware mask)");
+  c->add_option("--lighting-fresnel", o->lighting_fresnel,
+                 "F in the lighting-aware mask: relative (to the glossy surfaces' F0, default) or absolute (the paper)")
+      ->check(CLI::IsMember({"relative", "absolute"}));
   c->add_option("--iters", o->iters, "Fine-tune iterations (default: 4000 scaled like stage 1)")->check(CLI::PositiveNumber);
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_remove(*o); });

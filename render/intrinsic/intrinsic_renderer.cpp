@@ -446,7 +446,10 @@ IntrinsicMaps IntrinsicRenderer::render_maps(const GaussianView& gaussians, cons
 
 namespace goris {
 
-std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussians, const Camera& camera) {
+std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussians, const Camera& camera,
+                                                     float fresnel_reference) {
+  if (!(fresnel_reference > 0) || !std::isfinite(fresnel_reference))
+    throw Error("lighting-aware mask", "the Fresnel reference must be finite and > 0");
   const bool was = shading_;
   shading_ = false;
   forward(gaussians, camera);
@@ -474,7 +477,8 @@ std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussi
     filter.forward(Buffer<float>(label, device_), 1, H, W, g.normal, f.rs, filtered, f.mass_or_null());
     label = filtered.to_host();
   }
-  // Weight like the glossy term: (1 - M) F, F = F0 + (1 - F0)(1 - cos)^5 with cos = n . (-view ray).
+  // Weight like the glossy term: (1 - M) F, F = F0 + (1 - F0)(1 - cos)^5 with cos = n . (-view ray), taken
+  // relative to fresnel_reference and capped at 1.
   const std::vector<float> ex = g.extras.to_host(), normal = g.normal.to_host(), alpha = g.alpha.to_host();
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
@@ -500,7 +504,7 @@ std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussi
         fres += (f0 + (1 - f0) * schlick) / 3.0f;
       }
       const float m = std::clamp(ex[std::size_t(extra::kRegion) * hw + p] / a, 0.0f, 1.0f);
-      label[p] *= (1 - m) * fres;
+      label[p] *= (1 - m) * std::min(1.0f, fres / fresnel_reference);
     }
   return label;
 }

@@ -93,8 +93,10 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   // E_obj of the lighting-aware mask (paper Sec. 3.3) as a host image [H][W]: the reflection rays of the
   // glossy pixels carry the object label (sum of w * label along the ray) instead of colour, the result is
   // filtered like L_ind (same pyramid, same screen roughness) and weighted like the glossy term in the
-  // final colour, by (1 - M) F (F: Schlick, mean over RGB). Needs the label channel in the Gaussians' extras.
-  std::vector<float> reflected_label(const GaussianView& gaussians, const Camera& camera);
+  // final colour, by (1 - M) F (F: Schlick, mean over RGB). With fresnel_reference != 1 the weight is
+  // min(1, F / fresnel_reference) (removal_pipeline: the scene's own F0 scale, see lighting_aware_mask.h).
+  // Needs the label channel in the Gaussians' extras.
+  std::vector<float> reflected_label(const GaussianView& gaussians, const Camera& camera, float fresnel_reference = 1.0f);
 
   void set_profile(bool on) { profile_ = on; }
   const IntrinsicTimes& times() const { return times_; }  // stage times (when profiling) and ray counts

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 
@@ -117,6 +118,13 @@ Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold
   return m;
 }
 
+// E_obj of the lighting-aware mask (in [0, 1]) as a grey image, for a person to see what tau cut.
+Image energy_image(const std::vector<float>& e, const Camera& camera) {
+  Image im(camera.width, camera.height, 1, Device::CPU);
+  for (std::size_t p = 0; p < e.size() && p < im.pixel_count(); ++p) im.pixels[p] = std::clamp(e[p], 0.0f, 1.0f);
+  return im;
+}
+
 // Stage 2's training configuration from stage 1's.
 TrainConfig finetune_config(const TrainConfig& s1, int iterations) {
   TrainConfig c = s1;
@@ -144,6 +152,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["ablate"] = std::vector<std::string>(o.ablate.begin(), o.ablate.end());
   j["label_threshold"] = o.label_threshold;
   j["lighting_tau"] = o.lighting_tau;
+  j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   return j;
 }
 
@@ -222,16 +231,21 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       const auto renderer = load_run_renderer(run_dir, config, extent, device);
       IntrinsicRenderer* ir = as_intrinsic(renderer.get());
       fs::create_directories(out / "lighting_masks");
+      fs::create_directories(out / "lighting_energy");
+      if (o.lighting_relative_fresnel) report.lighting_fresnel_reference = glossy_fresnel_reference(model, selected);
       for (std::size_t i = 0; i < cameras.size(); ++i) {
         if (cancelled()) break;
         s.tell(i, cameras.size(), ds.train[i].name);
-        const std::vector<float> e = ir->reflected_label(model.view(true), cameras[i]);
+        const std::vector<float> e = ir->reflected_label(model.view(true), cameras[i], report.lighting_fresnel_reference);
         lighting[i] = lighting_aware_mask(e, cameras[i].width, cameras[i].height, {o.lighting_tau, -1});
         report.lighting_pixels += count_set(lighting[i]);
         save_mask_png(out / "lighting_masks" / (ds.train[i].name + ".png"), lighting[i]);
+        save_png(out / "lighting_energy" / (ds.train[i].name + ".png"), energy_image(e, cameras[i]));
       }
     }
-    s.finish(std::to_string(report.lighting_pixels) + " pixels");
+    char f[64];
+    std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);
+    s.finish(std::to_string(report.lighting_pixels) + " pixels" + (o.lighting_relative_fresnel && intrinsic ? f : ""));
   }
   if (cancelled()) return report.cancelled = true, report;
 
@@ -411,6 +425,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["gaussians_after"] = report.gaussians_after;
     j["added_by_lift"] = report.added;
     j["lighting_mask_pixels"] = report.lighting_pixels;
+    j["lighting_fresnel_reference"] = report.lighting_fresnel_reference;
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
     j["reference_views"] = report.reference_views;
     j["finetune_iterations"] = report.finetune_iterations;

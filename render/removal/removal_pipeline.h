@@ -7,6 +7,7 @@
 //                    the hull of the selected centres          -> removal/selection.json (+ .npy)
 //   lighting masks   reflections of the target per training view (intrinsic runs; not with --ablate lamask)
 //                                                              -> removal/lighting_masks/VIEW.png
+//                                                                 (E_obj as grey: lighting_energy/VIEW.png)
 //   inpaint masks    pixels no view sees once the target is gone -> removal/inpaint_masks/VIEW.png
 //   reference views  3 views with the largest holes, seen from different directions -> removal/reference.json
 //   2D inpainting    colour, depth, normal, F0, roughness, region of each reference view (colour and depth
@@ -39,6 +40,9 @@ struct RemovalOptions {
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
+  // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the
+  // paper's absolute F.
+  bool lighting_relative_fresnel = true;
   std::string device = "auto";
 };
 
@@ -53,6 +57,7 @@ struct RemovalReport {
   double seconds[kRemovalStepCount] = {};   // per step
   std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
+  float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::vector<std::string> reference_views;
   int finetune_iterations = 0;
   bool cancelled = false;

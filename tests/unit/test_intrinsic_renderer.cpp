@@ -3,6 +3,7 @@
 // (float; each stage is checked in double precision in its own test), coarse tracing's ray counts, the
 // saved environment map / net state, and a few intrinsic training iterations.
 #include <cmath>
+#include <cstdio>
 #include <algorithm>
 #include <random>
 #include <string>
@@ -483,4 +484,70 @@ TEST(IntrinsicRenderer, ReflectedLabelMarksTheBlobsReflection) {
   EXPECT_GE(in, blocked);
   EXPECT_EQ(count_set(lighting_aware_mask(e, cam.width, cam.height, {0.1f, 1})) >= in, true);
   expect_error([&] { lighting_aware_mask(e, cam.width + 1, cam.height); }, "reflected-label");
+}
+
+TEST(IntrinsicRenderer, GlossyFresnelReferenceIsAWeightedQuantileOfTheGlossySurfaces) {
+  // Four glossy Gaussians (F0 0.1 .. 0.4), one rough (F0 0.9) and one glossy target (F0 0.95): only the
+  // first four count, weighted by opacity.
+  GaussianModel m(Device::CPU);
+  m.allocate(6);
+  const float f0[6] = {0.1f, 0.2f, 0.3f, 0.4f, 0.9f, 0.95f};
+  for (int i = 0; i < 6; ++i) {
+    float* e = m.values(Param::ExtraLogit) + extra::kCount * i;
+    for (int k = 0; k < extra::kCount; ++k) e[k] = 0.0f;
+    for (int c = 0; c < 3; ++c) e[extra::kFresnel + c] = logit(f0[i]);
+    e[extra::kRegion] = logit(i == 4 ? 0.9f : 0.1f);
+    m.values(Param::OpacityLogit)[i] = 0.0f;
+  }
+  const SelectionMask target = {0, 0, 0, 0, 0, 1};
+  EXPECT_NEAR(glossy_fresnel_reference(m, target, 0.9f), 0.4f, 1e-5f);
+  EXPECT_NEAR(glossy_fresnel_reference(m, target, 0.5f), 0.2f, 1e-5f);
+  // An opaque F0 0.1 outweighs three faint Gaussians: the 90 % point falls on the next one up.
+  m.values(Param::OpacityLogit)[0] = 10.0f;
+  for (int i = 1; i < 4; ++i) m.values(Param::OpacityLogit)[i] = -3.0f;
+  EXPECT_NEAR(glossy_fresnel_reference(m, target, 0.9f), 0.2f, 1e-5f);
+  EXPECT_NEAR(glossy_fresnel_reference(m, target, 0.5f), 0.1f, 1e-5f);
+  // Nothing glossy: the paper's absolute F.
+  EXPECT_EQ(glossy_fresnel_reference(m, SelectionMask{1, 1, 1, 1, 0, 1}), 1.0f);
+  expect_error([&] { glossy_fresnel_reference(m, SelectionMask{0, 1}); }, "selection has 2 entries");
+}
+
+TEST(IntrinsicRenderer, RelativeFresnelKeepsTheLightingMaskWhenF0AndLightTradeOff) {
+  // Stage 1 learns F0 only up to the environment's brightness. Scaling every F0 by 0.1 (as a brighter
+  // environment would allow) empties the paper's absolute mask; the mask relative to the scene's F0 stays.
+  TrainConfig cfg = intrinsic_config(10);
+  cfg.intrinsic.screen_space_filter = false;
+  GaussianModel m = floor_and_blob(1), dim = floor_and_blob(1);
+  SelectionMask blob(m.count(), 0);
+  for (size_t i = 64; i < m.count(); ++i) blob[i] = 1;
+  float* e = dim.values(Param::ExtraLogit);
+  for (size_t i = 0; i < dim.count(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      float& l = e[i * extra::kCount + extra::kFresnel + c];
+      l = logit(0.1f / (1.0f + std::exp(-l)));
+    }
+  const float ref = glossy_fresnel_reference(m, blob), ref_dim = glossy_fresnel_reference(dim, blob);
+  EXPECT_GT(ref, 0.55f);  // the floor's F0 is 0.6 with a little noise
+  EXPECT_LT(ref, 0.7f);
+  EXPECT_NEAR(ref_dim / ref, 0.1f, 1e-4f);
+  IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
+  const Camera cam = test_camera(40);
+  auto mask = [&](GaussianModel& model, float reference) {
+    return lighting_aware_mask(r.reflected_label(model.view(true), cam, reference), cam.width, cam.height, {0.1f, 0});
+  };
+  const Mask abs_bright = mask(m, 1.0f), abs_dim = mask(dim, 1.0f);
+  const Mask rel_bright = mask(m, ref), rel_dim = mask(dim, ref_dim);
+  std::printf("absolute: %zu -> %zu px; relative: %zu -> %zu px\n", count_set(abs_bright), count_set(abs_dim),
+              count_set(rel_bright), count_set(rel_dim));
+  EXPECT_GT(count_set(abs_bright), 5u);
+  EXPECT_LT(count_set(abs_dim), count_set(abs_bright) / 2);
+  size_t both = 0, either = 0;
+  for (size_t p = 0; p < rel_bright.data.size(); ++p) {
+    both += rel_bright.data[p] && rel_dim.data[p];
+    either += rel_bright.data[p] || rel_dim.data[p];
+  }
+  ASSERT_GT(either, 5u);
+  EXPECT_GE(double(both) / double(either), 0.9) << "intersection over union of the relative masks";
+  EXPECT_GE(count_set(rel_bright), count_set(abs_bright));
+  expect_error([&] { r.reflected_label(m.view(true), cam, 0.0f); }, "Fresnel reference");
 }

@@ -71,6 +71,7 @@ TEST(StudioSettings, RoundTrip) {
   s.removal_iterations = 300;
   s.removal_ablate_material = true;
   s.removal_ablate_lamask = true;
+  s.removal_absolute_fresnel = true;
   save_settings(file, s);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
   const StudioSettings r = load_settings(file);
@@ -93,6 +94,7 @@ TEST(StudioSettings, RoundTrip) {
   EXPECT_EQ(r.removal_iterations, 300);
   EXPECT_TRUE(r.removal_ablate_material);
   EXPECT_TRUE(r.removal_ablate_lamask);
+  EXPECT_TRUE(r.removal_absolute_fresnel);
 }
 
 TEST(StudioSettings, RecentPathsAreUniqueAndBounded) {

@@ -81,6 +81,12 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
     ImGui::SetTooltip("0: 4000 at a 30K stage 1, scaled like the run's schedule (at least 100)");
   ImGui::Checkbox("RGB-only inpainting (ablate material)", &set.removal_ablate_material);
   ImGui::Checkbox("no lighting-aware mask (ablate lamask)", &set.removal_ablate_lamask);
+  ImGui::BeginDisabled(set.removal_ablate_lamask);
+  ImGui::Checkbox("absolute Fresnel in the lighting-aware mask", &set.removal_absolute_fresnel);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("The paper's (1 - M) F x label > 0.1. Default: F relative to the glossy surfaces' F0,\n"
+                      "which stage 1 learns only up to the environment's brightness");
   ImGui::EndDisabled();
 
   if (!active) {
