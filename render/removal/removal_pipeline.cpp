@@ -18,6 +18,7 @@
 #include "core/io/npy.h"
 #include "core/io/npy_write.h"
 #include "core/io/ply.h"
+#include "core/removal/mirror_twins.h"
 #include "core/removal/selection_file.h"
 #include "core/removal/selection_labels.h"
 #include "core/removal/selection_points.h"
@@ -28,6 +29,7 @@
 #include "core/util/bench.h"
 #include "core/util/error.h"
 #include "render/intrinsic/intrinsic_renderer.h"
+#include "render/raster/rasterizer.h"
 #include "render/maps/gbuffer_maps.h"
 #include "render/removal/finetune_views.h"
 #include "render/removal/inpaint_mask.h"
@@ -118,6 +120,15 @@ Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold
   return m;
 }
 
+// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h); glossy = region < 0.5.
+MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target) {
+  const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
+  std::vector<std::uint8_t> glossy(model.count(), 0);
+  if (model.tensor(Param::ExtraLogit).width == extra::kCount)
+    for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
+  return select_mirror_twins(selection_points(model).position, glossy, target);
+}
+
 // E_obj of the lighting-aware mask (in [0, 1]) as a grey image, for a person to see what tau cut.
 Image energy_image(const std::vector<float>& e, const Camera& camera) {
   Image im(camera.width, camera.height, 1, Device::CPU);
@@ -166,8 +177,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              "--ablate " + a + " is a stage-1 choice: train the run with " +
                                  (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
                                  " and remove from that run"));
-    if (a != "material" && a != "lamask")
-      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a + "' (expected material or lamask)"));
+    if (a != "material" && a != "lamask" && a != "twins")
+      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a + "' (expected material, lamask or twins)"));
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config(run_dir);
@@ -192,7 +203,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   auto cancelled = [&] { return stop && stop->load(); };
 
   // 1. Selection.
-  SelectionMask selected;
+  SelectionMask selected, twins;
   {
     StepScope s(report, RemovalStep::Selection, on_progress);
     SelectionRecord record;
@@ -217,10 +228,20 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              std::to_string(report.selected) + " of " + std::to_string(model.count()) +
                                  " Gaussians are selected (more than half the scene): the labels are not learned well "
                                  "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
+    std::string twin_note;
+    if (intrinsic && !o.ablate.count("twins")) {
+      const MirrorTwins t = mirror_twins_of(model, selected);
+      for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
+      twins = t.twins;
+      report.mirror_twins = t.count;
+      report.selected += t.count;
+      record.parameters["mirror_twins"] = t.count;
+      if (t.plane.found) twin_note = " (" + std::to_string(t.count) + " of them the target's mirror twin)";
+    }
     record.model_fingerprint = model_fingerprint(model);
     write_selection(out / "selection.json", record, selected);
     apply_selection_to_labels(model, selected);
-    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians");
+    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + twin_note);
   }
 
   // 2. Lighting-aware masks.
@@ -233,10 +254,24 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       fs::create_directories(out / "lighting_masks");
       fs::create_directories(out / "lighting_energy");
       if (o.lighting_relative_fresnel) report.lighting_fresnel_reference = glossy_fresnel_reference(model, selected);
+      // The mirror twin, seen through the glossy surface, is the target's reflection too: its rasterized
+      // coverage joins E_obj.
+      std::optional<GaussianModel> twin_model;
+      if (report.mirror_twins > 0) {
+        twin_model.emplace(model.copy_to(model.device()));
+        apply_selection_to_labels(*twin_model, twins);
+      }
       for (std::size_t i = 0; i < cameras.size(); ++i) {
         if (cancelled()) break;
         s.tell(i, cameras.size(), ds.train[i].name);
-        const std::vector<float> e = ir->reflected_label(model.view(true), cameras[i], report.lighting_fresnel_reference);
+        std::vector<float> e = ir->reflected_label(model.view(true), cameras[i], report.lighting_fresnel_reference);
+        if (twin_model) {
+          const RasterOutput r = rasterize(twin_model->view(true), cameras[i], raster, twin_model->device());
+          const std::vector<float> ex = r.gbuffer.extras.to_host();
+          const std::size_t hw = e.size();
+          for (std::size_t p = 0; p < hw && (extra::kLabel + 1) * hw <= ex.size(); ++p)
+            e[p] = std::max(e[p], std::clamp(ex[std::size_t(extra::kLabel) * hw + p], 0.0f, 1.0f));
+        }
         lighting[i] = lighting_aware_mask(e, cameras[i].width, cameras[i].height, {o.lighting_tau, -1});
         report.lighting_pixels += count_set(lighting[i]);
         save_mask_png(out / "lighting_masks" / (ds.train[i].name + ".png"), lighting[i]);
@@ -425,6 +460,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["gaussians_after"] = report.gaussians_after;
     j["added_by_lift"] = report.added;
     j["lighting_mask_pixels"] = report.lighting_pixels;
+    j["mirror_twins"] = report.mirror_twins;
     j["lighting_fresnel_reference"] = report.lighting_fresnel_reference;
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
     j["reference_views"] = report.reference_views;

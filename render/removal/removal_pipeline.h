@@ -4,7 +4,8 @@
 // so a person can look at it:
 //
 //   selection        RUN/selection.json if present (goris select / the editor), else label > 0.3 closed by
-//                    the hull of the selected centres          -> removal/selection.json (+ .npy)
+//                    the hull of the selected centres; intrinsic runs add the target's mirror twin below a
+//                    planar glossy surface                      -> removal/selection.json (+ .npy)
 //   lighting masks   reflections of the target per training view (intrinsic runs; not with --ablate lamask)
 //                                                              -> removal/lighting_masks/VIEW.png
 //                                                                 (E_obj as grey: lighting_energy/VIEW.png)
@@ -36,7 +37,8 @@ const char* removal_step_name(RemovalStep step);  // "selection", "lighting mask
 
 struct RemovalOptions {
   std::string inpainter = "telea";  // core/inpaint/inpainter.h make_inpainter(): telea, ns, harmonic, fsr, cmd:..., dir:...
-  std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask)
+  std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
+                                    // "twins" (keep the target's mirror twin, core/removal/mirror_twins.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
@@ -56,6 +58,7 @@ struct RemovalReport {
   std::filesystem::path out_dir;            // RUN/removal
   double seconds[kRemovalStepCount] = {};   // per step
   std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
+  std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::vector<std::string> reference_views;

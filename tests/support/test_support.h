@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/compute/device.h"
+#include "core/util/error.h"
 
 namespace goris::test {
 
@@ -13,6 +14,17 @@ std::filesystem::path shared_dir();
 std::filesystem::path resource_dir();
 // A fresh, empty scratch folder for one test (under the build tree).
 std::filesystem::path scratch_dir(const std::string& name);
+
+// Runs f, expects a goris::Error whose message contains `needle`.
+template <class F>
+void expect_error(F&& f, const std::string& needle) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace goris::test
 

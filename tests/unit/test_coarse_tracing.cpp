@@ -13,6 +13,7 @@
 #include "render/intrinsic/coarse_tracing.h"
 #include "render/intrinsic/coarse_tracing_ops.h"
 #include "render/ssf/pyramid_kernels.h"
+#include "tests/support/test_support.h"
 
 namespace goris {
 namespace {
@@ -244,17 +245,8 @@ TEST(CoarseTracing, GatherDistanceAndMass) {
   for (std::size_t p = 0; p < s.glossy.size(); ++p) EXPECT_EQ(mass[p], s.glossy[p] && !t[p] ? 0.0f : 1.0f) << p;
 }
 
-template <class F>
-void expect_error(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
-
 TEST(CoarseTracing, BadInputThrows) {
+  using test::expect_error;
   Scene s = make_scene(20, 16, 7);
   const Buffer<float> short_rs(std::vector<float>(10, 0.5f), Device::CPU);
   expect_error([&] { select_block_rays(s.rays, s.W, s.H, &short_rs, {2, kLevels}); }, "screen roughness");

@@ -22,22 +22,13 @@
 #include "tests/support/test_support.h"
 
 using namespace goris;
+using goris::test::expect_error;
 using goris::test::expect_gradient;
 using goris::test::look_at;
 
 namespace {
 
 
-// Runs f, expects a goris::Error whose message contains `needle`.
-template <class F>
-void expect_error(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
 
 float logit(float p) { return std::log(p / (1 - p)); }
 

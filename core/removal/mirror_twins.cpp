@@ -1,0 +1,117 @@
+#include "core/removal/mirror_twins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "core/removal/select_hull.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+namespace {
+
+double diagonal(const std::vector<glm::dvec3>& p) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const auto& q : p) lo = glm::min(lo, q), hi = glm::max(hi, q);
+  return glm::length(hi - lo);
+}
+
+std::size_t count_inliers(const std::vector<glm::dvec3>& p, const glm::dvec3& n, double d, double tol) {
+  std::size_t c = 0;
+  for (const auto& q : p) c += std::abs(glm::dot(n, q) - d) <= tol;
+  return c;
+}
+
+}  // namespace
+
+MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const MirrorSettings& s) {
+  MirrorPlane plane;
+  plane.glossy = centres.size();
+  if (centres.size() < std::max<std::size_t>(s.min_glossy, 3)) return plane;
+  const std::vector<glm::dvec3> p(centres.begin(), centres.end());
+  plane.tolerance = s.tolerance_ratio * diagonal(p);
+  if (!(plane.tolerance > 0)) return plane;
+
+  // RANSAC: the plane through three random centres with the most centres within the tolerance.
+  std::mt19937_64 rng(s.seed);
+  std::uniform_int_distribution<std::size_t> pick(0, p.size() - 1);
+  glm::dvec3 best_n(0.0);
+  double best_d = 0;
+  std::size_t best = 0;
+  for (int it = 0; it < s.ransac_iterations; ++it) {
+    const glm::dvec3 a = p[pick(rng)], b = p[pick(rng)], c = p[pick(rng)];
+    const glm::dvec3 cr = glm::cross(b - a, c - a);
+    const double len = glm::length(cr);
+    if (len < 1e-12) continue;
+    const glm::dvec3 n = cr / len;
+    const double d = glm::dot(n, a);
+    const std::size_t k = count_inliers(p, n, d, plane.tolerance);
+    if (k > best) best = k, best_n = n, best_d = d;
+  }
+  if (best < 3) return plane;
+
+  // Least-squares refit of the inliers: the normal is the covariance's weakest direction.
+  std::vector<glm::dvec3> in;
+  for (const auto& q : p)
+    if (std::abs(glm::dot(best_n, q) - best_d) <= plane.tolerance) in.push_back(q);
+  glm::dvec3 mean(0.0);
+  for (const auto& q : in) mean += q;
+  mean /= double(in.size());
+  glm::dmat3 cov(0.0);
+  for (const auto& q : in) cov += glm::outerProduct(q - mean, q - mean);
+  glm::dvec3 values;
+  glm::dmat3 vectors;
+  symmetric_eigen(cov / double(in.size()), values, vectors);
+  glm::dvec3 n = glm::normalize(vectors[2]);
+  if (glm::dot(n, best_n) < 0) n = -n;
+  plane.normal = n;
+  plane.offset = glm::dot(n, mean);
+  plane.inliers = count_inliers(p, n, plane.offset, plane.tolerance);
+  plane.found = double(plane.inliers) >= s.min_inlier_fraction * double(p.size());
+  return plane;
+}
+
+MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std::vector<std::uint8_t>& glossy,
+                                const SelectionMask& target, const MirrorSettings& s) {
+  if (glossy.size() != centres.size() || target.size() != centres.size())
+    throw Error("mirror twins", std::to_string(centres.size()) + " Gaussians, " + std::to_string(glossy.size()) +
+                                    " glossy flags and " + std::to_string(target.size()) + " selection entries");
+  MirrorTwins out;
+  out.twins.assign(centres.size(), 0);
+  std::vector<glm::vec3> g;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+    if (glossy[i] && !target[i]) g.push_back(centres[i]);
+  out.plane = fit_mirror_plane(g, s);
+  MirrorPlane& pl = out.plane;
+  if (!pl.found) return out;
+
+  // The target's side of the plane: where most of its centres are.
+  double side = 0;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+    if (target[i]) side += pl.signed_distance(glm::dvec3(centres[i])) > 0 ? 1 : -1;
+  if (side < 0) pl.normal = -pl.normal, pl.offset = -pl.offset;
+
+  std::vector<glm::dvec3> mirrored;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    if (!target[i]) continue;
+    const glm::dvec3 c(centres[i]);
+    const double h = pl.signed_distance(c);
+    if (h > pl.tolerance) mirrored.push_back(c - 2.0 * h * pl.normal);
+  }
+  if (mirrored.empty()) return out;
+  glm::dvec3 mean(0.0);
+  for (const auto& m : mirrored) mean += m;
+  mean /= double(mirrored.size());
+  std::vector<glm::vec3> grown;
+  for (const auto& m : mirrored) grown.emplace_back(mean + s.hull_growth * (m - mean));
+  const SelectionVolume volume = enclosing_volume(grown, 2.0 * pl.tolerance);
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    if (target[i] || pl.signed_distance(glm::dvec3(centres[i])) > -pl.tolerance) continue;
+    if (volume.contains(centres[i])) out.twins[i] = 1, ++out.count;
+  }
+  return out;
+}
+
+}  // namespace goris

@@ -1,0 +1,112 @@
+// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h): a table top of
+// glossy centres, a target sphere above it and its learned mirror copy below, another object with its own
+// twin that must stay, noise; the same scene tilted; surfaces that are no plane.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/removal/mirror_twins.h"
+#include "tests/support/test_support.h"
+
+namespace goris {
+namespace {
+
+enum Kind : std::uint8_t { Table, Target, TargetTwin, Other, OtherTwin, Floater };
+
+struct Scene {
+  std::vector<glm::vec3> centres;
+  std::vector<Kind> kind;
+  std::vector<std::uint8_t> glossy;
+  SelectionMask target;
+  void add(glm::vec3 p, Kind k, bool is_glossy) {
+    centres.push_back(p);
+    kind.push_back(k);
+    glossy.push_back(is_glossy);
+    target.push_back(k == Target);
+  }
+};
+
+// Table z = 0 over [-1, 1]^2; target sphere (radius 0.2) at (0, 0, 0.3); its twin at (0, 0, -0.3) with
+// jittered centres (learned, not exact); another sphere at (0.6, 0.6, 0.25) and its twin; the twins are
+// glossy (they are seen through the glossy surface), the objects are not.
+Scene table_scene(const glm::mat4& pose) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::normal_distribution<float> jitter(0.0f, 0.01f);
+  Scene s;
+  auto put = [&](glm::vec3 p, Kind k, bool g) { s.add(glm::vec3(pose * glm::vec4(p, 1.0f)), k, g); };
+  for (int i = 0; i < 600; ++i) put({u(rng), u(rng), 0.003f * u(rng)}, Table, true);
+  auto ball = [&](glm::vec3 c, float r) {
+    glm::vec3 d;
+    do d = {u(rng), u(rng), u(rng)};
+    while (glm::length(d) > 1.0f);
+    return c + r * d;
+  };
+  for (int i = 0; i < 150; ++i) {
+    const glm::vec3 p = ball({0, 0, 0.3f}, 0.2f);
+    put(p, Target, false);
+    put(glm::vec3(p.x, p.y, -p.z) + glm::vec3(jitter(rng), jitter(rng), jitter(rng)), TargetTwin, true);
+  }
+  for (int i = 0; i < 80; ++i) {
+    const glm::vec3 p = ball({0.6f, 0.6f, 0.25f}, 0.15f);
+    put(p, Other, false);
+    put(glm::vec3(p.x, p.y, -p.z), OtherTwin, true);
+  }
+  for (int i = 0; i < 30; ++i) put({u(rng), u(rng), -0.8f + 0.1f * u(rng)}, Floater, true);
+  return s;
+}
+
+void expect_twins_found(const Scene& s, const MirrorTwins& t, glm::dvec3 normal) {
+  ASSERT_TRUE(t.plane.found);
+  EXPECT_NEAR(std::abs(glm::dot(t.plane.normal, normal)), 1.0, 1e-3);
+  EXPECT_GT(glm::dot(t.plane.normal, normal), 0.0) << "the normal points to the target's side";
+  std::size_t twins = 0, wrong = 0;
+  for (std::size_t i = 0; i < s.centres.size(); ++i) {
+    if (s.kind[i] == TargetTwin) twins += t.twins[i];
+    else wrong += t.twins[i];
+  }
+  EXPECT_GE(twins, 145u) << "of 150 twin centres";
+  EXPECT_EQ(wrong, 0u) << "the table, the target itself, the other object's twin and floaters stay";
+  EXPECT_EQ(t.count, twins + wrong);
+}
+
+TEST(MirrorTwins, SelectsTheTargetsTwinBelowTheTableAndNothingElse) {
+  const Scene s = table_scene(glm::mat4(1.0f));
+  const MirrorTwins t = select_mirror_twins(s.centres, s.glossy, s.target);
+  expect_twins_found(s, t, {0, 0, 1});
+  EXPECT_NEAR(t.plane.offset, 0.0, 0.01);
+  EXPECT_GE(t.plane.inliers, 600u);
+}
+
+TEST(MirrorTwins, TiltedAndShiftedSceneGivesTheSameAnswer) {
+  glm::mat4 pose = glm::translate(glm::mat4(1.0f), glm::vec3(3.0f, -2.0f, 5.0f));
+  pose = glm::rotate(pose, 0.7f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
+  const Scene s = table_scene(pose);
+  const MirrorTwins t = select_mirror_twins(s.centres, s.glossy, s.target);
+  expect_twins_found(s, t, glm::dvec3(glm::mat3(pose) * glm::vec3(0, 0, 1)));
+}
+
+TEST(MirrorTwins, NoPlaneNoTwins) {
+  // Glossy centres scattered through a box lie on no plane: nothing is selected.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<glm::vec3> c;
+  std::vector<std::uint8_t> glossy;
+  SelectionMask target;
+  for (int i = 0; i < 500; ++i) c.push_back({u(rng), u(rng), u(rng)}), glossy.push_back(i >= 50), target.push_back(i < 50);
+  const MirrorTwins t = select_mirror_twins(c, glossy, target);
+  EXPECT_FALSE(t.plane.found);
+  EXPECT_EQ(t.count, 0u);
+  // Too few glossy centres to call anything a plane.
+  std::vector<std::uint8_t> few(c.size(), 0);
+  for (int i = 50; i < 60; ++i) few[std::size_t(i)] = 1;
+  EXPECT_FALSE(select_mirror_twins(c, few, target).plane.found);
+  test::expect_error([&] { select_mirror_twins(c, glossy, SelectionMask(3, 0)); }, "selection entries");
+}
+
+}  // namespace
+}  // namespace goris
