@@ -59,10 +59,10 @@ const std::vector<ConfigSpec>& ladder() {
       {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask", false,
        "radiance stage 1; RGB-only inpainting, no lighting-aware mask"},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
-       "material,lamask", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
-      {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask", false,
+       "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
+      {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
        "intrinsic stage 1 with the screen-space filter"},
-      {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting and lighting-aware masks"},
+      {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks and the target's mirror twin"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
        "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
       // Modelling no more than a scene needs: each choice against full (and auto against baseline).

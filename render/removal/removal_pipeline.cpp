@@ -280,7 +280,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     }
     char f[64];
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);
-    s.finish(std::to_string(report.lighting_pixels) + " pixels" + (o.lighting_relative_fresnel && intrinsic ? f : ""));
+    s.finish(std::to_string(report.lighting_pixels) + " pixels" + (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : ""));
   }
   if (cancelled()) return report.cancelled = true, report;
 
