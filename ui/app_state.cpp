@@ -375,6 +375,7 @@ void AppState::start_removal(int iterations) {
   o.finetune_iterations = iterations > 0 ? iterations : settings_.removal_iterations;
   if (settings_.removal_ablate_material) o.ablate.insert("material");
   if (settings_.removal_ablate_lamask) o.ablate.insert("lamask");
+  if (settings_.removal_ablate_twins) o.ablate.insert("twins");
   o.lighting_relative_fresnel = !settings_.removal_absolute_fresnel;
   o.device = settings_.train_device;
   removal_.start(run, o);

@@ -72,6 +72,7 @@ TEST(StudioSettings, RoundTrip) {
   s.removal_ablate_material = true;
   s.removal_ablate_lamask = true;
   s.removal_absolute_fresnel = true;
+  s.removal_ablate_twins = true;
   save_settings(file, s);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
   const StudioSettings r = load_settings(file);
@@ -95,6 +96,7 @@ TEST(StudioSettings, RoundTrip) {
   EXPECT_TRUE(r.removal_ablate_material);
   EXPECT_TRUE(r.removal_ablate_lamask);
   EXPECT_TRUE(r.removal_absolute_fresnel);
+  EXPECT_TRUE(r.removal_ablate_twins);
 }
 
 TEST(StudioSettings, RecentPathsAreUniqueAndBounded) {

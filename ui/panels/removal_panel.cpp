@@ -81,6 +81,10 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
     ImGui::SetTooltip("0: 4000 at a 30K stage 1, scaled like the run's schedule (at least 100)");
   ImGui::Checkbox("RGB-only inpainting (ablate material)", &set.removal_ablate_material);
   ImGui::Checkbox("no lighting-aware mask (ablate lamask)", &set.removal_ablate_lamask);
+  ImGui::Checkbox("keep the mirror twin (ablate twins)", &set.removal_ablate_twins);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Over a flat glossy surface the reflection is learned as a copy of the object below it;\n"
+                      "by default it is removed with the target");
   ImGui::BeginDisabled(set.removal_ablate_lamask);
   ImGui::Checkbox("absolute Fresnel in the lighting-aware mask", &set.removal_absolute_fresnel);
   ImGui::EndDisabled();
