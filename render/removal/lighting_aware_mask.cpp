@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians.h"
 
 #include "core/util/error.h"
@@ -35,7 +36,7 @@ float glossy_fresnel_reference(const GaussianModel& model, const SelectionMask& 
     throw Error("lighting-aware mask", "the selection has " + std::to_string(target.size()) + " entries for " +
                                            std::to_string(model.count()) + " Gaussians");
   const std::vector<float> logits = ex.value.to_host(), opacity = model.tensor(Param::OpacityLogit).value.to_host();
-  auto sigmoid = [](float x) { return 1.0f / (1.0f + std::exp(-x)); };
+  using kernels::sigmoid;
   std::vector<std::pair<float, float>> f0_weight;  // (mean F0, opacity) of the glossy non-target Gaussians
   double total = 0;
   for (std::size_t i = 0; i < model.count(); ++i) {
