@@ -376,6 +376,7 @@ void AppState::start_removal(int iterations) {
   if (settings_.removal_ablate_material) o.ablate.insert("material");
   if (settings_.removal_ablate_lamask) o.ablate.insert("lamask");
   if (settings_.removal_ablate_twins) o.ablate.insert("twins");
+  if (settings_.removal_ablate_shadows) o.ablate.insert("shadows");
   o.lighting_relative_fresnel = !settings_.removal_absolute_fresnel;
   o.device = settings_.train_device;
   removal_.start(run, o);

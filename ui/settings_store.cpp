@@ -94,6 +94,7 @@ StudioSettings load_settings(const fs::path& path) {
   read_key(j, "removal_ablate_material", s.removal_ablate_material, path);
   read_key(j, "removal_ablate_lamask", s.removal_ablate_lamask, path);
   read_key(j, "removal_ablate_twins", s.removal_ablate_twins, path);
+  read_key(j, "removal_ablate_shadows", s.removal_ablate_shadows, path);
   read_key(j, "removal_absolute_fresnel", s.removal_absolute_fresnel, path);
   read_key(j, "export_ply", s.export_ply, path);
   read_key(j, "export_baked", s.export_baked, path);
@@ -149,6 +150,7 @@ void save_settings(const fs::path& path, const StudioSettings& s) {
                   {"removal_ablate_material", s.removal_ablate_material},
                   {"removal_ablate_lamask", s.removal_ablate_lamask},
                   {"removal_ablate_twins", s.removal_ablate_twins},
+                  {"removal_ablate_shadows", s.removal_ablate_shadows},
                   {"removal_absolute_fresnel", s.removal_absolute_fresnel},
                   {"export_ply", s.export_ply},
                   {"export_baked", s.export_baked},

@@ -28,6 +28,7 @@ struct StudioSettings {
   bool removal_ablate_material = false;     // RGB-only inpainting
   bool removal_ablate_lamask = false;       // no lighting-aware mask
   bool removal_ablate_twins = false;        // keep the target's mirror twin
+  bool removal_ablate_shadows = false;      // keep the target's cast shadow
   bool removal_absolute_fresnel = false;    // the paper's absolute F in the lighting-aware mask
   // Export dialog (as `goris export`): which parts, where (relative paths lie inside the exported run
   // folder, absolute ones are used as they are), the distillation length and the render cameras.

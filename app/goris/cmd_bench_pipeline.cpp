@@ -62,12 +62,13 @@ const std::vector<ConfigSpec>& ladder() {
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
        "intrinsic stage 1 with the screen-space filter"},
-      {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks and the target's mirror twin"},
+      {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks (reflections and the target's shadow) and the target's mirror twin"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
        "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
       // Modelling no more than a scene needs: each choice against full (and auto against baseline).
       {"auto", "auto", {"--mode", "auto"}, "", false,
-       "full where the glossy masks mark >= 0.5 % of the pixels, else radiance and RGB inpainting (--mode auto)"},
+       "full where the glossy masks mark >= 0.5 % of the pixels, else radiance, RGB inpainting and the target's shadow "
+       "(--mode auto)"},
       {"auto-detect", "auto_detect", {"--mode", "auto", "--set", "use_glossy_masks=false"}, "", false,
        "--mode auto with the glossy masks hidden: glossy regions detected from the photos after the warm-up"},
       {"sh1", "intrinsic_sh1", {"--mode", "intrinsic", "--set", "max_sh_degree=1"}, "", false,

@@ -22,6 +22,7 @@
 #include "core/removal/selection_file.h"
 #include "core/removal/selection_labels.h"
 #include "core/removal/selection_points.h"
+#include "core/scene/gaussian_kernels.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
@@ -37,6 +38,7 @@
 #include "render/removal/lift.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/removal/reference_views.h"
+#include "render/removal/target_shadow_scene.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
@@ -129,6 +131,75 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   return select_mirror_twins(selection_points(model).position, glossy, target);
 }
 
+// The target's cast shadow (core/removal/target_shadow.h): fits the light to the training photos' pixels on
+// the support plane and relights them (views' images in place), so the fine-tune learns the unshaded surface;
+// what is kept in `relit` relights the reference views' renders before inpainting. Writes the share of the
+// light the target took per view as grey images (shadow/VIEW.png). Returns a note for the step.
+struct ShadowRelight {
+  TargetShadow fit;
+  std::vector<PlanePixels> pixels;      // per training view
+  std::vector<std::vector<float>> s;    // per training view, per plane pixel
+};
+
+std::string remove_target_shadow(const GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
+                                 std::vector<TrainView>& views, const RasterSettings& raster, const fs::path& out,
+                                 RemovalReport& report, ShadowRelight& relit) {
+  const SelectionPoints pts = selection_points(model);
+  const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
+  std::vector<float> opacity(logit.size());
+  for (std::size_t i = 0; i < logit.size(); ++i) opacity[i] = kernels::sigmoid(logit[i]);
+  SelectionMask candidates(selected.size());
+  for (std::size_t i = 0; i < selected.size(); ++i) candidates[i] = !selected[i];
+  const ShadowGeometry geo = shadow_geometry(pts.position, opacity, target, candidates);
+  if (!geo.found) return report.shadow = geo.reason, "; no shadow: " + geo.reason;
+
+  // Samples: the photos' pixels on the support plane near the target (the model with the target rendered,
+  // so pixels the target covers are left out), thinned to at most kMaxSamples.
+  constexpr std::size_t kMaxSamples = 20000;
+  GaussianModel& m = const_cast<GaussianModel&>(model);  // rasterize() takes a view; nothing is written
+  relit.pixels.resize(views.size());
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const RasterOutput r = rasterize(m.view(false), views[i].camera, raster, model.device());
+    relit.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
+    total += relit.pixels[i].size();
+  }
+  const std::size_t stride = std::max<std::size_t>(1, (total + kMaxSamples - 1) / kMaxSamples);
+  ShadowSamples samples;
+  std::size_t seen = 0;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const std::size_t hw = views[i].image.size() / 3;
+    for (std::size_t k = 0; k < relit.pixels[i].size(); ++k, ++seen) {
+      if (seen % stride) continue;
+      const std::uint32_t p = relit.pixels[i].pixel[k];
+      samples.add(relit.pixels[i].point[k], {views[i].image[p], views[i].image[hw + p], views[i].image[2 * hw + p]});
+    }
+  }
+  const TargetOccluder occluder(model, target);
+  relit.fit = fit_target_shadow(geo, samples, occluder.function());
+  report.shadow_found = relit.fit.found;
+  report.shadow = relit.fit.reason;
+  if (!relit.fit.found) return "; no shadow: " + relit.fit.reason;
+
+  fs::create_directories(out / "shadow");
+  relit.s.resize(views.size());
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const PlanePixels& px = relit.pixels[i];
+    relit.s[i] = shadow_fraction(relit.fit, px.point, occluder.function());
+    const std::size_t hw = views[i].image.size() / 3;
+    relight_planar(views[i].image, hw, px, relit.s[i], relit.fit);
+    Image share(views[i].camera.width, views[i].camera.height, 1, Device::CPU);
+    for (std::size_t p = 0; p < hw; ++p) share.pixels[p] = 0.0f;
+    for (std::size_t k = 0; k < px.size(); ++k) {
+      const float v = float(relit.fit.strength_luminance) * relit.s[i][k];
+      share.pixels[px.pixel[k]] = v;
+      report.shadow_pixels += v > 0.05f ? 1 : 0;
+    }
+    save_png(out / "shadow" / (views[i].name + ".png"), share);
+  }
+  return "; shadow: " + std::to_string(report.shadow_pixels) + " pixels relit (" + relit.fit.reason + ")";
+}
+
 // E_obj of the lighting-aware mask (in [0, 1]) as a grey image, for a person to see what tau cut.
 Image energy_image(const std::vector<float>& e, const Camera& camera) {
   Image im(camera.width, camera.height, 1, Device::CPU);
@@ -177,8 +248,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              "--ablate " + a + " is a stage-1 choice: train the run with " +
                                  (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
                                  " and remove from that run"));
-    if (a != "material" && a != "lamask" && a != "twins")
-      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a + "' (expected material, lamask or twins)"));
+    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows")
+      throw Error(step_error(RemovalStep::Selection,
+                             "unknown ablation '" + a + "' (expected material, lamask, twins or shadows)"));
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config(run_dir);
@@ -203,7 +275,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   auto cancelled = [&] { return stop && stop->load(); };
 
   // 1. Selection.
-  SelectionMask selected, twins;
+  SelectionMask selected, twins, target_only;  // target_only: without the twin (the shadow's occluder)
   {
     StepScope s(report, RemovalStep::Selection, on_progress);
     SelectionRecord record;
@@ -229,6 +301,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                  " Gaussians are selected (more than half the scene): the labels are not learned well "
                                  "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
     std::string twin_note;
+    target_only = selected;
     if (intrinsic && !o.ablate.count("twins")) {
       const MirrorTwins t = mirror_twins_of(model, selected);
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
@@ -243,6 +316,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     apply_selection_to_labels(model, selected);
     s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + twin_note);
   }
+
+  // The training photos: the shadow step relights them, the fine-tune trains on them.
+  std::vector<TrainView> views = load_train_views(ds.train, dopt);
+  ShadowRelight relit;
 
   // 2. Lighting-aware masks.
   std::vector<Mask> lighting(cameras.size());
@@ -278,9 +355,15 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         save_png(out / "lighting_energy" / (ds.train[i].name + ".png"), energy_image(e, cameras[i]));
       }
     }
+    std::string shadow_note;
+    if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
+      s.tell(cameras.size(), cameras.size(), "the target's shadow");
+      shadow_note = remove_target_shadow(model, target_only, selected, views, raster, out, report, relit);
+    }
     char f[64];
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);
-    s.finish(std::to_string(report.lighting_pixels) + " pixels" + (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : ""));
+    s.finish(std::to_string(report.lighting_pixels) + " pixels" +
+             (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : "") + shadow_note);
   }
   if (cancelled()) return report.cancelled = true, report;
 
@@ -353,6 +436,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         inp = make_inpainter(o.inpainter);
       }
       MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
+      if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
       maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
       if (!materials) {
         maps.normal = Image();
@@ -401,7 +485,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     const int iters = o.finetune_iterations > 0 ? o.finetune_iterations
                                                 : std::max(100, config.scaled_iteration(4000));
     const TrainConfig ft = finetune_config(config, iters);
-    std::vector<TrainView> views = load_train_views(ds.train, dopt);
     std::vector<Mask> exclude(views.size());
     std::vector<FinetuneViewInputs> inputs(views.size());
     std::vector<ReferenceTargets> refs;
@@ -462,6 +545,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["lighting_mask_pixels"] = report.lighting_pixels;
     j["mirror_twins"] = report.mirror_twins;
     j["lighting_fresnel_reference"] = report.lighting_fresnel_reference;
+    j["shadow"] = {{"found", report.shadow_found}, {"summary", report.shadow}, {"relit_pixels", report.shadow_pixels}};
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
     j["reference_views"] = report.reference_views;
     j["finetune_iterations"] = report.finetune_iterations;

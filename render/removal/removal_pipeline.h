@@ -9,6 +9,10 @@
 //   lighting masks   reflections of the target per training view (intrinsic runs; not with --ablate lamask)
 //                                                              -> removal/lighting_masks/VIEW.png
 //                                                                 (E_obj as grey: lighting_energy/VIEW.png)
+//                    and its cast shadow (any run; not with --ablate lamask or shadows): the light is fitted
+//                    to the photos' pixels on the support plane, which are relit for the fine-tune (and the
+//                    reference views' renders before inpainting)
+//                                                              -> removal/shadow/VIEW.png (share of light)
 //   inpaint masks    pixels no view sees once the target is gone -> removal/inpaint_masks/VIEW.png
 //   reference views  3 views with the largest holes, seen from different directions -> removal/reference.json
 //   2D inpainting    colour, depth, normal, F0, roughness, region of each reference view (colour and depth
@@ -38,7 +42,8 @@ const char* removal_step_name(RemovalStep step);  // "selection", "lighting mask
 struct RemovalOptions {
   std::string inpainter = "telea";  // core/inpaint/inpainter.h make_inpainter(): telea, ns, harmonic, fsr, cmd:..., dir:...
   std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
-                                    // "twins" (keep the target's mirror twin, core/removal/mirror_twins.h)
+                                    // "twins" (keep the target's mirror twin, core/removal/mirror_twins.h),
+                                    // "shadows" (keep the target's cast shadow, core/removal/target_shadow.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
@@ -61,6 +66,9 @@ struct RemovalReport {
   std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
+  bool shadow_found = false;                // the target's cast shadow (core/removal/target_shadow.h)
+  std::string shadow;                       // its light, size and strength, or why none was found
+  std::size_t shadow_pixels = 0;            // training-view pixels relit by more than 5 %
   std::vector<std::string> reference_views;
   int finetune_iterations = 0;
   bool cancelled = false;

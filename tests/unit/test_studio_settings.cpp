@@ -73,6 +73,7 @@ TEST(StudioSettings, RoundTrip) {
   s.removal_ablate_lamask = true;
   s.removal_absolute_fresnel = true;
   s.removal_ablate_twins = true;
+  s.removal_ablate_shadows = true;
   save_settings(file, s);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
   const StudioSettings r = load_settings(file);
@@ -97,6 +98,7 @@ TEST(StudioSettings, RoundTrip) {
   EXPECT_TRUE(r.removal_ablate_lamask);
   EXPECT_TRUE(r.removal_absolute_fresnel);
   EXPECT_TRUE(r.removal_ablate_twins);
+  EXPECT_TRUE(r.removal_ablate_shadows);
 }
 
 TEST(StudioSettings, RecentPathsAreUniqueAndBounded) {

@@ -86,6 +86,10 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
     ImGui::SetTooltip("Over a flat glossy surface the reflection is learned as a copy of the object below it;\n"
                       "by default it is removed with the target");
   ImGui::BeginDisabled(set.removal_ablate_lamask);
+  ImGui::Checkbox("keep the target's shadow (ablate shadows)", &set.removal_ablate_shadows);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("By default the light is fitted to the photos' shadow of the target on the surface it\n"
+                      "stands on, and the photos are relit before the fine-tune (off with ablate lamask too)");
   ImGui::Checkbox("absolute Fresnel in the lighting-aware mask", &set.removal_absolute_fresnel);
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))

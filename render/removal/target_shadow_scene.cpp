@@ -1,0 +1,76 @@
+#include "render/removal/target_shadow_scene.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/util/error.h"
+#include "render/removal/inpaint_mask_scene.h"
+
+namespace goris {
+
+TargetOccluder::TargetOccluder(const GaussianModel& model, const SelectionMask& target)
+    : target_(subset_model(model, target).copy_to(Device::CPU)), tracer_(Device::CPU) {
+  tracer_.build(target_.view(false));
+}
+
+TargetOcclusion TargetOccluder::function() const {
+  return [this](const std::vector<glm::vec3>& o, const std::vector<glm::vec3>& d, std::vector<float>& alpha) {
+    if (o.empty()) return;
+    TraceOutputs out;
+    out.alpha = alpha.data();
+    tracer_.trace({&o[0].x, &d[0].x, o.size()}, out);
+  };
+}
+
+PlanePixels support_plane_pixels(const Camera& camera, const std::vector<float>& median_depth,
+                                 const std::vector<float>& alpha, const ShadowGeometry& geo) {
+  const std::size_t w = std::size_t(camera.width), h = std::size_t(camera.height);
+  if (median_depth.size() != w * h || alpha.size() != w * h)
+    throw Error("shadow", "depth/alpha maps of " + std::to_string(median_depth.size()) + " pixels for a " +
+                              std::to_string(w) + "x" + std::to_string(h) + " camera");
+  PlanePixels px;
+  if (!geo.found) return px;
+  const glm::dvec3 c(camera.center());
+  const double nc = glm::dot(geo.plane.normal, c);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const std::size_t p = y * w + x;
+      if (alpha[p] < 0.5f || median_depth[p] <= 0.0f) continue;
+      const glm::dvec3 d(camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f));
+      const double nd = glm::dot(geo.plane.normal, d);
+      if (std::abs(nd) < 1e-6) continue;
+      const double t = (geo.plane.offset - nc) / nd;
+      if (t <= 0) continue;
+      const glm::dvec3 hit = c + t * d;
+      if (!geo.in_reach(hit)) continue;
+      const double z = camera.to_camera(glm::vec3(hit)).z;
+      if (std::abs(double(median_depth[p]) - z) > 0.03 * z + 2.0 * geo.plane.tolerance) continue;
+      px.pixel.push_back(std::uint32_t(p));
+      px.point.push_back(glm::vec3(hit));
+    }
+  return px;
+}
+
+void relight_planar(std::vector<float>& image, std::size_t hw, const PlanePixels& px, const std::vector<float>& s,
+                    const TargetShadow& shadow) {
+  if (s.size() != px.size() || image.size() < 3 * hw)
+    throw Error("shadow", "relighting " + std::to_string(px.size()) + " pixels with " + std::to_string(s.size()) +
+                              " shadow values in an image of " + std::to_string(image.size()) + " floats");
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    const glm::vec3 g = shadow_gain(shadow, s[k]);
+    for (int c = 0; c < 3; ++c) image[std::size_t(c) * hw + px.pixel[k]] *= g[c];
+  }
+}
+
+void relight_image(Image& image, const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow) {
+  if (s.size() != px.size() || image.channels < 3)
+    throw Error("shadow", "relighting " + std::to_string(px.size()) + " pixels with " + std::to_string(s.size()) +
+                              " shadow values in an image of " + std::to_string(image.channels) + " channels");
+  const std::size_t ch = std::size_t(image.channels);
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    const glm::vec3 g = shadow_gain(shadow, s[k]);
+    for (std::size_t c = 0; c < 3; ++c) image.pixels[px.pixel[k] * ch + c] *= g[c];
+  }
+}
+
+}  // namespace goris

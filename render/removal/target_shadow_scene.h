@@ -1,0 +1,51 @@
+#pragma once
+// The target's cast shadow in a Gaussian scene and its photos (core/removal/target_shadow.h has the method):
+//
+//   const ShadowGeometry geo = shadow_geometry(...);                  // support plane, target's extent
+//   TargetOccluder occ(model, target);                                // traces the target's Gaussians alone
+//   PlanePixels px = support_plane_pixels(camera, median_depth, alpha, geo);  // per view
+//   ... ShadowSamples from px and the photo; fit_target_shadow(geo, samples, occ.function()) ...
+//   relight_planar(image, px, shadow_fraction(fit, px.point, occ.function()), fit);  // the shadow is gone
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/io/camera.h"
+#include "core/io/image.h"
+#include "core/removal/target_shadow.h"
+#include "core/scene/gaussians.h"
+#include "render/trace/gaussian_tracer.h"
+
+namespace goris {
+
+// Rays through the target's Gaussians alone, on the CPU (Embree): nothing else blocks them, because the
+// question is what the target took away, not what the rest of the scene did.
+class TargetOccluder {
+ public:
+  TargetOccluder(const GaussianModel& model, const SelectionMask& target);
+  TargetOcclusion function() const;
+
+ private:
+  GaussianModel target_;
+  GaussianTracer tracer_;
+};
+
+// The pixels of a view that see the support plane within the geometry's reach: the camera ray's hit on the
+// plane, kept where the rendered median depth ([H][W], 0 = none) agrees with it (within 3 % of the depth
+// plus twice the plane's tolerance) and alpha ([H][W]) is above 0.5.
+struct PlanePixels {
+  std::vector<std::uint32_t> pixel;  // y * W + x
+  std::vector<glm::vec3> point;      // on the plane, world space
+  std::size_t size() const { return pixel.size(); }
+};
+PlanePixels support_plane_pixels(const Camera& camera, const std::vector<float>& median_depth,
+                                 const std::vector<float>& alpha, const ShadowGeometry& geometry);
+
+// Multiplies the listed pixels by shadow_gain(shadow, s[k]): planar [3][H][W] floats, or an HWC Image with
+// at least 3 channels. Throws goris::Error when the sizes differ.
+void relight_planar(std::vector<float>& image, std::size_t pixels_per_channel, const PlanePixels& px,
+                    const std::vector<float>& s, const TargetShadow& shadow);
+void relight_image(Image& image, const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow);
+
+}  // namespace goris

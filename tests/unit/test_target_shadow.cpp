@@ -1,0 +1,248 @@
+// The target's cast shadow (core/removal/target_shadow.h): a textured floor z = 0 shaded by a ball-shaped
+// target under a tilted light, with an analytic occluder (ray-sphere); the light's direction and strength
+// come back and relighting restores the unshaded floor. Without a shadow in the colours nothing is found;
+// bad input is an error. The Gaussian-scene glue (tracing the target's Gaussians) is checked as well.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/removal/target_shadow.h"
+#include "core/scene/gaussians.h"
+#include "render/removal/target_shadow_scene.h"
+#include "tests/support/test_support.h"
+#include "tests/unit/test_selection_scene.h"
+
+namespace goris {
+namespace {
+
+const glm::vec3 kBall(0.0f, 0.0f, 0.5f);
+constexpr float kBallRadius = 0.3f;
+const glm::dvec3 kLight = glm::normalize(glm::dvec3(0.5, -0.3, 1.0));
+const glm::dvec3 kStrength(0.6, 0.55, 0.45);
+
+bool hits_ball(const glm::vec3& o, const glm::vec3& d) {
+  const glm::vec3 oc = o - kBall;
+  const float b = glm::dot(oc, d), c = glm::dot(oc, oc) - kBallRadius * kBallRadius;
+  const float disc = b * b - c;
+  return disc > 0 && -b + std::sqrt(disc) > 0;
+}
+
+struct Floor {
+  std::vector<glm::vec3> centres, colours, lit;  // lit: the colour without the target's shadow
+  std::vector<float> weights;
+  SelectionMask target, candidates;
+  std::vector<bool> shaded;
+};
+
+// A 60 x 60 floor over [-2, 2]^2 with a texture, the ball's centres (target), a few centres of another
+// object above the floor. shadow = false renders the floor unshaded.
+Floor make_floor(bool shadow) {
+  Floor f;
+  const double gamma = 2.2;
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 60; ++x) {
+      const glm::vec3 p(-2.0f + 4.0f * (x + 0.5f) / 60, -2.0f + 4.0f * (y + 0.5f) / 60, 0.0f);
+      const glm::vec3 base(0.6f + 0.1f * std::sin(17.0f * p.x) * std::cos(13.0f * p.y), 0.55f,
+                       0.5f + 0.05f * std::sin(19.0f * p.y));
+      const bool in = hits_ball(p, glm::vec3(kLight));
+      glm::vec3 c = base;
+      if (shadow && in)
+        for (int k = 0; k < 3; ++k) c[k] = float(std::pow(std::pow(double(base[k]), gamma) * (1.0 - kStrength[k]), 1.0 / gamma));
+      f.centres.push_back(p);
+      f.colours.push_back(c);
+      f.lit.push_back(base);
+      f.weights.push_back(0.9f);
+      f.target.push_back(0);
+      f.shaded.push_back(in);
+    }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (int i = 0; i < 300; ++i) {
+    glm::vec3 d;
+    do d = {u(rng), u(rng), u(rng)};
+    while (glm::length(d) > 1.0f);
+    f.centres.push_back(kBall + kBallRadius * d);
+    f.colours.push_back({0.8f, 0.2f, 0.2f});
+    f.lit.push_back({0.8f, 0.2f, 0.2f});
+    f.weights.push_back(0.9f);
+    f.target.push_back(1);
+    f.shaded.push_back(false);
+  }
+  for (int i = 0; i < 80; ++i) {  // another object: near the target but not on the floor
+    f.centres.push_back({0.7f + 0.1f * u(rng), 0.7f + 0.1f * u(rng), 0.3f + 0.2f * u(rng)});
+    f.colours.push_back({0.1f, 0.1f, 0.1f});
+    f.lit.push_back({0.1f, 0.1f, 0.1f});
+    f.weights.push_back(0.9f);
+    f.target.push_back(0);
+    f.shaded.push_back(false);
+  }
+  f.candidates.assign(f.centres.size(), 1);
+  return f;
+}
+
+const TargetOcclusion kBallOcclusion = [](const std::vector<glm::vec3>& o, const std::vector<glm::vec3>& d,
+                                          std::vector<float>& alpha) {
+  for (std::size_t i = 0; i < o.size(); ++i) alpha[i] = hits_ball(o[i], d[i]) ? 1.0f : 0.0f;
+};
+
+// The floor's Gaussians as the samples (the pipeline takes pixels; the method does not care).
+struct Fitted {
+  ShadowGeometry geo;
+  ShadowSamples samples;
+  std::vector<std::size_t> index;  // sample -> Gaussian
+  TargetShadow fit;
+};
+Fitted fit_floor(const Floor& f) {
+  Fitted r;
+  r.geo = shadow_geometry(f.centres, f.weights, f.target, f.candidates);
+  for (std::size_t i = 0; i < f.centres.size(); ++i)
+    if (!f.target[i] && r.geo.found && r.geo.near_plane(f.centres[i]) && r.geo.in_reach(f.centres[i]))
+      r.samples.add(f.centres[i], f.colours[i], f.weights[i]), r.index.push_back(i);
+  r.fit = fit_target_shadow(r.geo, r.samples, kBallOcclusion);
+  return r;
+}
+
+TEST(TargetShadow, FindsTheLightAndRelightsTheFloor) {
+  const Floor f = make_floor(true);
+  const Fitted r = fit_floor(f);
+  ASSERT_TRUE(r.geo.found) << r.geo.reason;
+  EXPECT_NEAR(std::abs(r.geo.plane.normal.z), 1.0, 1e-3);
+  EXPECT_GT(r.geo.up.z, 0.99);
+  ASSERT_TRUE(r.fit.found) << r.fit.reason;
+  const TargetShadow& s = r.fit;
+  const double angle = std::acos(std::clamp(glm::dot(s.light_direction, kLight), -1.0, 1.0)) * 180.0 / 3.14159265;
+  EXPECT_LT(angle, 4.0) << s.reason;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.strength[c], kStrength[c], 0.08) << "channel " << c << ": " << s.reason;
+  EXPECT_GT(s.r2, 0.5);
+  // Relit colours are the unshaded floor again; the lit floor is (nearly all) untouched.
+  const std::vector<float> frac = shadow_fraction(s, r.samples.position, kBallOcclusion);
+  double before = 0, after = 0;
+  int shaded = 0, lit = 0, wrongly_relit = 0;
+  for (std::size_t k = 0; k < r.index.size(); ++k) {
+    const std::size_t i = r.index[k];
+    const glm::vec3 relit = f.colours[i] * shadow_gain(s, frac[k]);
+    if (f.shaded[i]) {
+      before += glm::length(f.colours[i] - f.lit[i]);
+      after += glm::length(relit - f.lit[i]);
+      ++shaded;
+    } else {
+      ++lit;
+      wrongly_relit += glm::length(relit - f.lit[i]) > 0.06f ? 1 : 0;  // the shadow's edge may be off by a sample
+    }
+  }
+  ASSERT_GT(shaded, 20);
+  EXPECT_LT(wrongly_relit, lit / 100) << "of " << lit << " unshaded samples";
+  EXPECT_LT(after / shaded, 0.3 * before / shaded) << "mean colour error in the shadow, before " << before / shaded;
+}
+
+TEST(TargetShadow, NoShadowInTheColoursFindsNone) {
+  const Fitted r = fit_floor(make_floor(false));
+  ASSERT_TRUE(r.geo.found);
+  EXPECT_FALSE(r.fit.found) << r.fit.reason;
+  EXPECT_EQ(shadow_gain(r.fit, 1.0f), glm::vec3(1.0f));
+  for (float v : shadow_fraction(r.fit, r.samples.position, kBallOcclusion)) ASSERT_EQ(v, 0.0f);
+}
+
+TEST(TargetShadow, NoSupportPlaneNoShadow) {
+  Floor f = make_floor(true);
+  std::fill(f.candidates.begin(), f.candidates.end(), 0);  // nothing may carry the shadow
+  const ShadowGeometry geo = shadow_geometry(f.centres, f.weights, f.target, f.candidates);
+  EXPECT_FALSE(geo.found);
+  ShadowSamples samples;
+  for (std::size_t i = 0; i < 100; ++i) samples.add(f.centres[i], f.colours[i]);
+  const TargetShadow s = fit_target_shadow(geo, samples, kBallOcclusion);
+  EXPECT_FALSE(s.found);
+  EXPECT_EQ(s.reason, geo.reason);
+  EXPECT_NE(s.reason.find("Gaussians near the target"), std::string::npos) << s.reason;
+}
+
+TEST(TargetShadow, BadInputIsAnError) {
+  Floor f = make_floor(true);
+  std::vector<float> short_weights(f.weights.begin(), f.weights.end() - 1);
+  test::expect_error([&] { shadow_geometry(f.centres, short_weights, f.target, f.candidates); }, "differ in size");
+  const SelectionMask none(f.centres.size(), 0);
+  test::expect_error([&] { shadow_geometry(f.centres, f.weights, none, f.candidates); }, "target is empty");
+  const Fitted r = fit_floor(f);
+  ShadowSamples broken = r.samples;
+  broken.weight.pop_back();
+  test::expect_error([&] { fit_target_shadow(r.geo, broken, kBallOcclusion); }, "differ in size");
+}
+
+// A Gaussian model of the ball: the tracer over its Gaussians stands in for the analytic occluder; a camera
+// above the floor finds the floor's pixels; relighting a photo of the shaded floor gives the lit one.
+TEST(TargetShadow, GaussianOccluderPlanePixelsAndRelitPhoto) {
+  const Floor f = make_floor(true);
+  const std::size_t n = f.centres.size();
+  std::vector<test::TestGaussian> gs(n);
+  for (std::size_t i = 0; i < n; ++i) gs[i] = {f.centres[i], f.target[i] ? 0.06f : 0.03f, 0.95f, f.colours[i], 0.5f};
+  const GaussianModel model = test::make_model(gs);
+  const TargetOccluder occ(model, f.target);
+  // The floor shaded by the Gaussian ball itself (its shadow is softer and wider than the analytic one's).
+  auto shaded = [&](const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& base) {
+    std::vector<float> a(points.size());
+    occ.function()(points, std::vector<glm::vec3>(points.size(), glm::vec3(kLight)), a);
+    std::vector<glm::vec3> out(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+        out[k][c] = float(std::pow(std::pow(double(base[k][c]), 2.2) * (1.0 - kStrength[c] * a[k]), 1.0 / 2.2));
+    return out;
+  };
+  Fitted r = fit_floor(f);
+  std::vector<glm::vec3> floor_lit;
+  for (std::size_t i : r.index) floor_lit.push_back(f.lit[i]);
+  r.samples.colour = shaded(r.samples.position, floor_lit);
+  r.fit = fit_target_shadow(r.geo, r.samples, occ.function());
+  ASSERT_TRUE(r.fit.found) << r.fit.reason;
+  EXPECT_LT(std::acos(std::clamp(glm::dot(r.fit.light_direction, kLight), -1.0, 1.0)) * 180.0 / 3.14159265, 4.0)
+      << r.fit.reason;
+  EXPECT_NEAR(r.fit.strength_luminance, 0.55, 0.08) << r.fit.reason;
+
+  // A camera 3 units above the floor looking down (OpenCV axes: x right, y down, z forward).
+  Camera cam;
+  cam.width = cam.height = 64;
+  cam.fx = cam.fy = 40.0f;
+  cam.cx = cam.cy = 32.0f;
+  cam.R = glm::mat3(glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, -1));  // columns: world axes in camera
+  cam.t = -(cam.R * glm::vec3(0, 0, 3));
+  const std::size_t hw = 64 * 64;
+  std::vector<float> depth(hw), alpha(hw, 1.0f);
+  for (std::size_t p = 0; p < hw; ++p) depth[p] = 3.0f;  // the floor, seen straight down
+  depth[0] = 2.0f;                                        // something in front of the floor: not a plane pixel
+  alpha[1] = 0.0f;                                        // nothing there
+  const PlanePixels px = support_plane_pixels(cam, depth, alpha, r.geo);
+  ASSERT_GT(px.size(), 100u);
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    ASSERT_NE(px.pixel[k], 0u);
+    ASSERT_NE(px.pixel[k], 1u);
+    ASSERT_NEAR(px.point[k].z, 0.0f, 1e-3f);
+    ASSERT_TRUE(r.geo.in_reach(px.point[k]));
+  }
+  // The photo: the analytic shaded floor at each plane pixel; relit, it is the unshaded colour.
+  std::vector<float> photo(3 * hw, 0.0f), lit(3 * hw, 0.0f);
+  const std::vector<glm::vec3> seen = shaded(px.point, std::vector<glm::vec3>(px.size(), glm::vec3(0.6f)));
+  for (std::size_t k = 0; k < px.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      lit[std::size_t(c) * hw + px.pixel[k]] = 0.6f;
+      photo[std::size_t(c) * hw + px.pixel[k]] = seen[k][c];
+    }
+  const std::vector<float> s = shadow_fraction(r.fit, px.point, occ.function());
+  double before = 0, after = 0;
+  std::vector<float> relit = photo;
+  relight_planar(relit, hw, px, s, r.fit);
+  for (std::size_t i = 0; i < 3 * hw; ++i) before += std::abs(photo[i] - lit[i]), after += std::abs(relit[i] - lit[i]);
+  EXPECT_GT(before, 1.0);
+  EXPECT_LT(after, 0.3 * before) << r.fit.reason << ", " << px.size() << " plane pixels";
+  Image im(64, 64, 3);
+  for (std::size_t p = 0; p < hw; ++p)
+    for (int c = 0; c < 3; ++c) im.pixels[p * 3 + std::size_t(c)] = photo[std::size_t(c) * hw + p];
+  relight_image(im, px, s, r.fit);
+  for (std::size_t p = 0; p < hw; ++p)
+    for (int c = 0; c < 3; ++c) ASSERT_FLOAT_EQ(im.pixels[p * 3 + std::size_t(c)], relit[std::size_t(c) * hw + p]);
+  test::expect_error([&] { relight_planar(relit, hw, px, std::vector<float>(3), r.fit); }, "3 shadow values");
+  test::expect_error([&] { support_plane_pixels(cam, std::vector<float>(5), alpha, r.geo); }, "64x64");
+}
+
+}  // namespace
+}  // namespace goris
