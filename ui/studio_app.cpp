@@ -1,5 +1,6 @@
 #include "ui/studio_app.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -292,7 +293,8 @@ void StudioApp::update_photo() {
 }
 
 void StudioApp::update_removal_masks() {
-  // The removal masks of the snapped training view (RUN/removal/{lighting,inpaint}_masks/VIEW.png).
+  // The removal masks of the snapped training view (RUN/removal/{lighting,inpaint}_masks/VIEW.png, and the
+  // target's shadow, RUN/removal/shadow/VIEW.png, over the lighting mask).
   const fs::path& dir = state_->removal_masks_dir();
   const bool wanted = !dir.empty() && state_->snapped && !state_->snapped_test;
   const std::string key = wanted ? (dir / state_->snapped_view).string() + "#" +
@@ -306,6 +308,20 @@ void StudioApp::update_removal_masks() {
       if (!fs::exists(png)) continue;
       try {
         *out = read_image(png);
+      } catch (const Error& e) {
+        state_->message(e.what(), true);
+      }
+    }
+    // The target's shadow (share of the light it took, grey) shows in the lighting-aware mask's viewport.
+    const fs::path shadow_png = dir / "shadow" / (state_->snapped_view + ".png");
+    if (fs::exists(shadow_png)) {
+      try {
+        Image shadow = read_image(shadow_png);
+        if (!lighting) lighting = std::move(shadow);  // a radiance run: no reflection mask
+        else if (shadow.width == lighting->width && shadow.height == lighting->height && shadow.channels == 1 &&
+            lighting->channels == 1)
+          for (std::size_t p = 0; p < lighting->pixel_count(); ++p)
+            lighting->pixels[p] = std::max(lighting->pixels[p], shadow.pixels[p]);
       } catch (const Error& e) {
         state_->message(e.what(), true);
       }

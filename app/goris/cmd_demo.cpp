@@ -8,11 +8,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -41,7 +44,11 @@ struct Options {
 
 fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
 
+// Wall time of each demo step, for the report.
+std::vector<std::pair<std::string, double>> g_step_seconds;
+
 void run_step(const std::string& title, std::vector<std::string> args) {
+  const auto start = std::chrono::steady_clock::now();
   std::printf("\n== demo: %s\n$ goris", title.c_str());
   for (auto& a : args) std::printf(" %s", a.c_str());
   std::printf("\n");
@@ -58,17 +65,25 @@ void run_step(const std::string& title, std::vector<std::string> args) {
   waitpid(pid, &status, 0);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw Error("demo step '" + title + "' failed (see its message above)");
+  g_step_seconds.emplace_back(title, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
-// A row: ground truth (the view with the target) | render | depth | normal, labelled.
-cv::Mat comparison_row(const fs::path& gt, const fs::path& renders, const std::string& name) {
+// Labelled images side by side, at the first one's size. A part with `optional` set that does not exist
+// is a black tile saying so (e.g. no lighting-aware mask on a radiance run).
+struct Tile {
+  fs::path path;
+  std::string label;
+  bool optional = false;
+};
+cv::Mat tile_row(const std::vector<Tile>& parts) {
   std::vector<cv::Mat> tiles;
-  const std::vector<std::pair<fs::path, std::string>> parts = {{gt, "ground truth"},
-                                                               {renders / (name + ".png"), "render"},
-                                                               {renders / (name + "_depth.png"), "depth"},
-                                                               {renders / (name + "_normal.png"), "normal"}};
-  for (const auto& [path, label] : parts) {
-    cv::Mat img = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  for (const auto& [path, label, optional] : parts) {
+    cv::Mat img = optional && !fs::exists(path) ? cv::Mat() : cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    if (img.empty() && optional && !tiles.empty()) {
+      tiles.push_back(cv::Mat::zeros(tiles[0].size(), CV_8UC3));
+      cv::putText(tiles.back(), label + ": none", {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {255, 255, 255}, 1, cv::LINE_AA);
+      continue;
+    }
     if (img.empty()) throw Error(path.string(), "missing or unreadable image for the demo report");
     if (img.depth() != CV_8U) img.convertTo(img, CV_8U, 1.0 / 257.0);
     if (img.channels() == 4) {  // composite on black, as training does
@@ -87,6 +102,45 @@ cv::Mat comparison_row(const fs::path& gt, const fs::path& renders, const std::s
   cv::Mat row;
   cv::hconcat(tiles, row);
   return row;
+}
+
+// A row: ground truth | render | depth | normal.
+cv::Mat comparison_row(const fs::path& gt, const fs::path& renders, const std::string& name) {
+  return tile_row({{gt, "ground truth"},
+                   {renders / (name + ".png"), "render"},
+                   {renders / (name + "_depth.png"), "depth"},
+                   {renders / (name + "_normal.png"), "normal"}});
+}
+
+void write_png(const fs::path& path, const cv::Mat& img) {
+  std::vector<unsigned char> png;
+  cv::imencode(".png", img, png);
+  goris::write_file_bytes(path, png.data(), png.size());
+}
+
+// What stage 2 made for each reference view: the photo | lighting-aware mask | the target's shadow |
+// inpainting mask | inpainted colour.
+std::string stage2_rows(const goris::Dataset& ds, const fs::path& removed, const fs::path& out) {
+  std::ifstream rf(removed / "reference.json");
+  if (!rf) return "";
+  const nlohmann::json refs = nlohmann::json::parse(rf, nullptr, false);
+  if (!refs.is_array()) return "";
+  std::string md = "### Stage 2 in the reference views\n\nEach row: training photo | lighting-aware mask (the target's "
+                   "reflections) | the target's shadow (share of the light it took) | inpainting mask | inpainted "
+                   "colour\n\n";
+  for (const nlohmann::json& r : refs) {
+    const std::string name = r.value("view", "");
+    const auto v = std::find_if(ds.train.begin(), ds.train.end(), [&](const goris::View& d) { return d.name == name; });
+    if (v == ds.train.end()) continue;
+    const std::string file = "stage2_" + name + ".png";
+    write_png(out / file, tile_row({{v->image, "photo"},
+                                    {removed / "lighting_masks" / (name + ".png"), "reflections", true},
+                                    {removed / "shadow" / (name + ".png"), "shadow", true},
+                                    {removed / "inpaint_masks" / (name + ".png"), "inpaint mask"},
+                                    {removed / "inpainted" / (name + "_rgb.png"), "inpainted"}}));
+    md += "![" + name + " stage 2](" + file + ")\n\n";
+  }
+  return md;
 }
 
 void write_report(const Options& o, const fs::path& out, const fs::path& run, const fs::path& renders) {
@@ -139,7 +193,26 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
       goris::write_file_bytes(out / file, png.data(), png.size());
       md += "![" + v.name + " after removal](" + file + ")\n\n";
     }
+    md += stage2_rows(ds, removed, out);
+    // Stage 2's own steps, from its report.
+    std::ifstream jf(removed / "report.json");
+    const nlohmann::json rep = jf ? nlohmann::json::parse(jf, nullptr, false) : nlohmann::json();
+    if (rep.is_object() && rep.contains("seconds")) {
+      md += "### Time of each stage-2 step\n\n| step | seconds |\n|---|---|\n";
+      for (const auto& [step, sec] : rep["seconds"].items()) {
+        std::snprintf(line, sizeof line, "| %s | %.1f |\n", step.c_str(), sec.get<double>());
+        md += line;
+      }
+      md += "\n";
+    }
   }
+  md += "## Time of each stage\n\n| step | seconds |\n|---|---|\n";
+  for (const auto& [title, sec] : g_step_seconds) {
+    std::snprintf(line, sizeof line, "| %s | %.1f |\n", title.c_str(), sec);
+    md += line;
+  }
+  md += "\nExported: `cleaned.ply` (the cleaned scene, intrinsic attributes as extra properties) and "
+        "`cleaned_baked.ply` (distilled into plain SH: any 3DGS viewer shows it; fidelity in cleaned_baked.ply.json)\n";
   goris::write_file_bytes(out / "report.md", md.data(), md.size());
   std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
 }
@@ -172,6 +245,10 @@ void run_demo(const Options& o) {
                                         removed_renders.string(), "--maps", "--device", o.device});
   run_step("evaluate against the scene without the target", {"eval", removed.string(), "--split", "test",
                                                              "--device", o.device});
+  run_step("export the cleaned scene (intrinsic PLY and a baked PLY any 3DGS viewer shows)",
+           {"export", removed.string(), "--ply", (out / "cleaned.ply").string(), "--baked",
+            (out / "cleaned_baked.ply").string(), "--iters", std::to_string(std::max(100, o.iters / 4)), "--device",
+            o.device});
   write_report(o, out, run, renders);
 }
 

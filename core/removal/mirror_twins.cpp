@@ -47,6 +47,7 @@ MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const Mirror
     if (len < 1e-12) continue;
     const glm::dvec3 n = cr / len;
     const double d = glm::dot(n, a);
+    if (s.accept && !s.accept(n, d)) continue;
     const std::size_t k = count_inliers(p, n, d, plane.tolerance);
     if (k > best) best = k, best_n = n, best_d = d;
   }

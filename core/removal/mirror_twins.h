@@ -14,6 +14,7 @@
 // edge are seen past the edge from some cameras, so the test needs occlusion, not just geometry.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,6 +41,8 @@ struct MirrorSettings {
   int ransac_iterations = 256;
   std::uint64_t seed = 1;
   double hull_growth = 1.15;  // mirrored centres are spread about their centroid by this before the hull
+  // Optional: RANSAC only counts candidate planes (unit normal n, n . x = offset) this accepts.
+  std::function<bool(const glm::dvec3& normal, double offset)> accept;
 };
 
 struct MirrorTwins {

@@ -58,7 +58,8 @@ double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0
 }  // namespace
 
 ShadowGeometry shadow_geometry(const std::vector<glm::vec3>& centres, const std::vector<float>& weights,
-                               const SelectionMask& target, const SelectionMask& candidates, const ShadowSettings& st) {
+                               const SelectionMask& target, const SelectionMask& candidates, const ShadowSettings& st,
+                               const MirrorPlane* fallback) {
   const std::size_t n = centres.size();
   if (weights.size() != n || target.size() != n || candidates.size() != n)
     throw Error("target shadow", "per-Gaussian arrays differ in size (" + std::to_string(n) + " centres)");
@@ -81,17 +82,35 @@ ShadowGeometry shadow_geometry(const std::vector<glm::vec3>& centres, const std:
   for (std::size_t i = 0; i < n; ++i)
     if (!target[i] && candidates[i] && weights[i] >= 0.05f && g.in_reach(glm::dvec3(centres[i])))
       near.push_back(centres[i]);
-  if (near.size() < st.min_samples) {
-    g.reason = "only " + std::to_string(near.size()) + " Gaussians near the target: no surface to shade";
-    return g;
+  if (near.size() >= st.min_samples) {
+    // The target rests on (or hangs just above) its support: a plane counts only where the target's lowest
+    // centres (5th percentile of their heights above it) are within its radius of it. Without this, over a
+    // mirror the learned mirror world below the surface wins (the default scene's radiance run: a plane 0.65
+    // below the table top).
+    std::vector<glm::dvec3> tc;
+    for (std::size_t i = 0; i < n; ++i)
+      if (target[i]) tc.push_back(glm::dvec3(centres[i]));
+    std::vector<double> h(tc.size());
+    MirrorSettings ps;
+    ps.tolerance_ratio = st.plane_tolerance_ratio;
+    ps.min_inlier_fraction = st.min_plane_fraction;
+    ps.min_glossy = st.min_samples;
+    ps.ransac_iterations = 512;
+    ps.accept = [&](const glm::dvec3& normal, double offset) {
+      const double side = glm::dot(normal, g.centroid) - offset < 0 ? -1.0 : 1.0;
+      for (std::size_t k = 0; k < tc.size(); ++k) h[k] = side * (glm::dot(normal, tc[k]) - offset);
+      const std::size_t q5 = h.size() / 20;
+      std::nth_element(h.begin(), h.begin() + std::ptrdiff_t(q5), h.end());
+      return std::abs(h[q5]) <= g.radius;
+    };
+    g.plane = fit_mirror_plane(near, ps);
   }
-  MirrorSettings ps;
-  ps.tolerance_ratio = st.plane_tolerance_ratio;
-  ps.min_inlier_fraction = 0.15;
-  ps.min_glossy = st.min_samples;
-  g.plane = fit_mirror_plane(near, ps);
+  if (!g.plane.found && fallback && fallback->found && std::abs(fallback->signed_distance(g.centroid)) <= g.reach)
+    g.plane = *fallback;
   if (!g.plane.found) {
-    g.reason = "no support plane under the target (" + std::to_string(near.size()) + " Gaussians near it)";
+    g.reason = near.size() < st.min_samples
+                   ? "only " + std::to_string(near.size()) + " Gaussians near the target: no surface to shade"
+                   : "no support plane under the target (" + std::to_string(near.size()) + " Gaussians near it)";
     return g;
   }
   g.up = g.plane.signed_distance(g.centroid) < 0 ? -g.plane.normal : g.plane.normal;

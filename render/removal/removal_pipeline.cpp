@@ -142,15 +142,16 @@ struct ShadowRelight {
 };
 
 std::string remove_target_shadow(const GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
-                                 std::vector<TrainView>& views, const RasterSettings& raster, const fs::path& out,
-                                 RemovalReport& report, ShadowRelight& relit) {
+                                 const MirrorPlane* glossy_plane, std::vector<TrainView>& views,
+                                 const RasterSettings& raster, const fs::path& out, RemovalReport& report,
+                                 ShadowRelight& relit) {
   const SelectionPoints pts = selection_points(model);
   const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
   std::vector<float> opacity(logit.size());
   for (std::size_t i = 0; i < logit.size(); ++i) opacity[i] = kernels::sigmoid(logit[i]);
   SelectionMask candidates(selected.size());
   for (std::size_t i = 0; i < selected.size(); ++i) candidates[i] = !selected[i];
-  const ShadowGeometry geo = shadow_geometry(pts.position, opacity, target, candidates);
+  const ShadowGeometry geo = shadow_geometry(pts.position, opacity, target, candidates, {}, glossy_plane);
   if (!geo.found) return report.shadow = geo.reason, "; no shadow: " + geo.reason;
 
   // Samples: the photos' pixels on the support plane near the target (the model with the target rendered,
@@ -276,6 +277,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
 
   // 1. Selection.
   SelectionMask selected, twins, target_only;  // target_only: without the twin (the shadow's occluder)
+  MirrorPlane glossy_plane;                    // the glossy surface's plane, when the twin step found one
   {
     StepScope s(report, RemovalStep::Selection, on_progress);
     SelectionRecord record;
@@ -306,6 +308,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       const MirrorTwins t = mirror_twins_of(model, selected);
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
       twins = t.twins;
+      glossy_plane = t.plane;
       report.mirror_twins = t.count;
       report.selected += t.count;
       record.parameters["mirror_twins"] = t.count;
@@ -358,7 +361,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     std::string shadow_note;
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
-      shadow_note = remove_target_shadow(model, target_only, selected, views, raster, out, report, relit);
+      shadow_note = remove_target_shadow(model, target_only, selected, glossy_plane.found ? &glossy_plane : nullptr,
+                                         views, raster, out, report, relit);
     }
     char f[64];
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);

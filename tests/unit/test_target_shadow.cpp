@@ -137,6 +137,25 @@ TEST(TargetShadow, FindsTheLightAndRelightsTheFloor) {
   EXPECT_LT(after / shaded, 0.3 * before / shaded) << "mean colour error in the shadow, before " << before / shaded;
 }
 
+// Over a mirror the learned mirror world is a plane of its own below the surface, and can be denser than
+// the surface near the target: the support plane is the one the target rests on.
+TEST(TargetShadow, SupportPlaneIsTheOneTheTargetRestsOn) {
+  Floor f = make_floor(true);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-0.45f, 0.45f);
+  for (int i = 0; i < 2000; ++i) {
+    f.centres.push_back({u(rng), u(rng), -0.5f});
+    f.colours.push_back(glm::vec3(0.3f));
+    f.weights.push_back(0.9f);
+    f.target.push_back(0);
+    f.candidates.push_back(1);
+  }
+  const ShadowGeometry geo = shadow_geometry(f.centres, f.weights, f.target, f.candidates);
+  ASSERT_TRUE(geo.found) << geo.reason;
+  EXPECT_NEAR(geo.plane.signed_distance(glm::dvec3(0.0)), 0.0, geo.plane.tolerance);
+  EXPECT_GT(std::abs(geo.plane.signed_distance(glm::dvec3(0.0, 0.0, -0.5))), 0.4);
+}
+
 TEST(TargetShadow, NoShadowInTheColoursFindsNone) {
   const Fitted r = fit_floor(make_floor(false));
   ASSERT_TRUE(r.geo.found);
@@ -156,6 +175,21 @@ TEST(TargetShadow, NoSupportPlaneNoShadow) {
   EXPECT_FALSE(s.found);
   EXPECT_EQ(s.reason, geo.reason);
   EXPECT_NE(s.reason.find("Gaussians near the target"), std::string::npos) << s.reason;
+
+  // A plane from elsewhere (the glossy surface's) serves when it passes within reach of the target ...
+  MirrorPlane floor;
+  floor.found = true;
+  floor.normal = {0.0, 0.0, -1.0};
+  floor.tolerance = 0.01;
+  const ShadowGeometry with_floor = shadow_geometry(f.centres, f.weights, f.target, f.candidates, {}, &floor);
+  ASSERT_TRUE(with_floor.found);
+  EXPECT_GT(with_floor.up.z, 0.99);  // toward the target, whatever the plane's own orientation
+  const Fitted r = fit_floor(make_floor(true));
+  EXPECT_TRUE(fit_target_shadow(with_floor, r.samples, kBallOcclusion).found);
+  // ... and not when it lies far from it.
+  MirrorPlane far = floor;
+  far.offset = 10.0;
+  EXPECT_FALSE(shadow_geometry(f.centres, f.weights, f.target, f.candidates, {}, &far).found);
 }
 
 TEST(TargetShadow, BadInputIsAnError) {
