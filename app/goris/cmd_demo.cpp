@@ -26,6 +26,7 @@
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
+#include "render/removal/removal_pipeline.h"
 
 extern char** environ;
 
@@ -199,8 +200,9 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
     const nlohmann::json rep = jf ? nlohmann::json::parse(jf, nullptr, false) : nlohmann::json();
     if (rep.is_object() && rep.contains("seconds")) {
       md += "### Time of each stage-2 step\n\n| step | seconds |\n|---|---|\n";
-      for (const auto& [step, sec] : rep["seconds"].items()) {
-        std::snprintf(line, sizeof line, "| %s | %.1f |\n", step.c_str(), sec.get<double>());
+      for (int k = 0; k < goris::kRemovalStepCount; ++k) {  // in the pipeline's order
+        const char* step = goris::removal_step_name(goris::RemovalStep(k));
+        std::snprintf(line, sizeof line, "| %s | %.1f |\n", step, rep["seconds"].value(step, 0.0));
         md += line;
       }
       md += "\n";
