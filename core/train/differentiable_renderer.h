@@ -4,6 +4,7 @@
 // render/train/raster_renderer.h).
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/compute/device.h"
 #include "core/io/camera.h"
@@ -52,6 +53,9 @@ class DifferentiableRenderer {
   // Told the iteration about to run before its forward pass (e.g. to switch from the radiance warm-up to
   // shading).
   virtual void begin_iteration(int /*iteration*/) {}
+  // Per-Gaussian weights of their colour in traced rays, overriding the renderer's own rule (empty = its
+  // own). Renderers that trace nothing ignore them.
+  virtual void set_emit_weights(std::vector<float> /*weights*/) {}
   // Parameters the renderer owns (environment map, roughness net): one optimiser step after backward(),
   // with the renderer's own schedule; throws goris::Error naming the parameters when they turn non-finite.
   virtual void step_own_parameters(int /*iteration*/) {}

@@ -60,6 +60,10 @@ struct IntrinsicSettings {
   float region_rough = 0.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition,
                                    // off: it did not help on steel_snowman, see README)
   float label = 1.0f;              // BCE of the rendered label against the object masks
+  // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
+  // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed
+  // every 100 iterations; needs glossy masks).
+  std::string emit = "region";
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction
   // of their pixels are glossy. Without: glossy regions detected by multi-view photo-consistency

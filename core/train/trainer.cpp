@@ -1,3 +1,4 @@
+#include "core/train/emit_weights.h"
 #include "core/train/trainer.h"
 
 #include <algorithm>
@@ -207,6 +208,10 @@ StepStats Trainer::step() {
   // Forward.
   const bool with_extras = renderer_->wants_extras();
   renderer_->begin_iteration(it);
+  if (with_extras && config_.intrinsic.emit == "mask" && (emit_weights_count_ != m.count() || it % 25 == 0)) {
+    renderer_->set_emit_weights(glossy_mask_emit_weights(m, views_));
+    emit_weights_count_ = m.count();
+  }
   const GaussianView gv = m.view(with_extras);
   const RenderedImages fwd = renderer_->forward(gv, cam);
   if (fwd.width != w || fwd.height != h) throw Error("training: the renderer returned an image of another size");

@@ -173,6 +173,7 @@ class Trainer {
 
   TrainConfig config_;
   std::vector<TrainView> views_;
+  std::size_t emit_weights_count_ = std::size_t(-1);  // Gaussians when the emit weights were last set (intrinsic_emit = mask)
   float extent_;
   std::shared_ptr<DifferentiableRenderer> renderer_;
   Device device_;
