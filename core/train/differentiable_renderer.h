@@ -54,8 +54,8 @@ class DifferentiableRenderer {
   // shading).
   virtual void begin_iteration(int /*iteration*/) {}
   // Per-Gaussian weights of their colour in traced rays, overriding the renderer's own rule (empty = its
-  // own). Renderers that trace nothing ignore them.
-  virtual void set_emit_weights(std::vector<float> /*weights*/) {}
+  // own), or with or_own the larger of the two. Renderers that trace nothing ignore them.
+  virtual void set_emit_weights(std::vector<float> /*weights*/, bool /*or_own*/) {}
   // Parameters the renderer owns (environment map, roughness net): one optimiser step after backward(),
   // with the renderer's own schedule; throws goris::Error naming the parameters when they turn non-finite.
   virtual void step_own_parameters(int /*iteration*/) {}

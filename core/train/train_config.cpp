@@ -176,7 +176,8 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.detect_after < 0) fail("intrinsic_detect_after must be >= 0");
   if (!(in.detect_plane_tolerance >= 0) || !std::isfinite(in.detect_plane_tolerance))
     fail("intrinsic_detect_plane_tolerance must be finite and >= 0");
-  if (in.emit != "region" && in.emit != "mask") fail("intrinsic_emit must be region or mask");
+  if (in.emit != "region" && in.emit != "mask" && in.emit != "max")
+    fail("intrinsic_emit must be region, mask or max");
   for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
                   in.region, in.region_rough, in.label})
     if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");

@@ -62,7 +62,8 @@ struct IntrinsicSettings {
   float label = 1.0f;              // BCE of the rendered label against the object masks
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed
-  // every 100 iterations; needs glossy masks).
+  // every 25 iterations; needs glossy masks) or "max" (the larger of the two; M keeps its tracer gradient
+  // where it is the larger).
   std::string emit = "region";
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction

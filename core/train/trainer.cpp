@@ -208,8 +208,8 @@ StepStats Trainer::step() {
   // Forward.
   const bool with_extras = renderer_->wants_extras();
   renderer_->begin_iteration(it);
-  if (with_extras && config_.intrinsic.emit == "mask" && (emit_weights_count_ != m.count() || it % 25 == 0)) {
-    renderer_->set_emit_weights(glossy_mask_emit_weights(m, views_));
+  if (with_extras && config_.intrinsic.emit != "region" && (emit_weights_count_ != m.count() || it % 25 == 0)) {
+    renderer_->set_emit_weights(glossy_mask_emit_weights(m, views_), config_.intrinsic.emit == "max");
     emit_weights_count_ = m.count();
   }
   const GaussianView gv = m.view(with_extras);

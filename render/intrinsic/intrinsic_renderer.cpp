@@ -75,7 +75,7 @@ struct IntrinsicRenderer::Frame {
   SurfaceImages surface;
   ReflectionRays rays;                          // the traced rays (coarse tracing: first pass, then the rest)
   Buffer<float> emit;                           // [N] region weight of each Gaussian (rough ones emit)
-  bool emit_overridden = false;                 // emit came from set_emit_weights(): no gradient to M
+  std::vector<std::uint8_t> region_emits;       // 1 where emit is M (else set_emit_weights(): no gradient to M)
   Buffer<float> ray_color, ray_depth, ray_alpha;  // per ray
   Buffer<float> L_raw, V_raw;                   // traced_to_images
   Buffer<float> L, V;                           // what shade() read (filtered or raw)
@@ -179,9 +179,13 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
     StageTimer t(profile_, device_, times_.trace);
     const std::vector<float> ex = download(gaussians.extras, std::size_t(gaussians.count) * extra::kCount, device_);
     std::vector<float> emit(std::size_t(gaussians.count));
-    f->emit_overridden = emit_override_.size() == emit.size();
-    for (std::size_t i = 0; i < emit.size(); ++i)
-      emit[i] = f->emit_overridden ? emit_override_[i] : ex[i * extra::kCount + extra::kRegion];
+    const bool overridden = emit_override_.size() == emit.size();
+    f->region_emits.assign(emit.size(), 1);
+    for (std::size_t i = 0; i < emit.size(); ++i) {
+      const float m = ex[i * extra::kCount + extra::kRegion];
+      if (overridden) f->region_emits[i] = emit_or_region_ && m >= emit_override_[i];
+      emit[i] = f->region_emits[i] ? m : emit_override_[i];
+    }
     f->emit = Buffer<float>(emit, device_);
     if (n_glossy > 0) {
       GaussianView plain = gaussians;
@@ -369,10 +373,11 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
                      demit.data());
     reflection_rays_backward(f.camera, f.surface, shading_settings_, f.rays, dorig.data(), ddir.data(), sg, device_);
     // dL/d(emit) is dL/d(region weight) of each Gaussian (activated space, where grads.extras lives).
-    if (grads.extras && !f.emit_overridden) {
+    if (grads.extras) {
       const std::vector<float> de = demit.to_host();
       std::vector<float> ge = download(grads.extras, de.size() * extra::kCount, device_);
-      for (std::size_t i = 0; i < de.size(); ++i) ge[i * extra::kCount + extra::kRegion] += de[i];
+      for (std::size_t i = 0; i < de.size(); ++i)
+        if (i >= f.region_emits.size() || f.region_emits[i]) ge[i * extra::kCount + extra::kRegion] += de[i];
       device_copy(grads.extras, device_, ge.data(), Device::CPU, ge.size() * sizeof(float));
     }
   }

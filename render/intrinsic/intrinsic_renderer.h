@@ -83,7 +83,10 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
 
   // Shading on or off regardless of the iteration (rendering a trained run: on).
   void set_shading(bool on) { shading_ = on; }
-  void set_emit_weights(std::vector<float> weights) override { emit_override_ = std::move(weights); }
+  void set_emit_weights(std::vector<float> weights, bool or_region) override {
+    emit_override_ = std::move(weights);
+    emit_or_region_ = or_region;
+  }
   bool shading() const { return shading_; }
   int shading_from() const { return shading_from_; }
 
@@ -123,6 +126,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   int shading_from_ = 0;
   bool shading_ = false;
   std::vector<float> emit_override_;  // set_emit_weights(); empty = the region weight M
+  bool emit_or_region_ = false;       // emit = max(M, override) instead of the override
   std::uint32_t frame_seed_ = 0;  // coarse tracing: which pixel of a block is traced (the iteration)
 
   EnvironmentMap env_;
