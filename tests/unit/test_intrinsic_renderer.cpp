@@ -146,10 +146,12 @@ TEST(IntrinsicRenderer, WarmUpRendersTheRasterizedColourAndShadingTracesGlossyPi
 namespace {
 
 // The composite gradient of one shaded frame against central differences; *traced and *glossy get the
-// renderer's ray counts of that frame.
-void check_composite_gradient(const TrainConfig& cfg, std::size_t* traced, std::size_t* glossy) {
+// renderer's ray counts of that frame. `emit` (optional) is given to set_emit_weights with `emit_or_region`.
+void check_composite_gradient(const TrainConfig& cfg, std::size_t* traced, std::size_t* glossy,
+                              const std::vector<float>* emit = nullptr, bool emit_or_region = false) {
   GaussianModel m = floor_and_blob(2);
   IntrinsicRenderer r(cfg, 3.0f, Device::CPU);
+  if (emit) r.set_emit_weights(*emit, emit_or_region);
   {  // a non-constant environment, so texels matter differently
     std::vector<float> p = r.environment().params().to_host();
     std::mt19937_64 rng(3);
@@ -244,6 +246,19 @@ TEST(IntrinsicRenderer, CompositeGradientMatchesFiniteDifferences) {
   std::size_t traced = 0, glossy = 0;
   check_composite_gradient(intrinsic_config(100), &traced, &glossy);
   EXPECT_EQ(traced, glossy);
+  EXPECT_GT(glossy, 100u);
+}
+
+// intrinsic_emit = mask / max: fixed emit weights (no gradient to M through emission), or the larger of
+// them and M (a gradient where M is the larger). Half the Gaussians get 0.9, half 0.05, so both cases occur.
+TEST(IntrinsicRenderer, EmitWeightOverridesKeepTheGradientExact) {
+  const std::size_t n = floor_and_blob(2).count();
+  std::vector<float> w(n);
+  for (std::size_t i = 0; i < n; ++i) w[i] = i % 2 ? 0.9f : 0.05f;
+  std::size_t traced = 0, glossy = 0;
+  check_composite_gradient(intrinsic_config(100), &traced, &glossy, &w, false);
+  EXPECT_GT(glossy, 100u);
+  check_composite_gradient(intrinsic_config(100), &traced, &glossy, &w, true);
   EXPECT_GT(glossy, 100u);
 }
 
