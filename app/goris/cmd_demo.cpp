@@ -214,7 +214,8 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
     md += line;
   }
   md += "\nExported: `cleaned.ply` (the cleaned scene, intrinsic attributes as extra properties) and "
-        "`cleaned_baked.ply` (distilled into plain SH: any 3DGS viewer shows it; fidelity in cleaned_baked.ply.json)\n";
+        "`cleaned_baked.ply` (distilled into plain SH: any 3DGS viewer shows it; fidelity against the run in "
+        "cleaned_baked.json; a radiance run is plain SH already and is copied)\n";
   goris::write_file_bytes(out / "report.md", md.data(), md.size());
   std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
 }
