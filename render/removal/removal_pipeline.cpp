@@ -141,7 +141,7 @@ struct ShadowRelight {
   std::vector<std::vector<float>> s;    // per training view, per plane pixel
 };
 
-std::string remove_target_shadow(const GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
+std::string remove_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                  const MirrorPlane* glossy_plane, std::vector<TrainView>& views,
                                  const RasterSettings& raster, const fs::path& out, RemovalReport& report,
                                  ShadowRelight& relit) {
@@ -157,11 +157,10 @@ std::string remove_target_shadow(const GaussianModel& model, const SelectionMask
   // Samples: the photos' pixels on the support plane near the target (the model with the target rendered,
   // so pixels the target covers are left out), thinned to at most kMaxSamples.
   constexpr std::size_t kMaxSamples = 20000;
-  GaussianModel& m = const_cast<GaussianModel&>(model);  // rasterize() takes a view; nothing is written
   relit.pixels.resize(views.size());
   std::size_t total = 0;
   for (std::size_t i = 0; i < views.size(); ++i) {
-    const RasterOutput r = rasterize(m.view(false), views[i].camera, raster, model.device());
+    const RasterOutput r = rasterize(model.view(false), views[i].camera, raster, model.device());
     relit.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
     total += relit.pixels[i].size();
   }
