@@ -22,7 +22,6 @@
 #include "core/removal/selection_file.h"
 #include "core/removal/selection_labels.h"
 #include "core/removal/selection_points.h"
-#include "core/scene/gaussian_kernels.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
@@ -129,75 +128,6 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   if (model.tensor(Param::ExtraLogit).width == extra::kCount)
     for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
   return select_mirror_twins(selection_points(model).position, glossy, target);
-}
-
-// The target's cast shadow (core/removal/target_shadow.h): fits the light to the training photos' pixels on
-// the support plane and relights them (views' images in place), so the fine-tune learns the unshaded surface;
-// what is kept in `relit` relights the reference views' renders before inpainting. Writes the share of the
-// light the target took per view as grey images (shadow/VIEW.png). Returns a note for the step.
-struct ShadowRelight {
-  TargetShadow fit;
-  std::vector<PlanePixels> pixels;      // per training view
-  std::vector<std::vector<float>> s;    // per training view, per plane pixel
-};
-
-std::string remove_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
-                                 const MirrorPlane* glossy_plane, std::vector<TrainView>& views,
-                                 const RasterSettings& raster, const fs::path& out, RemovalReport& report,
-                                 ShadowRelight& relit) {
-  const SelectionPoints pts = selection_points(model);
-  const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
-  std::vector<float> opacity(logit.size());
-  for (std::size_t i = 0; i < logit.size(); ++i) opacity[i] = kernels::sigmoid(logit[i]);
-  SelectionMask candidates(selected.size());
-  for (std::size_t i = 0; i < selected.size(); ++i) candidates[i] = !selected[i];
-  const ShadowGeometry geo = shadow_geometry(pts.position, opacity, target, candidates, {}, glossy_plane);
-  if (!geo.found) return report.shadow = geo.reason, "; no shadow: " + geo.reason;
-
-  // Samples: the photos' pixels on the support plane near the target (the model with the target rendered,
-  // so pixels the target covers are left out), thinned to at most kMaxSamples.
-  constexpr std::size_t kMaxSamples = 20000;
-  relit.pixels.resize(views.size());
-  std::size_t total = 0;
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const RasterOutput r = rasterize(model.view(false), views[i].camera, raster, model.device());
-    relit.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
-    total += relit.pixels[i].size();
-  }
-  const std::size_t stride = std::max<std::size_t>(1, (total + kMaxSamples - 1) / kMaxSamples);
-  ShadowSamples samples;
-  std::size_t seen = 0;
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const std::size_t hw = views[i].image.size() / 3;
-    for (std::size_t k = 0; k < relit.pixels[i].size(); ++k, ++seen) {
-      if (seen % stride) continue;
-      const std::uint32_t p = relit.pixels[i].pixel[k];
-      samples.add(relit.pixels[i].point[k], {views[i].image[p], views[i].image[hw + p], views[i].image[2 * hw + p]});
-    }
-  }
-  const TargetOccluder occluder(model, target);
-  relit.fit = fit_target_shadow(geo, samples, occluder.function());
-  report.shadow_found = relit.fit.found;
-  report.shadow = relit.fit.reason;
-  if (!relit.fit.found) return "; no shadow: " + relit.fit.reason;
-
-  fs::create_directories(out / "shadow");
-  relit.s.resize(views.size());
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const PlanePixels& px = relit.pixels[i];
-    relit.s[i] = shadow_fraction(relit.fit, px.point, occluder.function());
-    const std::size_t hw = views[i].image.size() / 3;
-    relight_planar(views[i].image, hw, px, relit.s[i], relit.fit);
-    Image share(views[i].camera.width, views[i].camera.height, 1, Device::CPU);
-    for (std::size_t p = 0; p < hw; ++p) share.pixels[p] = 0.0f;
-    for (std::size_t k = 0; k < px.size(); ++k) {
-      const float v = float(relit.fit.strength_luminance) * relit.s[i][k];
-      share.pixels[px.pixel[k]] = v;
-      report.shadow_pixels += v > 0.05f ? 1 : 0;
-    }
-    save_png(out / "shadow" / (views[i].name + ".png"), share);
-  }
-  return "; shadow: " + std::to_string(report.shadow_pixels) + " pixels relit (" + relit.fit.reason + ")";
 }
 
 // E_obj of the lighting-aware mask (in [0, 1]) as a grey image, for a person to see what tau cut.
@@ -360,8 +290,14 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     std::string shadow_note;
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
-      shadow_note = remove_target_shadow(model, target_only, selected, glossy_plane.found ? &glossy_plane : nullptr,
-                                         views, raster, out, report, relit);
+      relit = relight_target_shadow(model, target_only, selected, glossy_plane.found ? &glossy_plane : nullptr, views,
+                                    raster, out / "shadow");
+      report.shadow_found = relit.fit.found;
+      report.shadow = relit.fit.reason;
+      report.shadow_pixels = relit.relit_pixels;
+      shadow_note = relit.fit.found ? "; shadow: " + std::to_string(relit.relit_pixels) + " pixels relit (" +
+                                          relit.fit.reason + ")"
+                                    : "; no shadow: " + relit.fit.reason;
     }
     char f[64];
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);

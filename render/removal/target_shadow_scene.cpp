@@ -1,9 +1,14 @@
 #include "render/removal/target_shadow_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "core/io/image.h"
+#include "core/removal/selection_points.h"
+#include "core/scene/gaussian_kernels.h"
 #include "core/util/error.h"
+#include "render/raster/rasterizer.h"
 #include "render/removal/inpaint_mask_scene.h"
 
 namespace goris {
@@ -71,6 +76,64 @@ void relight_image(Image& image, const PlanePixels& px, const std::vector<float>
     const glm::vec3 g = shadow_gain(shadow, s[k]);
     for (std::size_t c = 0; c < 3; ++c) image.pixels[px.pixel[k] * ch + c] *= g[c];
   }
+}
+
+ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
+                                    const MirrorPlane* fallback, std::vector<TrainView>& views,
+                                    const RasterSettings& raster, const std::filesystem::path& out_dir) {
+  ShadowRelight out;
+  const SelectionPoints pts = selection_points(model);
+  const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
+  std::vector<float> opacity(logit.size());
+  for (std::size_t i = 0; i < logit.size(); ++i) opacity[i] = kernels::sigmoid(logit[i]);
+  SelectionMask candidates(selected.size());
+  for (std::size_t i = 0; i < selected.size(); ++i) candidates[i] = !selected[i];
+  const ShadowGeometry geo = shadow_geometry(pts.position, opacity, target, candidates, {}, fallback);
+  if (!geo.found) {
+    out.fit.reason = geo.reason;
+    return out;
+  }
+
+  constexpr std::size_t kMaxSamples = 20000;
+  out.pixels.resize(views.size());
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const RasterOutput r = rasterize(model.view(false), views[i].camera, raster, model.device());
+    out.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
+    total += out.pixels[i].size();
+  }
+  const std::size_t stride = std::max<std::size_t>(1, (total + kMaxSamples - 1) / kMaxSamples);
+  ShadowSamples samples;
+  std::size_t seen = 0;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const std::size_t hw = views[i].image.size() / 3;
+    for (std::size_t k = 0; k < out.pixels[i].size(); ++k, ++seen) {
+      if (seen % stride) continue;
+      const std::uint32_t p = out.pixels[i].pixel[k];
+      samples.add(out.pixels[i].point[k], {views[i].image[p], views[i].image[hw + p], views[i].image[2 * hw + p]});
+    }
+  }
+  const TargetOccluder occluder(model, target);
+  out.fit = fit_target_shadow(geo, samples, occluder.function());
+  if (!out.fit.found) return out;
+
+  if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
+  out.s.resize(views.size());
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const PlanePixels& px = out.pixels[i];
+    out.s[i] = shadow_fraction(out.fit, px.point, occluder.function());
+    const std::size_t hw = views[i].image.size() / 3;
+    relight_planar(views[i].image, hw, px, out.s[i], out.fit);
+    Image share(views[i].camera.width, views[i].camera.height, 1, Device::CPU);
+    for (std::size_t p = 0; p < hw; ++p) share.pixels[p] = 0.0f;
+    for (std::size_t k = 0; k < px.size(); ++k) {
+      const float v = float(out.fit.strength_luminance) * out.s[i][k];
+      share.pixels[px.pixel[k]] = v;
+      out.relit_pixels += v > 0.05f ? 1 : 0;
+    }
+    if (!out_dir.empty()) save_png(out_dir / (views[i].name + ".png"), share);
+  }
+  return out;
 }
 
 }  // namespace goris

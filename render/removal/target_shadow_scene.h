@@ -7,6 +7,7 @@
 //   ... ShadowSamples from px and the photo; fit_target_shadow(geo, samples, occ.function()) ...
 //   relight_planar(image, px, shadow_fraction(fit, px.point, occ.function()), fit);  // the shadow is gone
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -15,6 +16,8 @@
 #include "core/io/image.h"
 #include "core/removal/target_shadow.h"
 #include "core/scene/gaussians.h"
+#include "core/train/trainer.h"
+#include "render/raster/raster_types.h"
 #include "render/trace/gaussian_tracer.h"
 
 namespace goris {
@@ -47,5 +50,20 @@ PlanePixels support_plane_pixels(const Camera& camera, const std::vector<float>&
 void relight_planar(std::vector<float>& image, std::size_t pixels_per_channel, const PlanePixels& px,
                     const std::vector<float>& s, const TargetShadow& shadow);
 void relight_image(Image& image, const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow);
+
+// The whole step for `goris remove`: the support plane (shadow_geometry, `fallback` as there), samples from
+// the views' photos on it (the model rendered with the target, so pixels it covers are left out; at most
+// 20K), the fit, then the views' images relit in place. With a shadow found and `out_dir` not empty, the
+// share of the light the target took is written per view as grey images (out_dir/VIEW.png). `selected` may
+// hold more than `target` (the mirror twin): none of it is a candidate for the support surface.
+struct ShadowRelight {
+  TargetShadow fit;                     // fit.reason says why nothing was found
+  std::vector<PlanePixels> pixels;      // per view
+  std::vector<std::vector<float>> s;    // per view, per plane pixel (empty when !fit.found)
+  std::size_t relit_pixels = 0;         // pixels whose luminance share k s exceeds 5 %
+};
+ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
+                                    const MirrorPlane* fallback, std::vector<TrainView>& views,
+                                    const RasterSettings& raster, const std::filesystem::path& out_dir);
 
 }  // namespace goris

@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 #include <vector>
 
 #include "core/removal/target_shadow.h"
 #include "core/scene/gaussians.h"
+#include "render/raster/rasterizer.h"
 #include "render/removal/target_shadow_scene.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
@@ -27,6 +29,15 @@ bool hits_ball(const glm::vec3& o, const glm::vec3& d) {
   const float b = glm::dot(oc, d), c = glm::dot(oc, oc) - kBallRadius * kBallRadius;
   const float disc = b * b - c;
   return disc > 0 && -b + std::sqrt(disc) > 0;
+}
+
+// A uniform random point in the unit ball (rejection sampling).
+glm::vec3 in_unit_ball(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1, 1);
+  glm::vec3 d;
+  do d = {u(rng), u(rng), u(rng)};
+  while (glm::length(d) > 1.0f);
+  return d;
 }
 
 struct Floor {
@@ -60,10 +71,7 @@ Floor make_floor(bool shadow) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1, 1);
   for (int i = 0; i < 300; ++i) {
-    glm::vec3 d;
-    do d = {u(rng), u(rng), u(rng)};
-    while (glm::length(d) > 1.0f);
-    f.centres.push_back(kBall + kBallRadius * d);
+    f.centres.push_back(kBall + kBallRadius * in_unit_ball(rng));
     f.colours.push_back({0.8f, 0.2f, 0.2f});
     f.lit.push_back({0.8f, 0.2f, 0.2f});
     f.weights.push_back(0.9f);
@@ -276,6 +284,83 @@ TEST(TargetShadow, GaussianOccluderPlanePixelsAndRelitPhoto) {
     for (int c = 0; c < 3; ++c) ASSERT_FLOAT_EQ(im.pixels[p * 3 + std::size_t(c)], relit[std::size_t(c) * hw + p]);
   test::expect_error([&] { relight_planar(relit, hw, px, std::vector<float>(3), r.fit); }, "3 shadow values");
   test::expect_error([&] { support_plane_pixels(cam, std::vector<float>(5), alpha, r.geo); }, "64x64");
+}
+
+}  // namespace
+}  // namespace goris
+
+namespace goris {
+namespace {
+
+// The step `goris remove` runs, on views rendered from a Gaussian floor with a ball on it: the photos are
+// the renders with the ball's shadow under a known light; relight_target_shadow() finds that light, writes
+// the share images and gives back photos close to the unshaded renders.
+TEST(TargetShadow, RelightTargetShadowOnRenderedViews) {
+  std::vector<test::TestGaussian> gs;
+  for (int y = 0; y < 25; ++y)
+    for (int x = 0; x < 25; ++x) gs.push_back({{-1.5f + 0.125f * x, -1.5f + 0.125f * y, 0.0f}, 0.07f, 0.95f, glm::vec3(0.7f), 0.05f});
+  std::mt19937 rng(4);
+  for (int i = 0; i < 150; ++i) {
+    gs.push_back({glm::vec3(0.0f, 0.0f, 0.45f) + 0.28f * in_unit_ball(rng), 0.06f, 0.95f, {0.8f, 0.2f, 0.2f}, 0.95f});
+  }
+  GaussianModel model = test::make_model(gs);
+  SelectionMask target(gs.size(), 0);
+  for (std::size_t i = 625; i < gs.size(); ++i) target[i] = 1;
+  const TargetOccluder occ(model, target);
+
+  // The floor's pixels in each view (a geometry made by hand: the plane z = 0), shaded by the ball.
+  ShadowGeometry floor;
+  floor.found = true;
+  floor.plane.found = true;
+  floor.plane.tolerance = 0.03;
+  floor.reach = 100.0;
+  const RasterSettings raster;
+  std::vector<TrainView> views;
+  std::vector<std::vector<float>> lit;
+  std::vector<std::vector<std::uint8_t>> in_shadow;
+  for (int k = 0; k < 8; ++k) {
+    const float a = 0.785398f * float(k);
+    TrainView v;
+    v.name = "v" + std::to_string(k);
+    v.camera = test::look_at({3.0f * std::cos(a), 3.0f * std::sin(a), 2.5f}, {0.0f, 0.0f, 0.1f}, 64, 64, 55.0f);
+    const RasterOutput r = rasterize(model.view(false), v.camera, raster, Device::CPU);
+    v.image = r.gbuffer.color.to_host();
+    lit.push_back(v.image);
+    const PlanePixels px = support_plane_pixels(v.camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), floor);
+    std::vector<float> alpha(px.size());
+    occ.function()(px.point, std::vector<glm::vec3>(px.size(), glm::vec3(kLight)), alpha);
+    in_shadow.emplace_back(64 * 64, 0);
+    for (std::size_t q = 0; q < px.size(); ++q)
+      for (int c = 0; c < 3; ++c) {
+        float& pixel = v.image[std::size_t(c) * 64 * 64 + px.pixel[q]];
+        pixel = float(std::pow(std::pow(double(pixel), 2.2) * (1.0 - kStrength[c] * alpha[q]), 1.0 / 2.2));
+        in_shadow.back()[px.pixel[q]] = alpha[q] > 0.5f;
+      }
+    views.push_back(std::move(v));
+  }
+
+  const std::filesystem::path out = test::scratch_dir("target_shadow_relight");
+  const ShadowRelight r = relight_target_shadow(model, target, target, nullptr, views, raster, out);
+  ASSERT_TRUE(r.fit.found) << r.fit.reason;
+  EXPECT_LT(std::acos(std::clamp(glm::dot(r.fit.light_direction, kLight), -1.0, 1.0)) * 180.0 / 3.14159265, 8.0)
+      << r.fit.reason;
+  EXPECT_NEAR(r.fit.strength_luminance, 0.55, 0.15) << r.fit.reason;
+  EXPECT_GT(r.relit_pixels, 50u);
+  for (const TrainView& v : views) EXPECT_TRUE(std::filesystem::exists(out / (v.name + ".png"))) << v.name;
+  double before = 0, after = 0;
+  std::size_t shaded = 0;
+  for (std::size_t k = 0; k < views.size(); ++k)
+    for (std::size_t p = 0; p < 64 * 64; ++p) {
+      if (!in_shadow[k][p]) continue;
+      ++shaded;
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t i = std::size_t(c) * 64 * 64 + p;
+        after += std::abs(views[k].image[i] - lit[k][i]);
+        before += std::abs(float(std::pow(std::pow(double(lit[k][i]), 2.2) * (1.0 - kStrength[c]), 1.0 / 2.2)) - lit[k][i]);
+      }
+    }
+  ASSERT_GT(shaded, 50u);
+  EXPECT_LT(after, 0.35 * before) << shaded << " shaded pixels";
 }
 
 }  // namespace
