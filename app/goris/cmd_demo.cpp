@@ -45,10 +45,8 @@ struct Options {
 
 fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
 
-// Wall time of each demo step, for the report.
-std::vector<std::pair<std::string, double>> g_step_seconds;
-
-void run_step(const std::string& title, std::vector<std::string> args) {
+// Runs `goris ARGS` as a child process; returns its wall seconds.
+double run_step(const std::string& title, std::vector<std::string> args) {
   const auto start = std::chrono::steady_clock::now();
   std::printf("\n== demo: %s\n$ goris", title.c_str());
   for (auto& a : args) std::printf(" %s", a.c_str());
@@ -66,8 +64,11 @@ void run_step(const std::string& title, std::vector<std::string> args) {
   waitpid(pid, &status, 0);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw Error("demo step '" + title + "' failed (see its message above)");
-  g_step_seconds.emplace_back(title, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// Wall time of each demo step, for the report.
+using StepTimes = std::vector<std::pair<std::string, double>>;
 
 // Labelled images side by side, at the first one's size. A part with `optional` set that does not exist
 // is a black tile saying so (e.g. no lighting-aware mask on a radiance run).
@@ -144,7 +145,8 @@ std::string stage2_rows(const goris::Dataset& ds, const fs::path& removed, const
   return md;
 }
 
-void write_report(const Options& o, const fs::path& out, const fs::path& run, const fs::path& renders) {
+void write_report(const Options& o, const fs::path& out, const fs::path& run, const fs::path& renders,
+                  const StepTimes& times) {
   const goris::Dataset ds = goris::load_dataset(o.data, {});
   std::ifstream mf(run / "metrics.json");
   if (!mf) throw Error((run / "metrics.json").string(), "missing: the evaluation step wrote no metrics");
@@ -209,7 +211,7 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
     }
   }
   md += "## Time of each stage\n\n| step | seconds |\n|---|---|\n";
-  for (const auto& [title, sec] : g_step_seconds) {
+  for (const auto& [title, sec] : times) {
     std::snprintf(line, sizeof line, "| %s | %.1f |\n", title.c_str(), sec);
     md += line;
   }
@@ -232,27 +234,31 @@ void run_demo(const Options& o) {
   fs::create_directories(out);
   { std::ofstream(out / "demo.marker") << "written by goris demo\n"; }
   const std::string data = fs::absolute(o.data).string();
-  run_step("info", {"info", data});
-  run_step("train", {"train", data, "--out", run.string(), "--mode", o.mode, "--iters", std::to_string(o.iters),
-                     "--device", o.device, "--checkpoint-every", "0"});
-  run_step("render test views with all maps", {"render", run.string(), "--split", "test", "--out", renders.string(),
-                                               "--maps", "--device", o.device});
-  run_step("evaluate against the views with the target", {"eval", run.string(), "--split", "test", "--gt", "full",
-                                                          "--device", o.device});
+  StepTimes times;
+  auto step = [&](const std::string& title, std::vector<std::string> args) {
+    times.emplace_back(title, run_step(title, std::move(args)));
+  };
+  step("info", {"info", data});
+  step("train", {"train", data, "--out", run.string(), "--mode", o.mode, "--iters", std::to_string(o.iters),
+                 "--device", o.device, "--checkpoint-every", "0"});
+  step("render test views with all maps",
+       {"render", run.string(), "--split", "test", "--out", renders.string(), "--maps", "--device", o.device});
+  step("evaluate against the views with the target",
+       {"eval", run.string(), "--split", "test", "--gt", "full", "--device", o.device});
   // Stage 2: the target from the data set's object masks, removed with its reflections, evaluated against
   // the after-removal ground truth (test/r_XXX.png).
   const fs::path removed = run / "removal", removed_renders = out / "renders_removed";
-  run_step("select the target from the object masks", {"select", run.string(), "--masks", "--device", o.device});
-  run_step("remove it (stage 2)", {"remove", run.string(), "--device", o.device});
-  run_step("render the cleaned scene", {"render", removed.string(), "--split", "test", "--out",
-                                        removed_renders.string(), "--maps", "--device", o.device});
-  run_step("evaluate against the scene without the target", {"eval", removed.string(), "--split", "test",
-                                                             "--device", o.device});
-  run_step("export the cleaned scene (intrinsic PLY and a baked PLY any 3DGS viewer shows)",
-           {"export", removed.string(), "--ply", (out / "cleaned.ply").string(), "--baked",
-            (out / "cleaned_baked.ply").string(), "--iters", std::to_string(std::max(100, o.iters / 4)), "--device",
-            o.device});
-  write_report(o, out, run, renders);
+  step("select the target from the object masks", {"select", run.string(), "--masks", "--device", o.device});
+  step("remove it (stage 2)", {"remove", run.string(), "--device", o.device});
+  step("render the cleaned scene", {"render", removed.string(), "--split", "test", "--out",
+                                    removed_renders.string(), "--maps", "--device", o.device});
+  step("evaluate against the scene without the target",
+       {"eval", removed.string(), "--split", "test", "--device", o.device});
+  step("export the cleaned scene (intrinsic PLY and a baked PLY any 3DGS viewer shows)",
+       {"export", removed.string(), "--ply", (out / "cleaned.ply").string(), "--baked",
+        (out / "cleaned_baked.ply").string(), "--iters", std::to_string(std::max(100, o.iters / 4)), "--device",
+        o.device});
+  write_report(o, out, run, renders, times);
 }
 
 void setup_demo(CLI::App& root) {

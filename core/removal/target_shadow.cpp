@@ -65,14 +65,13 @@ ShadowGeometry shadow_geometry(const std::vector<glm::vec3>& centres, const std:
     throw Error("target shadow", "per-Gaussian arrays differ in size (" + std::to_string(n) + " centres)");
   if (count_selected(target) == 0) throw Error("target shadow", "the target is empty");
   ShadowGeometry g;
-  std::size_t nt = 0;
+  std::vector<glm::dvec3> tc;  // the target's centres
   for (std::size_t i = 0; i < n; ++i)
-    if (target[i]) g.centroid += glm::dvec3(centres[i]), ++nt;
-  g.centroid /= double(nt);
+    if (target[i]) tc.push_back(glm::dvec3(centres[i])), g.centroid += tc.back();
+  g.centroid /= double(tc.size());
   // 90th percentile: a few stray centres must not inflate the neighbourhood.
   std::vector<double> dist;
-  for (std::size_t i = 0; i < n; ++i)
-    if (target[i]) dist.push_back(glm::length(glm::dvec3(centres[i]) - g.centroid));
+  for (const glm::dvec3& c : tc) dist.push_back(glm::length(c - g.centroid));
   const std::size_t q = dist.size() * 9 / 10;
   std::nth_element(dist.begin(), dist.begin() + std::ptrdiff_t(q), dist.end());
   g.radius = std::max(dist[q], 1e-6);
@@ -87,9 +86,6 @@ ShadowGeometry shadow_geometry(const std::vector<glm::vec3>& centres, const std:
     // centres (5th percentile of their heights above it) are within its radius of it. Without this, over a
     // mirror the learned mirror world below the surface wins (the default scene's radiance run: a plane 0.65
     // below the table top).
-    std::vector<glm::dvec3> tc;
-    for (std::size_t i = 0; i < n; ++i)
-      if (target[i]) tc.push_back(glm::dvec3(centres[i]));
     std::vector<double> h(tc.size());
     MirrorSettings ps;
     ps.tolerance_ratio = st.plane_tolerance_ratio;
@@ -126,12 +122,12 @@ std::vector<double> mean_occlusion(const std::vector<glm::vec3>& points, const s
   const std::size_t m = points.size();
   std::vector<double> s(m, 0.0);
   if (m == 0) return s;
-  std::vector<glm::vec3> ray_o(m), ray_d(m);
+  std::vector<glm::vec3> ray_d(m);
   std::vector<float> alpha(m);
   for (const glm::dvec3& d : dirs) {  // one direction per call keeps the ray arrays small
-    for (std::size_t k = 0; k < m; ++k) ray_o[k] = points[k], ray_d[k] = glm::vec3(d);
+    std::fill(ray_d.begin(), ray_d.end(), glm::vec3(d));
     std::fill(alpha.begin(), alpha.end(), 0.0f);
-    occlusion(ray_o, ray_d, alpha);
+    occlusion(points, ray_d, alpha);
     for (std::size_t k = 0; k < m; ++k) s[k] += std::clamp(double(alpha[k]), 0.0, 1.0) / double(dirs.size());
   }
   return s;

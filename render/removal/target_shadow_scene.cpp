@@ -56,26 +56,30 @@ PlanePixels support_plane_pixels(const Camera& camera, const std::vector<float>&
   return px;
 }
 
-void relight_planar(std::vector<float>& image, std::size_t hw, const PlanePixels& px, const std::vector<float>& s,
-                    const TargetShadow& shadow) {
-  if (s.size() != px.size() || image.size() < 3 * hw)
+namespace {
+
+// Multiplies channel c of pixel p, at data[p * pixel_stride + c * channel_stride], by its gain.
+void relight(float* data, std::size_t pixel_stride, std::size_t channel_stride, bool sizes_ok, const std::string& image,
+             const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow) {
+  if (s.size() != px.size() || !sizes_ok)
     throw Error("shadow", "relighting " + std::to_string(px.size()) + " pixels with " + std::to_string(s.size()) +
-                              " shadow values in an image of " + std::to_string(image.size()) + " floats");
+                              " shadow values in an image of " + image);
   for (std::size_t k = 0; k < px.size(); ++k) {
     const glm::vec3 g = shadow_gain(shadow, s[k]);
-    for (int c = 0; c < 3; ++c) image[std::size_t(c) * hw + px.pixel[k]] *= g[c];
+    for (std::size_t c = 0; c < 3; ++c) data[px.pixel[k] * pixel_stride + c * channel_stride] *= g[c];
   }
 }
 
+}  // namespace
+
+void relight_planar(std::vector<float>& image, std::size_t hw, const PlanePixels& px, const std::vector<float>& s,
+                    const TargetShadow& shadow) {
+  relight(image.data(), 1, hw, image.size() >= 3 * hw, std::to_string(image.size()) + " floats", px, s, shadow);
+}
+
 void relight_image(Image& image, const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow) {
-  if (s.size() != px.size() || image.channels < 3)
-    throw Error("shadow", "relighting " + std::to_string(px.size()) + " pixels with " + std::to_string(s.size()) +
-                              " shadow values in an image of " + std::to_string(image.channels) + " channels");
-  const std::size_t ch = std::size_t(image.channels);
-  for (std::size_t k = 0; k < px.size(); ++k) {
-    const glm::vec3 g = shadow_gain(shadow, s[k]);
-    for (std::size_t c = 0; c < 3; ++c) image.pixels[px.pixel[k] * ch + c] *= g[c];
-  }
+  relight(image.pixels.data(), std::size_t(image.channels), 1, image.channels >= 3,
+          std::to_string(image.channels) + " channels", px, s, shadow);
 }
 
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
