@@ -60,7 +60,8 @@ if(rc EQUAL 0)
 endif()
 expect_text("${err}" "full_XXX.png")
 
-# Ctrl-C: finish the iteration, checkpoint, exit 0 with the resume command.
+# Ctrl-C: finish the iteration, checkpoint, exit 0 with the resume command. timeout(1) delivers its SIGINT
+# twice (to the child, then to the process group): that must still count as one Ctrl-C.
 execute_process(COMMAND timeout --preserve-status -s INT 8 "${GORIS}" train "${DATA}" --out "${WORK}/run_int"
                         --iters 100000 ${common}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
