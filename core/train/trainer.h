@@ -148,8 +148,8 @@ class Trainer {
   const std::vector<TrainView>& views() const { return views_; }
   TrainProgress progress(double it_per_s) const;
   // Last iteration of adaptive density control: densify.until_iter, but at most densify_until_fraction of
-  // the run, so that a shortened schedule keeps 3DGS's proportion (densify until 15K of 30K) and ends with
-  // a stretch of pure optimisation instead of adding untrained Gaussians at the very end.
+  // the run, so that a shortened schedule ends with a stretch of pure optimisation instead of adding
+  // untrained Gaussians at the very end.
   int densify_until() const;
 
  private:
