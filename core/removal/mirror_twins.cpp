@@ -101,6 +101,7 @@ MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std
     const double h = pl.signed_distance(c);
     if (h > pl.tolerance) mirrored.push_back(c - 2.0 * h * pl.normal);
   }
+  out.target_above = mirrored.size();
   if (mirrored.empty()) return out;
   glm::dvec3 mean(0.0);
   for (const auto& m : mirrored) mean += m;
@@ -111,6 +112,11 @@ MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std
   for (std::size_t i = 0; i < centres.size(); ++i) {
     if (target[i] || pl.signed_distance(glm::dvec3(centres[i])) > -pl.tolerance) continue;
     if (volume.contains(centres[i])) out.twins[i] = 1, ++out.count;
+  }
+  out.candidates = out.count;
+  if (double(out.count) < s.min_twin_share * double(mirrored.size())) {
+    out.twins.assign(centres.size(), 0);
+    out.count = 0;
   }
   return out;
 }

@@ -8,7 +8,8 @@
 // select_mirror_twins() finds the plane the glossy Gaussians lie on (RANSAC, then a least-squares refit of
 // the inliers), mirrors the target's centres on its own side through it, and selects the Gaussians on the
 // far side that lie inside the (slightly grown) hull of the mirrored centres. No plane (a curved or
-// scattered glossy set, fewer than min_glossy points) selects nothing. Known limit: real geometry below the
+// scattered glossy set, fewer than min_glossy points) selects nothing, and neither does a hull holding
+// fewer than min_twin_share of the target's Gaussians (no mirror world there). Known limit: real geometry below the
 // surface inside that hull (a table's leg right under the target) goes too. A sight-line test (seen only
 // THROUGH the surface from the training cameras) was considered and left out: twins near the surface's
 // edge are seen past the edge from some cameras, so the test needs occlusion, not just geometry.
@@ -41,6 +42,11 @@ struct MirrorSettings {
   int ransac_iterations = 256;
   std::uint64_t seed = 1;
   double hull_growth = 1.15;  // mirrored centres are spread about their centroid by this before the hull
+  // A mirror world copies the target: its twin holds a good share of the target's Gaussians (56-63 % on
+  // steel_snowman). A few Gaussians in the mirrored hull (9-15 % on marble_monkey, whose table is a dim
+  // reflector) are the surface's own underside or noise; removing them cost 0.19 dB there (3 seeds), so
+  // fewer than this share of the target's Gaussians above the plane selects nothing.
+  double min_twin_share = 0.25;
   // Optional: RANSAC only counts candidate planes (unit normal n, n . x = offset) this accepts.
   std::function<bool(const glm::dvec3& normal, double offset)> accept;
 };
@@ -49,6 +55,8 @@ struct MirrorTwins {
   MirrorPlane plane;
   SelectionMask twins;  // per Gaussian, 1 = the target's mirror twin (never a target Gaussian itself)
   std::size_t count = 0;
+  std::size_t candidates = 0;  // Gaussians in the mirrored hull; count = 0 when too few of them for a twin
+  std::size_t target_above = 0;  // the target's Gaussians above the plane (what the twin would mirror)
 };
 
 // The plane most glossy centres lie on; found = false when fewer than min_inlier_fraction do.

@@ -241,7 +241,11 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       report.mirror_twins = t.count;
       report.selected += t.count;
       record.parameters["mirror_twins"] = t.count;
-      if (t.plane.found) twin_note = " (" + std::to_string(t.count) + " of them the target's mirror twin)";
+      if (t.plane.found && t.count > 0)
+        twin_note = " (" + std::to_string(t.count) + " of them the target's mirror twin)";
+      else if (t.plane.found && t.candidates > 0)
+        twin_note = "; no mirror twin (" + std::to_string(t.candidates) + " Gaussians mirror " +
+                    std::to_string(t.target_above) + " of the target's: not a mirror world)";
     }
     record.model_fingerprint = model_fingerprint(model);
     write_selection(out / "selection.json", record, selected);

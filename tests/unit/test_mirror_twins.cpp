@@ -3,6 +3,7 @@
 // twin that must stay, noise; the same scene tilted; surfaces that are no plane.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -88,6 +89,25 @@ TEST(MirrorTwins, TiltedAndShiftedSceneGivesTheSameAnswer) {
   const Scene s = table_scene(pose);
   const MirrorTwins t = select_mirror_twins(s.centres, s.glossy, s.target);
   expect_twins_found(s, t, glm::dvec3(glm::mat3(pose) * glm::vec3(0, 0, 1)));
+}
+
+TEST(MirrorTwins, AFewGaussiansInTheMirroredHullAreNoTwin) {
+  // A dim reflector: no mirror world, only a tenth of the twin's Gaussians below the table (the surface's
+  // underside, noise). Nothing is selected; with the share rule off, they would be.
+  Scene s = table_scene(glm::mat4(1.0f));
+  Scene sparse;
+  int kept = 0;
+  for (std::size_t i = 0; i < s.centres.size(); ++i)
+    if (s.kind[i] != TargetTwin || kept++ % 10 == 0) sparse.add(s.centres[i], s.kind[i], s.glossy[i]);
+  const MirrorTwins t = select_mirror_twins(sparse.centres, sparse.glossy, sparse.target);
+  EXPECT_TRUE(t.plane.found);
+  EXPECT_EQ(t.count, 0u);
+  EXPECT_EQ(std::count(t.twins.begin(), t.twins.end(), 1), 0);
+  EXPECT_GE(t.candidates, 10u);
+  EXPECT_EQ(t.target_above, 150u);
+  MirrorSettings no_rule;
+  no_rule.min_twin_share = 0;
+  EXPECT_EQ(select_mirror_twins(sparse.centres, sparse.glossy, sparse.target, no_rule).count, t.candidates);
 }
 
 TEST(MirrorTwins, NoPlaneNoTwins) {
