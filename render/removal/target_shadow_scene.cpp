@@ -128,14 +128,16 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
     out.s[i] = shadow_fraction(out.fit, px.point, occluder.function());
     const std::size_t hw = views[i].image.size() / 3;
     relight_planar(views[i].image, hw, px, out.s[i], out.fit);
-    Image share(views[i].camera.width, views[i].camera.height, 1, Device::CPU);
-    for (std::size_t p = 0; p < hw; ++p) share.pixels[p] = 0.0f;
+    std::vector<float> share(px.size());  // the share of the light the target took, per plane pixel
     for (std::size_t k = 0; k < px.size(); ++k) {
-      const float v = float(out.fit.strength_luminance) * out.s[i][k];
-      share.pixels[px.pixel[k]] = v;
-      out.relit_pixels += v > 0.05f ? 1 : 0;
+      share[k] = float(out.fit.strength_luminance) * out.s[i][k];
+      out.relit_pixels += share[k] > 0.05f ? 1 : 0;
     }
-    if (!out_dir.empty()) save_png(out_dir / (views[i].name + ".png"), share);
+    if (out_dir.empty()) continue;
+    Image im(views[i].camera.width, views[i].camera.height, 1, Device::CPU);
+    for (std::size_t p = 0; p < hw; ++p) im.pixels[p] = 0.0f;
+    for (std::size_t k = 0; k < px.size(); ++k) im.pixels[px.pixel[k]] = share[k];
+    save_png(out_dir / (views[i].name + ".png"), im);
   }
   return out;
 }
