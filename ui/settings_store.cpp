@@ -96,6 +96,7 @@ StudioSettings load_settings(const fs::path& path) {
   read_key(j, "removal_ablate_twins", s.removal_ablate_twins, path);
   read_key(j, "removal_ablate_shadows", s.removal_ablate_shadows, path);
   read_key(j, "removal_absolute_fresnel", s.removal_absolute_fresnel, path);
+  read_key(j, "removal_exclude_reflections", s.removal_exclude_reflections, path);
   read_key(j, "export_ply", s.export_ply, path);
   read_key(j, "export_baked", s.export_baked, path);
   read_key(j, "export_renders", s.export_renders, path);
@@ -152,6 +153,7 @@ void save_settings(const fs::path& path, const StudioSettings& s) {
                   {"removal_ablate_twins", s.removal_ablate_twins},
                   {"removal_ablate_shadows", s.removal_ablate_shadows},
                   {"removal_absolute_fresnel", s.removal_absolute_fresnel},
+                  {"removal_exclude_reflections", s.removal_exclude_reflections},
                   {"export_ply", s.export_ply},
                   {"export_baked", s.export_baked},
                   {"export_renders", s.export_renders},

@@ -30,6 +30,7 @@ struct StudioSettings {
   bool removal_ablate_twins = false;        // keep the target's mirror twin
   bool removal_ablate_shadows = false;      // keep the target's cast shadow
   bool removal_absolute_fresnel = false;    // the paper's absolute F in the lighting-aware mask
+  bool removal_exclude_reflections = false; // the paper's rule: no photo loss in the lighting-aware mask
   // Export dialog (as `goris export`): which parts, where (relative paths lie inside the exported run
   // folder, absolute ones are used as they are), the distillation length and the render cameras.
   bool export_ply = true, export_baked = false, export_renders = false;

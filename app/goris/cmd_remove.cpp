@@ -22,7 +22,8 @@ namespace {
 using namespace goris;
 
 struct Options {
-  std::string run, inpainter = "telea", inpainted, device = "auto", lighting_fresnel = "relative";
+  std::string run, inpainter = "telea", inpainted, device = "auto", lighting_fresnel = "relative",
+              lighting_targets = RemovalOptions{}.lighting_targets;
   std::vector<std::string> ablate;
   int iters = 0;
 };
@@ -37,6 +38,7 @@ void run_remove(const Options& o) {
   }
   ro.finetune_iterations = o.iters;
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
+  ro.lighting_targets = o.lighting_targets;
   ro.device = o.device;
   const bool tty = isatty(STDERR_FILENO);
   int last_step = -1;
@@ -95,6 +97,10 @@ void setup_remove(CLI::App& root) {
   c->add_option("--lighting-fresnel", o->lighting_fresnel,
                  "F in the lighting-aware mask: relative (to the glossy surfaces' F0, default) or absolute (the paper)")
       ->check(CLI::IsMember({"relative", "absolute"}));
+  c->add_option("--lighting-targets", o->lighting_targets,
+                "The fine-tune inside the lighting-aware mask: dereflect (the photo minus stage 1's estimate of the "
+                "target's reflection) or exclude (no photo loss there, the paper)")
+      ->check(CLI::IsMember({"dereflect", "exclude"}));
   c->add_option("--iters", o->iters, "Fine-tune iterations (default: 4000 scaled like stage 1)")->check(CLI::PositiveNumber);
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_remove(*o); });

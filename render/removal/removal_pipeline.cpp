@@ -31,6 +31,7 @@
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "render/maps/gbuffer_maps.h"
+#include "render/removal/dereflect.h"
 #include "render/removal/finetune_views.h"
 #include "render/removal/inpaint_mask.h"
 #include "render/removal/inpaint_mask_scene.h"
@@ -165,6 +166,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["label_threshold"] = o.label_threshold;
   j["lighting_tau"] = o.lighting_tau;
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
+  j["lighting_targets"] = o.lighting_targets;
   return j;
 }
 
@@ -182,6 +184,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       throw Error(step_error(RemovalStep::Selection,
                              "unknown ablation '" + a + "' (expected material, lamask, twins or shadows)"));
   }
+  if (o.lighting_targets != "dereflect" && o.lighting_targets != "exclude")
+    throw Error(step_error(RemovalStep::Selection, "unknown lighting-aware target rule '" + o.lighting_targets +
+                                                       "' (expected dereflect or exclude)"));
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config(run_dir);
   const Device device = resolve_device(o.device);
@@ -290,6 +295,13 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         save_mask_png(out / "lighting_masks" / (ds.train[i].name + ".png"), lighting[i]);
         save_png(out / "lighting_energy" / (ds.train[i].name + ".png"), energy_image(e, cameras[i]));
       }
+      if (o.lighting_targets == "dereflect" && !cancelled()) {  // dereflect.h: why the mask keeps a target
+        GaussianModel removed = split_removed(model, selected).kept;
+        const DereflectResult d = dereflect_views(
+            *ir, model, removed, lighting, views, out / "dereflected",
+            [&](std::size_t i, std::size_t n) { s.tell(i, n, "dereflecting " + ds.train[i].name); }, cancelled);
+        report.dereflected_pixels = d.pixels;
+      }
     }
     std::string shadow_note;
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
@@ -305,8 +317,11 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     }
     char f[64];
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);
+    const std::string dereflect_note =
+        report.dereflected_pixels ? "; " + std::to_string(report.dereflected_pixels) + " dereflected" : "";
     s.finish(std::to_string(report.lighting_pixels) + " pixels" +
-             (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : "") + shadow_note);
+             (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : "") + dereflect_note +
+             shadow_note);
   }
   if (cancelled()) return report.cancelled = true, report;
 
@@ -436,7 +451,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       // Object mask of the data set (when given) U what the selection covers (dilated: soft edges) U reflections.
       Mask ex = dilate_mask(holes[i].covered, std::max(1, int(std::lround(w / 128.0))));
       if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
-      if (lighting[i].width == w) ex = mask_or(ex, lighting[i]);
+      if (lighting[i].width == w && o.lighting_targets == "exclude") ex = mask_or(ex, lighting[i]);
       exclude[i] = std::move(ex);
       inputs[i].exclude = &exclude[i];
       inputs[i].removed_depth = &holes[i].removed_depth;
@@ -488,6 +503,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["lighting_mask_pixels"] = report.lighting_pixels;
     j["mirror_twins"] = report.mirror_twins;
     j["lighting_fresnel_reference"] = report.lighting_fresnel_reference;
+    j["dereflected_pixels"] = report.dereflected_pixels;
     j["shadow"] = {{"found", report.shadow_found}, {"summary", report.shadow}, {"relit_pixels", report.shadow_pixels}};
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
     j["reference_views"] = report.reference_views;

@@ -50,6 +50,10 @@ struct RemovalOptions {
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the
   // paper's absolute F.
   bool lighting_relative_fresnel = true;
+  // What the fine-tune does inside the lighting-aware mask (render/removal/dereflect.h): "dereflect" trains
+  // on the photo minus stage 1's own estimate of the target's reflection; "exclude" leaves the pixels out
+  // (the paper).
+  std::string lighting_targets = "dereflect";
   std::string device = "auto";
 };
 
@@ -66,6 +70,7 @@ struct RemovalReport {
   std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
+  std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
   bool shadow_found = false;                // the target's cast shadow (core/removal/target_shadow.h)
   std::string shadow;                       // its light, size and strength, or why none was found
   std::size_t shadow_pixels = 0;            // training-view pixels relit by more than 5 %

@@ -86,6 +86,12 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   std::printf("selected %zu Gaussians; lighting-aware masks %zu px, inpainting masks %zu px\n", rep.selected,
               rep.lighting_pixels, rep.inpaint_pixels);
   ASSERT_GT(rep.lighting_pixels, 0u) << "no reflection of the target found";
+  // By default the fine-tune trains the mask's pixels on dereflected photos (dereflect.h), written per view.
+  EXPECT_EQ(rep.dereflected_pixels, rep.lighting_pixels);
+  std::size_t dereflected_images = 0;
+  for (const View& v : load_dataset(c.data, dataset_options(read_run_config(run))).train)
+    dereflected_images += fs::exists(rep.out_dir / "dereflected" / (v.name + ".png"));
+  EXPECT_GT(dereflected_images, 0u);
   EXPECT_LT(rep.gaussians_after, rep.gaussians_before + rep.added);
 
   const auto before = glossy_maps(run, ds), after = glossy_maps(rep.out_dir, ds);

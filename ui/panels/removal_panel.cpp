@@ -95,6 +95,12 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("The paper's (1 - M) F x label > 0.1. Default: F relative to the glossy surfaces' F0,\n"
                       "which stage 1 learns only up to the environment's brightness");
+  ImGui::BeginDisabled(set.removal_ablate_lamask);
+  ImGui::Checkbox("leave the reflections out of the fine-tune", &set.removal_exclude_reflections);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("The paper's rule: no photo loss in the lighting-aware mask. Default: train there on the\n"
+                      "photo minus stage 1's own estimate of the target's reflection (removal/dereflected)");
   ImGui::EndDisabled();
 
   if (!active) {
