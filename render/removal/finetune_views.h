@@ -1,7 +1,8 @@
 #pragma once
 // The training views of the stage-2 fine-tune (paper Sec. 3.4 and S1.4-S1.5, DESIGN.md §6 stage 2):
-//  - every view keeps its photo, but the photo losses only count outside (object mask U lighting-aware
-//    mask): TrainView::loss_weight = 0 there;
+//  - every view keeps its photo, but the photo losses only count outside its `exclude` mask (object mask,
+//    and the lighting-aware mask under the paper's rule; by default the photo is dereflected there instead,
+//    dereflect.h): TrainView::loss_weight = 0 there;
 //  - reference views get inpainting targets on their hole: the inpainted colour as an appearance target
 //    where the inpainted region map says rough (M > 0.5), the inpainted materials (D, F0, roughness,
 //    normal) as targets where it says glossy;
@@ -24,7 +25,7 @@ struct FinetuneViewSettings {
 
 // What each training view contributes, in the same order as `views`.
 struct FinetuneViewInputs {
-  const Mask* exclude = nullptr;       // object mask U lighting-aware mask (255 = no photo loss)
+  const Mask* exclude = nullptr;       // object mask [U lighting-aware mask] (255 = no photo loss)
   const Image* removed_depth = nullptr;  // removed scene's surface depth (0 = none), for the depth test
   int reference = -1;                  // index into `references` when this is a reference view
 };

@@ -448,7 +448,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     std::vector<ReferenceTargets> refs;
     for (std::size_t i = 0; i < views.size(); ++i) {
       const int w = cameras[i].width, h = cameras[i].height;
-      // Object mask of the data set (when given) U what the selection covers (dilated: soft edges) U reflections.
+      // Object mask of the data set (when given) U what the selection covers (dilated: soft edges), and the
+      // reflections only under the paper's rule (by default their photos were dereflected in step 2).
       Mask ex = dilate_mask(holes[i].covered, std::max(1, int(std::lround(w / 128.0))));
       if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
       if (lighting[i].width == w && o.lighting_targets == "exclude") ex = mask_or(ex, lighting[i]);
