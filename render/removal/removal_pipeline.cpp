@@ -258,7 +258,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + twin_note);
   }
 
-  // The training photos: the shadow step relights them, the fine-tune trains on them.
+  // The scene without the target (and twin): the dereflection's and the inpainting's renders, the lift's base.
+  SplitScene split = split_removed(model, selected);
+  // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
   std::vector<TrainView> views = load_train_views(ds.train, dopt);
   ShadowRelight relit;
 
@@ -296,9 +298,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         save_png(out / "lighting_energy" / (ds.train[i].name + ".png"), energy_image(e, cameras[i]));
       }
       if (o.lighting_targets == "dereflect" && !cancelled()) {  // dereflect.h: why the mask keeps a target
-        GaussianModel removed = split_removed(model, selected).kept;
         const DereflectResult d = dereflect_views(
-            *ir, model, removed, lighting, views, out / "dereflected",
+            *ir, model, split.kept, lighting, views, out / "dereflected",
             [&](std::size_t i, std::size_t n) { s.tell(i, n, "dereflecting " + ds.train[i].name); }, cancelled);
         report.dereflected_pixels = d.pixels;
       }
@@ -359,7 +360,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   }
 
   // 5. 2D inpainting (cached for resuming).
-  SplitScene split = split_removed(model, selected);
   std::vector<MapSet> inpainted(choice.views.size());
   {
     StepScope s(report, RemovalStep::Inpaint2D, on_progress);
