@@ -378,7 +378,7 @@ void AppState::start_removal(int iterations) {
   if (settings_.removal_ablate_twins) o.ablate.insert("twins");
   if (settings_.removal_ablate_shadows) o.ablate.insert("shadows");
   o.lighting_relative_fresnel = !settings_.removal_absolute_fresnel;
-  o.lighting_targets = settings_.removal_exclude_reflections ? "exclude" : "dereflect";
+  o.dereflect_lighting = !settings_.removal_exclude_reflections;
   o.device = settings_.train_device;
   removal_.start(run, o);
   message("removing in " + (run / "removal").string() +

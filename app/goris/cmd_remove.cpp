@@ -23,7 +23,7 @@ using namespace goris;
 
 struct Options {
   std::string run, inpainter = "telea", inpainted, device = "auto", lighting_fresnel = "relative",
-              lighting_targets = RemovalOptions{}.lighting_targets;
+              lighting_targets = "dereflect";
   std::vector<std::string> ablate;
   int iters = 0;
 };
@@ -38,7 +38,7 @@ void run_remove(const Options& o) {
   }
   ro.finetune_iterations = o.iters;
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
-  ro.lighting_targets = o.lighting_targets;
+  ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = o.device;
   const bool tty = isatty(STDERR_FILENO);
   int last_step = -1;

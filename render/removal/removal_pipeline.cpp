@@ -166,7 +166,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["label_threshold"] = o.label_threshold;
   j["lighting_tau"] = o.lighting_tau;
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
-  j["lighting_targets"] = o.lighting_targets;
+  j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
   return j;
 }
 
@@ -184,9 +184,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       throw Error(step_error(RemovalStep::Selection,
                              "unknown ablation '" + a + "' (expected material, lamask, twins or shadows)"));
   }
-  if (o.lighting_targets != "dereflect" && o.lighting_targets != "exclude")
-    throw Error(step_error(RemovalStep::Selection, "unknown lighting-aware target rule '" + o.lighting_targets +
-                                                       "' (expected dereflect or exclude)"));
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config(run_dir);
   const Device device = resolve_device(o.device);
@@ -297,7 +294,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         save_mask_png(out / "lighting_masks" / (ds.train[i].name + ".png"), lighting[i]);
         save_png(out / "lighting_energy" / (ds.train[i].name + ".png"), energy_image(e, cameras[i]));
       }
-      if (o.lighting_targets == "dereflect" && !cancelled()) {  // dereflect.h: why the mask keeps a target
+      if (o.dereflect_lighting && !cancelled()) {  // dereflect.h: why the mask keeps a target
         const DereflectResult d = dereflect_views(
             *ir, model, split.kept, lighting, views, out / "dereflected",
             [&](std::size_t i, std::size_t n) { s.tell(i, n, "dereflecting " + ds.train[i].name); }, cancelled);
@@ -452,7 +449,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       // reflections only under the paper's rule (by default their photos were dereflected in step 2).
       Mask ex = dilate_mask(holes[i].covered, std::max(1, int(std::lround(w / 128.0))));
       if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
-      if (lighting[i].width == w && o.lighting_targets == "exclude") ex = mask_or(ex, lighting[i]);
+      if (lighting[i].width == w && !o.dereflect_lighting) ex = mask_or(ex, lighting[i]);
       exclude[i] = std::move(ex);
       inputs[i].exclude = &exclude[i];
       inputs[i].removed_depth = &holes[i].removed_depth;

@@ -50,10 +50,9 @@ struct RemovalOptions {
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the
   // paper's absolute F.
   bool lighting_relative_fresnel = true;
-  // What the fine-tune does inside the lighting-aware mask (render/removal/dereflect.h): "dereflect" trains
-  // on the photo minus stage 1's own estimate of the target's reflection; "exclude" leaves the pixels out
-  // (the paper).
-  std::string lighting_targets = "dereflect";
+  // The fine-tune inside the lighting-aware mask (render/removal/dereflect.h): true trains on the photo
+  // minus stage 1's own estimate of the target's reflection; false leaves the pixels out (the paper).
+  bool dereflect_lighting = true;
   std::string device = "auto";
 };
 
