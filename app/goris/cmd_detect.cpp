@@ -3,6 +3,7 @@
 // (render/train/glossy_detection.h) on the run's latest (or a given) checkpoint, with the run's detection
 // settings or others given with --set. Prints the evidence, the planes and the decision, and the agreement
 // with the data set's own glossy masks when it has them; --out writes the masks (gloss_<view>.png).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -66,8 +67,15 @@ void run_detect(const Options& o) {
       Image m(views[i].camera.width, views[i].camera.height, 1);
       for (size_t p = 0; p < det.masks[i].size(); ++p) m.pixels[p] = float(det.masks[i][p]);
       save_png(fs::path(o.out) / ("gloss_" + views[i].name + ".png"), m);
+      // The score at the working size: black = explained or not scored, white = 4x the threshold.
+      const int sw = det.score_widths[i];
+      Image sc(sw, int(det.scores[i].size()) / sw, 1);
+      for (size_t p = 0; p < sc.pixels.size(); ++p)
+        sc.pixels[p] = std::clamp(det.scores[i][p] / (4.0f * std::max(s.threshold, 1e-6f)), 0.0f, 1.0f);
+      save_png(fs::path(o.out) / ("score_" + views[i].name + ".png"), sc);
     }
-    std::printf("wrote %zu masks to %s\n", views.size(), o.out.c_str());
+    std::printf("wrote %zu masks and scores (score_<view>.png, white = 4x the threshold) to %s\n", views.size(),
+                o.out.c_str());
   }
 }
 

@@ -96,6 +96,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_detect_threshold", c.intrinsic.detect_threshold);
   f("intrinsic_detect_depth_tolerance", c.intrinsic.detect_depth_tolerance);
   f("intrinsic_detect_search_radius", c.intrinsic.detect_search_radius);
+  f("intrinsic_detect_depth_window", c.intrinsic.detect_depth_window);
   f("intrinsic_detect_morph_radius", c.intrinsic.detect_morph_radius);
   f("intrinsic_detect_fraction", c.intrinsic.detect_fraction);
   f("intrinsic_detect_width", c.intrinsic.detect_width);
@@ -171,6 +172,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(in.detect_depth_tolerance > 0) || !std::isfinite(in.detect_depth_tolerance))
     fail("intrinsic_detect_depth_tolerance must be finite and positive");
   if (in.detect_search_radius < 0 || in.detect_search_radius > 8) fail("intrinsic_detect_search_radius must lie in 0..8");
+  if (in.detect_depth_window < 0 || in.detect_depth_window > 8) fail("intrinsic_detect_depth_window must lie in 0..8");
   if (in.detect_morph_radius < 0 || in.detect_morph_radius > 8) fail("intrinsic_detect_morph_radius must lie in 0..8");
   if (in.detect_width < 0) fail("intrinsic_detect_width must be >= 0 (0 = the training size)");
   if (in.detect_after < 0) fail("intrinsic_detect_after must be >= 0");

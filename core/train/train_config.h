@@ -77,8 +77,9 @@ struct IntrinsicSettings {
   float detect_threshold = 0.03f;
   float detect_depth_tolerance = 0.03f;  // relative depth difference of "the same surface point"
   int detect_search_radius = 1;          // pixels: colour range of this window (geometry errors)
+  int detect_depth_window = 2;           // pixels: search the depths the model shows this near (0 = off)
   int detect_morph_radius = 1;           // opening/closing of the detections (thin geometric-error lines)
-  float detect_fraction = 0.002f;
+  float detect_fraction = 0.0008f;
   int detect_width = 128;                // detection at this image width at most (0 = training size)
   int detect_after = 4000;               // iterations (not scaled) before detecting, at most half the run
   float detect_plane_tolerance = 0.05f;  // masks grown over the detections' plane(s), x camera distance (0 = off)

@@ -23,6 +23,7 @@ GlossyDetectionSettings GlossyDetectionSettings::from_config(const TrainConfig& 
   s.threshold = in.detect_threshold;
   s.depth_tolerance = in.detect_depth_tolerance;
   s.search_radius = in.detect_search_radius;
+  s.depth_window = in.detect_depth_window;
   s.morph_radius = in.detect_morph_radius;
   s.min_fraction = in.detect_fraction;
   s.work_width = in.detect_width;
@@ -77,6 +78,38 @@ ColourRange colour_range(const ConsistencyView& v, int r) {
   return out;
 }
 
+// How far the colour x (RGB) lies outside what view j shows around (u, v): mean over RGB of the distance
+// to the window's colour range, 0 = explained.
+float outside_range(const float x[3], const ColourRange& rj, const Camera& cj, glm::vec2 uv) {
+  const size_t hwj = size_t(cj.width) * size_t(cj.height);
+  float d = 0;
+  for (int c = 0; c < 3; ++c) {
+    const float lo = bilinear(rj.lo.data() + c * hwj, cj.width, cj.height, uv.x, uv.y);
+    const float hi = bilinear(rj.hi.data() + c * hwj, cj.width, cj.height, uv.x, uv.y);
+    d += std::max({0.0f, x[c] - hi, lo - x[c]});
+  }
+  return d / 3.0f;
+}
+
+bool inside(const Camera& c, glm::vec2 uv) {
+  return uv.x >= 0 && uv.y >= 0 && uv.x < float(c.width) && uv.y < float(c.height);
+}
+
+// The nearest and farthest covered depth of view i within `g` pixels of p (g = 0: p's own).
+glm::vec2 depth_range(const ConsistencyView& v, size_t p, int g) {
+  const int w = v.camera.width, h = v.camera.height;
+  const int x = int(p % size_t(w)), y = int(p / size_t(w));
+  glm::vec2 r(v.depth[p], v.depth[p]);
+  for (int yy = std::max(0, y - g); yy <= std::min(h - 1, y + g); ++yy)
+    for (int xx = std::max(0, x - g); xx <= std::min(w - 1, x + g); ++xx) {
+      const size_t q = size_t(yy) * size_t(w) + size_t(xx);
+      const float z = v.depth[q];
+      if (!(v.alpha[q] > 0.5f) || !(z > 0) || !std::isfinite(z)) continue;
+      r.x = std::min(r.x, z), r.y = std::max(r.y, z);
+    }
+  return r;
+}
+
 // Per-pixel scores of view i against its neighbours (-1 = fewer than min_visible of them see the point).
 std::vector<float> score_view(const std::vector<ConsistencyView>& views, const std::vector<ColourRange>& ranges, int i,
                               const std::vector<int>& nbrs, const GlossyDetectionSettings& s) {
@@ -91,7 +124,11 @@ std::vector<float> score_view(const std::vector<ConsistencyView>& views, const s
     const float z = vi.depth[p];
     if (!(z > 0) || !std::isfinite(z)) return;
     const float u = float(p % size_t(w)) + 0.5f, v = float(p / size_t(w)) + 0.5f;
-    const glm::vec3 x_world = rt * (glm::vec3((u - ci.cx) / ci.fx * z, (v - ci.cy) / ci.fy * z, z) - ci.t);
+    const glm::vec3 ray((u - ci.cx) / ci.fx, (v - ci.cy) / ci.fy, 1.0f);  // camera space, z = 1
+    const glm::vec3 x_world = rt * (ray * z - ci.t);
+    const float colour[3] = {vi.image[p], vi.image[hw + p], vi.image[2 * hw + p]};
+    glm::vec2 zr(z, z);
+    if (s.depth_window > 0) zr = depth_range(vi, p, s.depth_window) * glm::vec2(1 - s.depth_tolerance, 1 + s.depth_tolerance);
     std::array<float, 16> diffs{};
     int n = 0;
     for (const int j : nbrs) {
@@ -100,21 +137,28 @@ std::vector<float> score_view(const std::vector<ConsistencyView>& views, const s
       const glm::vec3 xc = cj.to_camera(x_world);
       if (!(xc.z > 0)) continue;
       const glm::vec2 uv = cj.project_camera(xc);
-      if (!(uv.x >= 0 && uv.y >= 0 && uv.x < float(cj.width) && uv.y < float(cj.height))) continue;
+      if (!inside(cj, uv)) continue;
       // The nearest pixel of view j must see this surface point: covered, at the same depth.
       const size_t q = size_t(int(uv.y)) * size_t(cj.width) + size_t(int(uv.x));
       if (!(vj.alpha[q] > 0.5f) || !(std::abs(vj.depth[q] - xc.z) <= s.depth_tolerance * xc.z)) continue;
-      // How far the colour lies outside what view j shows around the projection.
-      const size_t hwj = size_t(cj.width) * size_t(cj.height);
-      const ColourRange& rj = ranges[size_t(j)];
-      float d = 0;
-      for (int c = 0; c < 3; ++c) {
-        const float x = vi.image[c * hw + p];
-        const float lo = bilinear(rj.lo.data() + c * hwj, cj.width, cj.height, uv.x, uv.y);
-        const float hi = bilinear(rj.hi.data() + c * hwj, cj.width, cj.height, uv.x, uv.y);
-        d += std::max({0.0f, x - hi, lo - x});
+      float d = outside_range(colour, ranges[size_t(j)], cj, uv);
+      if (d > 0 && s.depth_window > 0) {
+        // Any depth the model is unsure between may be the true one: the best match along its epipolar
+        // segment in view j, sampled every half pixel (at most 64 samples).
+        const glm::vec3 a = cj.to_camera(rt * (ray * zr.x - ci.t)), b = cj.to_camera(rt * (ray * zr.y - ci.t));
+        if (a.z > 0 && b.z > 0) {
+          const float len = glm::length(cj.project_camera(b) - cj.project_camera(a));
+          const int steps = std::clamp(int(std::ceil(2.0f * len)), 1, 64);
+          for (int k = 0; k <= steps && d > 0; ++k) {
+            const float zk = zr.x + (zr.y - zr.x) * float(k) / float(steps);
+            const glm::vec3 xk = cj.to_camera(rt * (ray * zk - ci.t));
+            if (!(xk.z > 0)) continue;
+            const glm::vec2 uk = cj.project_camera(xk);
+            if (inside(cj, uk)) d = std::min(d, outside_range(colour, ranges[size_t(j)], cj, uk));
+          }
+        }
       }
-      if (n < int(diffs.size())) diffs[size_t(n++)] = d / 3.0f;
+      if (n < int(diffs.size())) diffs[size_t(n++)] = d;
     }
     if (n < std::max(s.min_visible, 1)) return;
     std::sort(diffs.begin(), diffs.begin() + n);
@@ -234,6 +278,7 @@ GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views,
     cameras.push_back(v.camera);
   }
   if (s.search_radius < 0) throw Error("glossy detection: the search radius must be >= 0");
+  if (s.depth_window < 0) throw Error("glossy detection: the depth window must be >= 0");
   std::vector<ColourRange> ranges;
   for (const ConsistencyView& v : views) ranges.push_back(colour_range(v, s.search_radius));
   GlossyDetection out;
@@ -251,6 +296,7 @@ GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views,
     out.detected += std::size_t(std::accumulate(mask.begin(), mask.end(), std::size_t(0)));
     out.masks.push_back(std::move(mask));
     out.scores.push_back(std::move(score));
+    out.score_widths.push_back(w);
   }
   out.fraction = out.covered > 0 ? double(out.detected) / double(out.covered) : 0.0;
   out.glossy = out.detected > 0 && out.fraction >= s.min_fraction;

@@ -13,7 +13,9 @@
 // covered, and their rendered depth there agrees with the point's depth: occluded -> skipped), and ask how
 // far photo_i(p) lies outside the colour range photo_j shows in a (2r+1)^2 window around the projection
 // (per channel, bilinear; r = 1 absorbs the warmed-up geometry's pixel-sized misregistration at edges and
-// textures, which is what makes a blurry early model look view-dependent). The per-pixel score is the
+// textures, which is what makes a blurry early model look view-dependent), taking the best match along the
+// epipolar segment of the depths the model shows near p (depth_window: a wide range where the geometry is
+// unsure, a narrow one on a flat surface, whose reflections lie far behind it). The per-pixel score is the
 // lower median of that distance over the visible views (mean over RGB; with K = 2 both views must
 // disagree). Pixels above a threshold are cleaned by a morphological opening (specks) then a closing, and
 // the scene counts as glossy when they cover at least a given fraction of the covered (alpha > 0.5) pixels.
@@ -47,9 +49,14 @@ struct GlossyDetectionSettings {
   float threshold = 0.03f;        // per-pixel score above which a pixel is glossy (colour in [0, 1])
   float depth_tolerance = 0.03f;  // |z_j - depth_j| / z_j below which view j sees the same surface point
   int search_radius = 1;          // pixels: view j's colour range in a (2r+1)^2 window is a match
+  // Depth search (0 = off): the colour must also lie outside what view j shows along the epipolar segment
+  // of every depth the model puts within this many pixels of p (x (1 +- depth_tolerance)). Where the
+  // warmed-up geometry is unsure (silhouettes, blur) that range is wide and absorbs the misregistration;
+  // on a flat glossy surface it is narrow, while its reflections sit at a virtual depth far behind it.
+  int depth_window = 2;
   int min_visible = 2;            // views that must see a pixel's point for it to be scored
   int morph_radius = 1;           // opening / closing radius in pixels (0 = no cleaning)
-  float min_fraction = 0.002f;    // scene glossy when the masks cover at least this fraction of covered pixels
+  float min_fraction = 0.0008f;   // scene glossy when the masks cover at least this fraction of covered pixels
   int work_width = 128;           // detection runs at this width at most (photos and cameras scaled down)
   // Growing the masks over the planes most detections lie on (a glossy table top, a mirror), RANSAC:
   bool grow_planes = true;
@@ -73,6 +80,7 @@ struct ConsistencyView {
 struct GlossyDetection {
   std::vector<std::vector<std::uint8_t>> masks;  // per view [H][W]: 1 = glossy (cleaned, grown)
   std::vector<std::vector<float>> scores;        // per view [H][W]: the score, -1 = not scored
+  std::vector<int> score_widths;                 // per view: W of `scores` (the working size)
   std::size_t covered = 0;   // pixels with alpha > 0.5, all views
   std::size_t scored = 0;    // covered pixels seen by at least min_visible other views
   std::size_t detected = 0;  // pixels in the cleaned masks (before growing): the evidence

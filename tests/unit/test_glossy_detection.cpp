@@ -1,6 +1,7 @@
 // --mode auto: the photo-consistency criterion on ray-cast synthetic views (a Lambertian plane, the same
 // plane with a view-dependent colour, an occluder handled by the depth test), the glossy-mask fraction
 // rule, and the switch of a running trainer on the embedded default scene (masks hidden) with resume.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -129,7 +130,8 @@ TEST(GlossyDetection, LambertianPlaneIsConsistent) {
 
 TEST(GlossyDetection, ViewDependentPlaneIsDetected) {
   const GlossyDetection d = detect(ring_views({/*view_dependent=*/true, false}));
-  EXPECT_GT(d.fraction, 0.5);
+  // Not all of it: where the stripes repeat along a pixel's epipolar depth search the colour matches.
+  EXPECT_GT(d.fraction, 0.3);
   EXPECT_TRUE(d.glossy);
   ASSERT_EQ(d.masks.size(), 8u);
   ASSERT_EQ(d.masks[0].size(), 48u * 48u);
@@ -146,6 +148,41 @@ TEST(GlossyDetection, OccludedPointsAreSkippedByTheDepthTest) {
   const GlossyDetection bad = detect(views, no_test);
   EXPECT_GT(bad.detected, 50u);
   EXPECT_GT(bad.detected, d.detected);
+}
+
+// A checkerboard plane whose model depth is 7 % too far everywhere (an unsettled warm-up): every pixel
+// reprojects a few pixels off, so the checker's edges disagree between views although nothing is glossy.
+std::vector<SyntheticView> misregistered_checker_views() {
+  std::vector<SyntheticView> views = ring_views({});
+  for (SyntheticView& v : views) {
+    const Camera& c = v.camera;
+    const size_t hw = size_t(c.width) * c.height;
+    for (size_t p = 0; p < hw; ++p) {
+      if (!(v.alpha[p] > 0.5f)) continue;
+      const glm::vec3 d = c.ray_direction(float(p % c.width) + 0.5f, float(p / c.width) + 0.5f);
+      const glm::vec3 x = c.center() + (v.depth[p] / glm::dot(d, c.forward())) * d;
+      const float k = ((int(std::floor(x.x / 0.6f)) + int(std::floor(x.y / 0.6f))) & 1) ? 0.8f : 0.2f;
+      for (int ch = 0; ch < 3; ++ch) v.image[ch * hw + p] = k;
+      v.depth[p] *= 1.07f;
+    }
+  }
+  return views;
+}
+
+TEST(GlossyDetection, TheDepthWindowAbsorbsMisregisteredGeometry) {
+  GlossyDetectionSettings off;
+  off.depth_tolerance = 0.1f;  // the views still see "the same point"
+  off.depth_window = 0;
+  off.morph_radius = 0;  // the disagreement is a thin line along each edge
+  GlossyDetectionSettings on = off;
+  on.depth_window = 1;
+  const std::vector<SyntheticView> views = misregistered_checker_views();
+  const GlossyDetection blurred = detect(views, off), searched = detect(views, on);
+  EXPECT_GT(blurred.fraction, 0.005) << "the misregistered checker should look view-dependent without the search";
+  EXPECT_LT(searched.detected * 10, blurred.detected) << searched.detected << " vs " << blurred.detected;
+  // A reflection sits far behind the plane: the search around its depth leaves it detected.
+  const GlossyDetection glossy = detect(ring_views({true, false}), on);
+  EXPECT_GT(glossy.fraction, 0.3);
 }
 
 TEST(GlossyDetection, MasksGrowOverThePlaneOfTheDetections) {
