@@ -80,6 +80,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
+  f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);
   f("intrinsic_coarse_tracing", c.intrinsic.coarse_tracing);
   f("intrinsic_coarse_max_level", c.intrinsic.coarse_max_level);
   f("intrinsic_normal_prior", c.intrinsic.normal_prior);
@@ -172,6 +173,8 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(in.detect_depth_tolerance > 0) || !std::isfinite(in.detect_depth_tolerance))
     fail("intrinsic_detect_depth_tolerance must be finite and positive");
   if (in.detect_search_radius < 0 || in.detect_search_radius > 8) fail("intrinsic_detect_search_radius must lie in 0..8");
+  if (!(in.prune_mirror_world >= 0) || !std::isfinite(in.prune_mirror_world))
+    fail("intrinsic_prune_mirror_world must be finite and >= 0 (0 = off)");
   if (in.detect_depth_window < 0 || in.detect_depth_window > 8) fail("intrinsic_detect_depth_window must lie in 0..8");
   if (in.detect_morph_radius < 0 || in.detect_morph_radius > 8) fail("intrinsic_detect_morph_radius must lie in 0..8");
   if (in.detect_width < 0) fail("intrinsic_detect_width must be >= 0 (0 = the training size)");

@@ -47,6 +47,9 @@ struct IntrinsicSettings {
   int net_hidden_layers = 6;       // 3x3 layers of the roughness net
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
+  // > 0: at the last warm-up iteration remove the Gaussians seen only behind glossy surfaces (the warm-up's
+  // mirror world, core/train/mirror_world.h); the value is the depth tolerance (x the rendered depth).
+  float prune_mirror_world = 0.0f;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;

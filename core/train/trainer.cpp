@@ -1,4 +1,5 @@
 #include "core/train/emit_weights.h"
+#include "core/train/mirror_world.h"
 #include "core/train/trainer.h"
 
 #include <algorithm>
@@ -337,12 +338,37 @@ StepStats Trainer::step() {
     compute_filter3d(m, cameras());
   }
 
+  if (intrinsic() && it == config_.shading_from() && config_.intrinsic.prune_mirror_world > 0) {
+    const size_t before = m.count(), removed = prune_mirror_world(m);
+    out.densify_note += (out.densify_note.empty() ? "" : "; ") + std::string("mirror world: pruned ") +
+                        std::to_string(removed) + " of " + std::to_string(before) + " Gaussians before shading starts";
+  }
+
   // Smoothed over about the last 20 iterations (views differ a lot in difficulty).
   state_.ema_loss = state_.iteration == 0 ? out.loss : 0.05 * out.loss + 0.95 * state_.ema_loss;
   const double psnr = std::min(out.psnr, 99.0);
   state_.ema_psnr = state_.iteration == 0 ? psnr : 0.05 * psnr + 0.95 * state_.ema_psnr;
   state_.iteration = it;
   return out;
+}
+
+size_t Trainer::prune_mirror_world(GaussianModel& m) {
+  const GaussianView view = m.view(renderer_->wants_extras());
+  const std::vector<std::uint8_t> mirror = find_mirror_world(
+      m, views_,
+      [&](const Camera& c, std::vector<float>& depth, std::vector<float>& alpha) {
+        const RenderedImages r = renderer_->forward(view, c);
+        const size_t n = size_t(c.width) * size_t(c.height);
+        const HostView d(r.median_depth, n, device_), a(r.alpha, n, device_);
+        depth.assign(d.data(), d.data() + n), alpha.assign(a.data(), a.data() + n);
+      },
+      config_.intrinsic.prune_mirror_world);
+  std::vector<std::uint8_t> keep(mirror.size());
+  for (size_t i = 0; i < keep.size(); ++i) keep[i] = !mirror[i];
+  const size_t removed = prune_gaussians(m, keep);
+  state_.stats.reset(m.count(), device_);
+  if (config_.filter_3d) compute_filter3d(m, cameras());
+  return removed;
 }
 
 std::string Trainer::non_finite_gradient() const {

@@ -81,7 +81,8 @@ struct StepStats {
   DensifyCounts densify;  // after == 0 when this step did not densify
   int view = -1;          // the training view of this step
   // The adaptive Gaussian budget measured its held-out views in this step; densify_note says what it
-  // decided when it stopped densification or the window closed (core/train/densify_stop.h).
+  // decided when it stopped densification or the window closed (core/train/densify_stop.h), or how many
+  // Gaussians the mirror-world pruning removed.
   bool held_out_check = false;
   std::string densify_note;
   // A step skipped for non-finite values (nan_policy recover): what was found, where; nothing was updated.
@@ -156,6 +157,8 @@ class Trainer {
   // The first parameter group whose gradient / value holds a NaN or Inf, as "group 'x' (Gaussian i)"; empty
   // when all are finite.
   std::string non_finite_gradient() const;
+  // Removes the warm-up's mirror world (core/train/mirror_world.h); returns how many Gaussians went.
+  size_t prune_mirror_world(GaussianModel& m);
   std::string non_finite_parameter() const;
   // Handles a non-finite loss or gradient at iteration `it` (see TrainConfig::nan_policy): throws, or marks
   // `out` skipped, lowers the learning rates and completes the iteration without an update.

@@ -557,3 +557,45 @@ TEST(IntrinsicRenderer, RelativeFresnelKeepsTheLightingMaskWhenF0AndLightTradeOf
   EXPECT_GE(count_set(rel_bright), count_set(abs_bright));
   expect_error([&] { r.reflected_label(m.view(true), cam, 0.0f); }, "Fresnel reference");
 }
+
+TEST(IntrinsicRenderer, MirrorWorldIsPrunedWhenShadingStarts) {
+  // The start model plus a mirror image of the blob below the glossy floor (what a radiance warm-up grows):
+  // with intrinsic_prune_mirror_world the copy goes at the last warm-up iteration, the floor and blob stay.
+  TrainConfig cfg = intrinsic_config(6);
+  cfg.intrinsic.warmup = 4;  // half the run (3 iterations) is shorter: shading starts after iteration 3
+  cfg.intrinsic.prune_mirror_world = 0.05f;
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  ASSERT_EQ(cfg.shading_from(), 3);
+  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  const GaussianModel base = perturbed_start();
+  const size_t n0 = base.count(), blob = 12;
+  GaussianModel start(Device::CPU);
+  start.allocate(n0 + blob);
+  for (Param p : {Param::Position, Param::LogScale, Param::Rotation, Param::OpacityLogit, Param::Sh, Param::ExtraLogit}) {
+    const size_t w = size_t(param_width(p));
+    std::copy(base.values(p), base.values(p) + w * n0, start.values(p));
+    std::copy(base.values(p) + w * (n0 - blob), base.values(p) + w * n0, start.values(p) + w * n0);  // the blob again
+  }
+  for (size_t i = n0; i < n0 + blob; ++i) start.values(Param::Position)[3 * i + 2] *= -1.0f;  // below the floor
+  start.sh_degree = start.max_sh_degree = 0;
+  auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
+  Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, std::move(start)));
+  StepStats s;
+  for (int it = 1; it <= 3; ++it) {
+    EXPECT_EQ(t.model().count(), n0 + blob) << "nothing is pruned before the warm-up's last iteration";
+    s = t.step();
+  }
+  const size_t removed = n0 + blob - t.model().count();
+  EXPECT_GE(removed, blob - 2) << s.densify_note;
+  EXPECT_LE(removed, blob);
+  EXPECT_NE(s.densify_note.find("mirror world: pruned " + std::to_string(removed) + " of "), std::string::npos)
+      << s.densify_note;
+  const float* pos = t.model().values(Param::Position);
+  size_t above = 0;
+  for (size_t i = 0; i < t.model().count(); ++i) above += pos[3 * i + 2] > -0.1f;
+  EXPECT_EQ(above, n0) << "the floor and the blob are kept";
+  while (!t.finished()) s = t.step();
+  EXPECT_TRUE(std::isfinite(s.loss));
+}

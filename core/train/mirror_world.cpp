@@ -1,0 +1,41 @@
+#include "core/train/mirror_world.h"
+
+#include <cmath>
+
+#include "core/compute/parallel_for.h"
+#include "core/util/error.h"
+
+namespace goris {
+
+std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const std::vector<TrainView>& views,
+                                            const DepthAlphaRender& render, float tolerance, int min_views) {
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) throw Error("mirror world: the tolerance must be finite and >= 0");
+  const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
+  const std::size_t n = model.count();
+  std::vector<std::uint32_t> behind(n, 0), seen(n, 0);
+  std::vector<float> depth, alpha;
+  for (const TrainView& v : views) {
+    const Camera& c = v.camera;
+    const std::size_t hw = std::size_t(c.width) * std::size_t(c.height);
+    if (v.glossy_mask.size() != hw) continue;
+    render(c, depth, alpha);
+    if (depth.size() != hw || alpha.size() != hw) throw Error(v.name, "mirror world: the render does not match the view");
+    parallel_for(Device::CPU, n, [&](std::size_t i) {
+      const glm::vec3 p = c.to_camera(glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+      if (!(p.z > 1e-6f)) return;
+      const glm::vec2 uv = c.project_camera(p);
+      const int x = int(std::floor(uv.x)), y = int(std::floor(uv.y));
+      if (x < 0 || y < 0 || x >= c.width || y >= c.height) return;
+      const std::size_t q = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
+      if (!(alpha[q] > 0.5f) || p.z <= depth[q] * (1.0f + tolerance))
+        ++seen[i];
+      else if (v.glossy_mask[q] > 0.5f)
+        ++behind[i];
+    }, 1024);
+  }
+  std::vector<std::uint8_t> mirror(n, 0);
+  for (std::size_t i = 0; i < n; ++i) mirror[i] = seen[i] == 0 && behind[i] >= std::uint32_t(std::max(min_views, 1));
+  return mirror;
+}
+
+}  // namespace goris
