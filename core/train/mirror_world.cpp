@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "core/compute/host_device_image.h"
 #include "core/compute/parallel_for.h"
+#include "core/train/densify.h"
 #include "core/util/error.h"
 
 namespace goris {
@@ -36,6 +38,24 @@ std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const st
   std::vector<std::uint8_t> mirror(n, 0);
   for (std::size_t i = 0; i < n; ++i) mirror[i] = seen[i] == 0 && behind[i] >= std::uint32_t(std::max(min_views, 1));
   return mirror;
+}
+
+size_t prune_mirror_world(GaussianModel& model, const std::vector<TrainView>& views, DifferentiableRenderer& renderer,
+                          float tolerance) {
+  const GaussianView view = model.view(renderer.wants_extras());
+  const Device d = renderer.device();
+  const std::vector<std::uint8_t> mirror = find_mirror_world(
+      model, views,
+      [&](const Camera& c, std::vector<float>& depth, std::vector<float>& alpha) {
+        const RenderedImages r = renderer.forward(view, c);
+        const size_t n = size_t(c.width) * size_t(c.height);
+        const HostView z(r.median_depth, n, d), a(r.alpha, n, d);
+        depth.assign(z.data(), z.data() + n), alpha.assign(a.data(), a.data() + n);
+      },
+      tolerance);
+  std::vector<std::uint8_t> keep(mirror.size());
+  for (size_t i = 0; i < keep.size(); ++i) keep[i] = !mirror[i];
+  return prune_gaussians(model, keep);
 }
 
 }  // namespace goris

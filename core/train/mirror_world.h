@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/scene/gaussians.h"
+#include "core/train/differentiable_renderer.h"
 #include "core/train/trainer.h"
 
 namespace goris {
@@ -23,5 +24,10 @@ using DepthAlphaRender = std::function<void(const Camera& camera, std::vector<fl
 // Per Gaussian: 1 = mirror world.
 std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const std::vector<TrainView>& views,
                                             const DepthAlphaRender& render, float tolerance, int min_views = 2);
+
+// Finds the mirror world with `renderer`'s median depth and alpha and removes it (with its optimiser
+// state); returns how many Gaussians went. The caller resets what is sized by the count.
+size_t prune_mirror_world(GaussianModel& model, const std::vector<TrainView>& views, DifferentiableRenderer& renderer,
+                          float tolerance);
 
 }  // namespace goris

@@ -1,3 +1,4 @@
+#include "core/compute/host_device_image.h"
 #include "core/train/emit_weights.h"
 #include "core/train/mirror_world.h"
 #include "core/train/trainer.h"
@@ -27,43 +28,6 @@
 namespace goris {
 
 namespace {
-
-// A device image readable on the host: the image itself on the CPU, a downloaded copy otherwise.
-class HostView {
- public:
-  HostView(const float* p, size_t n, Device d) {
-    if (d == Device::CPU) {
-      ptr_ = p;
-    } else {
-      copy_.resize(n);
-      device_copy(copy_.data(), Device::CPU, p, d, n * sizeof(float));
-      ptr_ = copy_.data();
-    }
-  }
-  const float* data() const { return ptr_; }
-
- private:
-  std::vector<float> copy_;
-  const float* ptr_ = nullptr;
-};
-
-// A host gradient image as the rasterizer's backward pass reads it (uploaded for a CUDA forward pass).
-class DeviceGrad {
- public:
-  DeviceGrad(const std::vector<float>& host, Device d) {
-    if (d == Device::CPU) {
-      ptr_ = host.data();
-    } else {
-      buf_ = Buffer<float>(host, d);
-      ptr_ = buf_.data();
-    }
-  }
-  const float* data() const { return ptr_; }
-
- private:
-  Buffer<float> buf_;
-  const float* ptr_ = nullptr;
-};
 
 constexpr ParamGroup kRadianceGroups[] = {ParamGroup::Position, ParamGroup::Scale,   ParamGroup::Rotation,
                                           ParamGroup::Opacity,  ParamGroup::ShDc,    ParamGroup::ShRest};
@@ -339,7 +303,10 @@ StepStats Trainer::step() {
   }
 
   if (intrinsic() && it == config_.shading_from() && config_.intrinsic.prune_mirror_world > 0) {
-    const size_t before = m.count(), removed = prune_mirror_world(m);
+    const size_t before = m.count();
+    const size_t removed = prune_mirror_world(m, views_, *renderer_, config_.intrinsic.prune_mirror_world);
+    state_.stats.reset(m.count(), device_);
+    if (config_.filter_3d) compute_filter3d(m, cameras());
     out.densify_note += (out.densify_note.empty() ? "" : "; ") + std::string("mirror world: pruned ") +
                         std::to_string(removed) + " of " + std::to_string(before) + " Gaussians before shading starts";
   }
@@ -350,25 +317,6 @@ StepStats Trainer::step() {
   state_.ema_psnr = state_.iteration == 0 ? psnr : 0.05 * psnr + 0.95 * state_.ema_psnr;
   state_.iteration = it;
   return out;
-}
-
-size_t Trainer::prune_mirror_world(GaussianModel& m) {
-  const GaussianView view = m.view(renderer_->wants_extras());
-  const std::vector<std::uint8_t> mirror = find_mirror_world(
-      m, views_,
-      [&](const Camera& c, std::vector<float>& depth, std::vector<float>& alpha) {
-        const RenderedImages r = renderer_->forward(view, c);
-        const size_t n = size_t(c.width) * size_t(c.height);
-        const HostView d(r.median_depth, n, device_), a(r.alpha, n, device_);
-        depth.assign(d.data(), d.data() + n), alpha.assign(a.data(), a.data() + n);
-      },
-      config_.intrinsic.prune_mirror_world);
-  std::vector<std::uint8_t> keep(mirror.size());
-  for (size_t i = 0; i < keep.size(); ++i) keep[i] = !mirror[i];
-  const size_t removed = prune_gaussians(m, keep);
-  state_.stats.reset(m.count(), device_);
-  if (config_.filter_3d) compute_filter3d(m, cameras());
-  return removed;
 }
 
 std::string Trainer::non_finite_gradient() const {

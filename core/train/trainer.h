@@ -157,8 +157,6 @@ class Trainer {
   // The first parameter group whose gradient / value holds a NaN or Inf, as "group 'x' (Gaussian i)"; empty
   // when all are finite.
   std::string non_finite_gradient() const;
-  // Removes the warm-up's mirror world (core/train/mirror_world.h); returns how many Gaussians went.
-  size_t prune_mirror_world(GaussianModel& m);
   std::string non_finite_parameter() const;
   // Handles a non-finite loss or gradient at iteration `it` (see TrainConfig::nan_policy): throws, or marks
   // `out` skipped, lowers the learning rates and completes the iteration without an update.
