@@ -34,6 +34,14 @@ struct Camera {
   GORIS_HD glm::vec2 project_camera(const glm::vec3& p) const {
     return glm::vec2(fx * p.x / p.z + cx, fy * p.y / p.z + cy);
   }
+  // Index (y * width + x) of the pixel a camera-space point projects into; -1 when it lies behind the
+  // camera or outside the image.
+  GORIS_HD long long pixel_of(const glm::vec3& p) const {
+    if (!(p.z > 1e-6f)) return -1;
+    const glm::vec2 uv = project_camera(p);
+    if (!(uv.x >= 0.0f && uv.y >= 0.0f && uv.x < float(width) && uv.y < float(height))) return -1;
+    return (long long)(uv.y) * width + (long long)(uv.x);
+  }
   // World-space unit direction of the ray through continuous pixel coordinates (u, v), pinhole model.
   GORIS_HD glm::vec3 ray_direction(float u, float v) const {
     glm::vec3 d_cam((u - cx) / fx, (v - cy) / fy, 1.0f);

@@ -1,6 +1,5 @@
 #include "core/train/emit_weights.h"
 
-#include <cmath>
 
 namespace goris {
 
@@ -12,12 +11,9 @@ std::vector<float> glossy_mask_emit_weights(const GaussianModel& model, const st
     const Camera& c = v.camera;
     if (v.glossy_mask.size() != std::size_t(c.width) * std::size_t(c.height)) continue;
     for (std::size_t i = 0; i < n; ++i) {
-      const glm::vec3 p = c.to_camera(glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
-      if (p.z <= 1e-6f) continue;
-      const glm::vec2 uv = c.project_camera(p);
-      const int x = int(std::floor(uv.x)), y = int(std::floor(uv.y));
-      if (x < 0 || y < 0 || x >= c.width || y >= c.height) continue;
-      sum[i] += v.glossy_mask[std::size_t(y) * std::size_t(c.width) + std::size_t(x)];
+      const long long q = c.pixel_of(c.to_camera(glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2])));
+      if (q < 0) continue;
+      sum[i] += v.glossy_mask[std::size_t(q)];
       count[i] += 1.0f;
     }
   }

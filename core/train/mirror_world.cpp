@@ -24,11 +24,9 @@ std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const st
     if (depth.size() != hw || alpha.size() != hw) throw Error(v.name, "mirror world: the render does not match the view");
     parallel_for(Device::CPU, n, [&](std::size_t i) {
       const glm::vec3 p = c.to_camera(glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
-      if (!(p.z > 1e-6f)) return;
-      const glm::vec2 uv = c.project_camera(p);
-      const int x = int(std::floor(uv.x)), y = int(std::floor(uv.y));
-      if (x < 0 || y < 0 || x >= c.width || y >= c.height) return;
-      const std::size_t q = std::size_t(y) * std::size_t(c.width) + std::size_t(x);
+      const long long pixel = c.pixel_of(p);
+      if (pixel < 0) return;
+      const std::size_t q = std::size_t(pixel);
       if (!(alpha[q] > 0.5f) || p.z <= depth[q] * (1.0f + tolerance))
         ++seen[i];
       else if (v.glossy_mask[q] > 0.5f)

@@ -125,7 +125,8 @@ std::vector<float> score_view(const std::vector<ConsistencyView>& views, const s
     if (!(z > 0) || !std::isfinite(z)) return;
     const float u = float(p % size_t(w)) + 0.5f, v = float(p / size_t(w)) + 0.5f;
     const glm::vec3 ray((u - ci.cx) / ci.fx, (v - ci.cy) / ci.fy, 1.0f);  // camera space, z = 1
-    const glm::vec3 x_world = rt * (ray * z - ci.t);
+    auto at_depth = [&](float zz) { return rt * (ray * zz - ci.t); };     // world point at camera z = zz
+    const glm::vec3 x_world = at_depth(z);
     const float colour[3] = {vi.image[p], vi.image[hw + p], vi.image[2 * hw + p]};
     glm::vec2 zr(z, z);
     if (s.depth_window > 0) zr = depth_range(vi, p, s.depth_window) * glm::vec2(1 - s.depth_tolerance, 1 + s.depth_tolerance);
@@ -145,13 +146,13 @@ std::vector<float> score_view(const std::vector<ConsistencyView>& views, const s
       if (d > 0 && s.depth_window > 0) {
         // Any depth the model is unsure between may be the true one: the best match along its epipolar
         // segment in view j, sampled every half pixel (at most 64 samples).
-        const glm::vec3 a = cj.to_camera(rt * (ray * zr.x - ci.t)), b = cj.to_camera(rt * (ray * zr.y - ci.t));
+        const glm::vec3 a = cj.to_camera(at_depth(zr.x)), b = cj.to_camera(at_depth(zr.y));
         if (a.z > 0 && b.z > 0) {
           const float len = glm::length(cj.project_camera(b) - cj.project_camera(a));
           const int steps = std::clamp(int(std::ceil(2.0f * len)), 1, 64);
           for (int k = 0; k <= steps && d > 0; ++k) {
             const float zk = zr.x + (zr.y - zr.x) * float(k) / float(steps);
-            const glm::vec3 xk = cj.to_camera(rt * (ray * zk - ci.t));
+            const glm::vec3 xk = cj.to_camera(at_depth(zk));
             if (!(xk.z > 0)) continue;
             const glm::vec2 uk = cj.project_camera(xk);
             if (inside(cj, uk)) d = std::min(d, outside_range(colour, ranges[size_t(j)], cj, uk));
