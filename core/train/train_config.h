@@ -125,7 +125,11 @@ struct TrainConfig {
   LearningRates lr;
   float lambda_ssim = 0.2f;            // colour loss (1 - l) L1 + l (1 - SSIM)
   float depth_normal_weight = 0.05f;   // RaDe-GS depth-normal consistency ...
-  int depth_normal_from = 7000;        // ... from this iteration (0 weight = off)
+  // ... from this iteration (0 weight = off). Deliberately NOT scaled with the run length like the other
+  // schedule points: runs shorter than 7K never use it. Scaled (from 933 of a 4K run at 128 px) it cost
+  // steel_snowman 1.38 dB in radiance mode and 1.30 dB in intrinsic mode, marble_monkey 0.10 dB; from the
+  // start of shading (2000) 0.18 dB (docs/bench/NOTES.md, session 12).
+  int depth_normal_from = 7000;
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
   int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
   int max_sh_degree = 3;
