@@ -68,7 +68,8 @@ struct IntrinsicSettings {
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed
   // every 25 iterations; needs glossy masks) or "max" (the larger of the two; M keeps its tracer gradient
-  // where it is the larger).
+  // where it is the larger). Renders of a trained run recompute "mask" weights from the same masks
+  // (load_run_renderer); before session 12 they fell back to M, so eval scored another model than trained.
   std::string emit = "region";
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction

@@ -179,6 +179,8 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
     StageTimer t(profile_, device_, times_.trace);
     const std::vector<float> ex = download(gaussians.extras, std::size_t(gaussians.count) * extra::kCount, device_);
     std::vector<float> emit(std::size_t(gaussians.count));
+    if (!emit_masks_.empty())
+      emit_override_ = glossy_mask_emit_weights(download(gaussians.positions, 3 * emit.size(), device_), emit_masks_);
     const bool overridden = emit_override_.size() == emit.size();
     f->region_emits.assign(emit.size(), 1);
     for (std::size_t i = 0; i < emit.size(); ++i) {

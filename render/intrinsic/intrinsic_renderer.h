@@ -23,6 +23,7 @@
 #include <string>
 
 #include "core/train/differentiable_renderer.h"
+#include "core/train/emit_weights.h"
 #include "core/train/flat_adam.h"
 #include "core/train/train_config.h"
 #include "render/envmap/environment_map.h"
@@ -87,6 +88,13 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
     emit_override_ = std::move(weights);
     emit_or_region_ = or_region;
   }
+  // The same rule for whatever model is rendered next (intrinsic_emit = mask | max on a trained run): the
+  // weights are recomputed from the centres and these masks at every forward pass, so they follow edits
+  // and removals (a per-Gaussian array kept from training would not). Empty = off.
+  void set_emit_masks(std::vector<GlossyMaskView> views, bool or_region) {
+    emit_masks_ = std::move(views);
+    emit_or_region_ = or_region;
+  }
   bool shading() const { return shading_; }
   int shading_from() const { return shading_from_; }
 
@@ -127,6 +135,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   bool shading_ = false;
   std::vector<float> emit_override_;  // set_emit_weights(); empty = the region weight M
   bool emit_or_region_ = false;       // emit = max(M, override) instead of the override
+  std::vector<GlossyMaskView> emit_masks_;  // set_emit_masks(): recompute emit_override_ per forward pass
   std::uint32_t frame_seed_ = 0;  // coarse tracing: which pixel of a block is traced (the iteration)
 
   EnvironmentMap env_;

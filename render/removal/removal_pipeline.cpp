@@ -39,6 +39,7 @@
 #include "render/removal/lighting_aware_mask.h"
 #include "render/removal/reference_views.h"
 #include "render/removal/target_shadow_scene.h"
+#include "render/train/auto_mode.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
@@ -259,6 +260,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   SplitScene split = split_removed(model, selected);
   // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
   std::vector<TrainView> views = load_train_views(ds.train, dopt);
+  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);  // --mode auto's
   ShadowRelight relit;
 
   // 2. Lighting-aware masks.

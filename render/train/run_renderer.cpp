@@ -1,12 +1,34 @@
 #include "render/train/run_renderer.h"
 
+#include "core/io/dataset.h"
 #include "core/train/checkpoint.h"
+#include "core/train/emit_weights.h"
+#include "core/train/train_setup.h"
 #include "core/train/trainer.h"
 #include "core/util/error.h"
 #include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/auto_mode.h"
 #include "render/train/raster_renderer.h"
+#include "render/train/training_setup.h"
 
 namespace goris {
+
+namespace {
+
+// The training views' glossy masks as the run trained with them (the data set's, a subset, or
+// config.glossy_mask_dir's detected ones).
+std::vector<GlossyMaskView> training_glossy_masks(const TrainConfig& config) {
+  Dataset dataset = load_dataset(config.data, dataset_options(config));
+  select_training_data(config, dataset);
+  std::vector<TrainView> views = load_train_views(dataset.train, dataset_options(config));
+  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);
+  std::vector<GlossyMaskView> out;
+  for (TrainView& v : views)
+    if (!v.glossy_mask.empty()) out.push_back({v.camera, std::move(v.glossy_mask)});
+  return out;
+}
+
+}  // namespace
 
 std::shared_ptr<DifferentiableRenderer> make_renderer(const TrainConfig& config, float extent, Device device) {
   if (config.mode == "intrinsic") return std::make_shared<IntrinsicRenderer>(config, extent, device);
@@ -23,6 +45,8 @@ std::shared_ptr<DifferentiableRenderer> load_run_renderer(const std::filesystem:
                                     "live beside it) and has none in checkpoints/");
     Trainer::load_renderer_state(*ck, *ir);
     ir->set_shading(true);
+    // Emission from the glossy masks (not learned): the trainer's weights are not saved, so recompute them.
+    if (config.intrinsic.emit != "region") ir->set_emit_masks(training_glossy_masks(config), config.intrinsic.emit == "max");
   }
   return r;
 }

@@ -13,6 +13,7 @@
 #include "core/train/image_losses.h"
 #include "core/train/trainer.h"
 #include "core/util/error.h"
+#include "core/train/emit_weights.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "render/removal/lighting_aware_mask.h"
@@ -260,6 +261,52 @@ TEST(IntrinsicRenderer, EmitWeightOverridesKeepTheGradientExact) {
   EXPECT_GT(glossy, 100u);
   check_composite_gradient(intrinsic_config(100), &traced, &glossy, &w, true);
   EXPECT_GT(glossy, 100u);
+}
+
+// The first `n` Gaussians of a model (a removal's kept set, in miniature).
+GaussianModel first_gaussians(const GaussianModel& m, std::size_t n) {
+  GaussianModel out(Device::CPU);
+  out.allocate(n);
+  for (int p = 0; p < kParamCount; ++p) {
+    const Param param = Param(p);
+    const std::vector<float> v = m.tensor(param).value.to_host();
+    std::copy(v.begin(), v.begin() + long(n) * param_width(param), out.values(param));
+  }
+  out.sh_degree = m.sh_degree;
+  out.max_sh_degree = m.max_sh_degree;
+  return out;
+}
+
+// A trained run with intrinsic_emit = mask is rendered with emit weights recomputed from the glossy masks
+// for whatever model is drawn (load_run_renderer): the same image as with the trainer's explicit weights,
+// also after Gaussians were removed, and not the image of the learned region weight M.
+TEST(IntrinsicRenderer, EmitMasksFollowTheRenderedModel) {
+  const TrainConfig cfg = intrinsic_config(100);
+  const Camera cam = test_camera();
+  const std::size_t hw = std::size_t(cam.width) * std::size_t(cam.height);
+  std::vector<GlossyMaskView> masks{{cam, std::vector<float>(hw, 0.0f)}};
+  for (std::size_t p = hw / 2; p < hw; ++p) masks[0].mask[p] = 1.0f;  // the lower half of the view is glossy
+  IntrinsicRenderer by_masks(cfg, 3.0f, Device::CPU);
+  by_masks.set_emit_masks(masks, false);
+  GaussianModel full = floor_and_blob(1);
+  std::vector<GaussianModel> models;
+  models.push_back(full.copy_to(Device::CPU));
+  models.push_back(first_gaussians(full, full.count() - 8));
+  for (GaussianModel& m : models) {
+    IntrinsicRenderer by_weights(cfg, 3.0f, Device::CPU), by_region(cfg, 3.0f, Device::CPU);
+    by_weights.set_emit_weights(glossy_mask_emit_weights(m.tensor(Param::Position).value.to_host(), masks), false);
+    for (IntrinsicRenderer* r : {&by_masks, &by_weights, &by_region}) r->begin_iteration(1);
+    const RenderedImages a = by_masks.forward(m.view(true), cam);
+    const std::vector<float> got(a.color, a.color + 3 * hw);
+    const RenderedImages b = by_weights.forward(m.view(true), cam);
+    const RenderedImages c = by_region.forward(m.view(true), cam);
+    double from_region = 0;
+    for (std::size_t i = 0; i < 3 * hw; ++i) {
+      ASSERT_EQ(got[i], b.color[i]) << m.count() << " Gaussians, value " << i;
+      from_region = std::max(from_region, double(std::abs(got[i] - c.color[i])));
+    }
+    EXPECT_GT(from_region, 1e-3) << m.count() << " Gaussians: the masks changed nothing";
+  }
 }
 
 TEST(IntrinsicRenderer, CoarseTracingSavesRaysAndKeepsTheGradientExact) {
