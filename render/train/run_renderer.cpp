@@ -16,11 +16,15 @@ namespace goris {
 namespace {
 
 // The training views' glossy masks as the run trained with them (the data set's, a subset, or
-// config.glossy_mask_dir's detected ones).
+// config.glossy_mask_dir's detected ones); the photos are not read.
 std::vector<GlossyMaskView> training_glossy_masks(const TrainConfig& config) {
   Dataset dataset = load_dataset(config.data, dataset_options(config));
   select_training_data(config, dataset);
-  std::vector<TrainView> views = load_train_views(dataset.train, dataset_options(config));
+  std::vector<TrainView> views;
+  for (const View& v : dataset.train) {
+    views.push_back(TrainView{v.name, v.camera, {}, {}, {}, {}});
+    if (v.glossy_mask) views.back().glossy_mask = load_view_glossy_mask(v).pixels.to_host();
+  }
   if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);
   std::vector<GlossyMaskView> out;
   for (TrainView& v : views)
