@@ -179,8 +179,13 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
     StageTimer t(profile_, device_, times_.trace);
     const std::vector<float> ex = download(gaussians.extras, std::size_t(gaussians.count) * extra::kCount, device_);
     std::vector<float> emit(std::size_t(gaussians.count));
-    if (!emit_masks_.empty())
-      emit_override_ = glossy_mask_emit_weights(download(gaussians.positions, 3 * emit.size(), device_), emit_masks_);
+    if (!emit_masks_.empty()) {  // recomputed only when the centres changed (the editor redraws one model)
+      std::vector<float> pos = download(gaussians.positions, 3 * emit.size(), device_);
+      if (pos != emit_positions_) {
+        emit_override_ = glossy_mask_emit_weights(pos, emit_masks_);
+        emit_positions_ = std::move(pos);
+      }
+    }
     const bool overridden = emit_override_.size() == emit.size();
     f->region_emits.assign(emit.size(), 1);
     for (std::size_t i = 0; i < emit.size(); ++i) {

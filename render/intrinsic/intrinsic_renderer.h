@@ -94,6 +94,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   void set_emit_masks(std::vector<GlossyMaskView> views, bool or_region) {
     emit_masks_ = std::move(views);
     emit_or_region_ = or_region;
+    emit_positions_.clear();
   }
   bool shading() const { return shading_; }
   int shading_from() const { return shading_from_; }
@@ -135,7 +136,8 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   bool shading_ = false;
   std::vector<float> emit_override_;  // set_emit_weights(); empty = the region weight M
   bool emit_or_region_ = false;       // emit = max(M, override) instead of the override
-  std::vector<GlossyMaskView> emit_masks_;  // set_emit_masks(): recompute emit_override_ per forward pass
+  std::vector<GlossyMaskView> emit_masks_;  // set_emit_masks(): recompute emit_override_ per forward pass ...
+  std::vector<float> emit_positions_;       // ... when the centres differ from these
   std::uint32_t frame_seed_ = 0;  // coarse tracing: which pixel of a block is traced (the iteration)
 
   EnvironmentMap env_;

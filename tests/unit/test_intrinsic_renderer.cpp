@@ -13,6 +13,7 @@
 #include "core/train/image_losses.h"
 #include "core/train/trainer.h"
 #include "core/util/error.h"
+#include "core/train/densify.h"
 #include "core/train/emit_weights.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
@@ -265,15 +266,10 @@ TEST(IntrinsicRenderer, EmitWeightOverridesKeepTheGradientExact) {
 
 // The first `n` Gaussians of a model (a removal's kept set, in miniature).
 GaussianModel first_gaussians(const GaussianModel& m, std::size_t n) {
-  GaussianModel out(Device::CPU);
-  out.allocate(n);
-  for (int p = 0; p < kParamCount; ++p) {
-    const Param param = Param(p);
-    const std::vector<float> v = m.tensor(param).value.to_host();
-    std::copy(v.begin(), v.begin() + long(n) * param_width(param), out.values(param));
-  }
-  out.sh_degree = m.sh_degree;
-  out.max_sh_degree = m.max_sh_degree;
+  GaussianModel out = m.copy_to(Device::CPU);
+  std::vector<std::uint8_t> keep(m.count(), 0);
+  std::fill(keep.begin(), keep.begin() + long(n), std::uint8_t(1));
+  prune_gaussians(out, keep);
   return out;
 }
 
