@@ -38,6 +38,7 @@
 #include "render/removal/lift.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/removal/reference_views.h"
+#include "render/removal/removed_glossy_masks.h"
 #include "render/removal/target_shadow_scene.h"
 #include "render/train/auto_mode.h"
 #include "render/train/raster_renderer.h"
@@ -181,9 +182,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              "--ablate " + a + " is a stage-1 choice: train the run with " +
                                  (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
                                  " and remove from that run"));
-    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows")
+    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows" && a != "glossfill")
       throw Error(step_error(RemovalStep::Selection,
-                             "unknown ablation '" + a + "' (expected material, lamask, twins or shadows)"));
+                             "unknown ablation '" + a + "' (expected material, lamask, twins, shadows or glossfill)"));
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config(run_dir);
@@ -441,7 +442,15 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     StepScope s(report, RemovalStep::FineTune, on_progress);
     const int iters = o.finetune_iterations > 0 ? o.finetune_iterations
                                                 : std::max(100, config.scaled_iteration(4000));
-    const TrainConfig ft = finetune_config(config, iters);
+    TrainConfig ft = finetune_config(config, iters);
+    if (intrinsic && !o.ablate.count("glossfill")) {  // removed_glossy_masks.h: no ghost where the target stood
+      const int dilate = std::max(1, int(std::lround(cameras.empty() ? 1.0 : cameras[0].width / 128.0)));
+      report.glossy_filled_pixels = fill_removed_glossy_masks(views, holes, dilate);
+      if (std::any_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); })) {
+        save_glossy_mask_folder(out / "glossy_masks", views);
+        ft.glossy_mask_dir = (out / "glossy_masks").string();
+      }
+    }
     std::vector<Mask> exclude(views.size());
     std::vector<FinetuneViewInputs> inputs(views.size());
     std::vector<ReferenceTargets> refs;
@@ -506,6 +515,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["dereflected_pixels"] = report.dereflected_pixels;
     j["shadow"] = {{"found", report.shadow_found}, {"summary", report.shadow}, {"relit_pixels", report.shadow_pixels}};
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
+    j["glossy_mask_filled_pixels"] = report.glossy_filled_pixels;
     j["reference_views"] = report.reference_views;
     j["finetune_iterations"] = report.finetune_iterations;
     j["finetune_targets"] = {{"excluded_pixels", fs_stats.excluded_pixels},

@@ -43,7 +43,8 @@ struct RemovalOptions {
   std::string inpainter = "telea";  // core/inpaint/inpainter.h make_inpainter(): telea, ns, harmonic, fsr, cmd:..., dir:...
   std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
                                     // "twins" (keep the target's mirror twin, core/removal/mirror_twins.h),
-                                    // "shadows" (keep the target's cast shadow, core/removal/target_shadow.h)
+                                    // "shadows" (keep the target's cast shadow, core/removal/target_shadow.h),
+                                    // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
@@ -68,6 +69,7 @@ struct RemovalReport {
   std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
   std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
+  std::size_t glossy_filled_pixels = 0;  // glossy-mask pixels filled under the target (removed_glossy_masks.h)
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
   bool shadow_found = false;                // the target's cast shadow (core/removal/target_shadow.h)

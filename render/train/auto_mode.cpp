@@ -30,14 +30,17 @@ std::string percent(double f) {
 
 fs::path mask_file(const fs::path& dir, const TrainView& v) { return dir / ("gloss_" + v.name + ".png"); }
 
+template <class T>
+void save_mask_values(const fs::path& dir, const TrainView& v, const std::vector<T>& values) {
+  const Camera& c = v.camera;
+  Image m(c.width, c.height, 1);
+  for (size_t p = 0; p < values.size() && p < m.pixels.size(); ++p) m.pixels[p] = float(values[p]);
+  save_png(mask_file(dir, v), m);
+}
+
 void write_masks(const fs::path& dir, const std::vector<TrainView>& views, const GlossyDetection& det) {
   fs::create_directories(dir);
-  for (size_t i = 0; i < views.size(); ++i) {
-    const Camera& c = views[i].camera;
-    Image m(c.width, c.height, 1);
-    for (size_t p = 0; p < det.masks[i].size(); ++p) m.pixels[p] = float(det.masks[i][p]);
-    save_png(mask_file(dir, views[i]), m);
-  }
+  for (size_t i = 0; i < views.size(); ++i) save_mask_values(dir, views[i], det.masks[i]);
 }
 
 void write_summary(const fs::path& dir, const std::vector<TrainView>& views, const GlossyDetection& det,
@@ -130,6 +133,14 @@ void load_glossy_mask_folder(const fs::path& dir, std::vector<TrainView>& views)
                                   std::to_string(v.camera.width) + "x" + std::to_string(v.camera.height) +
                                   " (masks in glossy_mask_dir are stored at the training size)");
     v.glossy_mask = m.pixels.to_host();
+  }
+}
+
+void save_glossy_mask_folder(const fs::path& dir, const std::vector<TrainView>& views) {
+  fs::create_directories(dir);
+  for (const TrainView& v : views) {
+    if (v.glossy_mask.empty()) throw Error(mask_file(dir, v).string(), "training view " + v.name + " has no glossy mask to write");
+    save_mask_values(dir, v, v.glossy_mask);
   }
 }
 

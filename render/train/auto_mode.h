@@ -49,6 +49,8 @@ int auto_detection_iteration(const TrainConfig& config);
 // Glossy masks of a folder written by the detection: gloss_<view name>.png at each view's size, into the
 // views' glossy_mask. Throws goris::Error naming the file when one is missing or has another size.
 void load_glossy_mask_folder(const std::filesystem::path& dir, std::vector<TrainView>& views);
+// The views' glossy masks as such a folder (8-bit PNG). Throws goris::Error when a view has none.
+void save_glossy_mask_folder(const std::filesystem::path& dir, const std::vector<TrainView>& views);
 
 struct AutoDecision {
   int iteration = 0;             // iterations done when it was taken

@@ -1,0 +1,26 @@
+#pragma once
+// The glossy masks of the scene without the target, for the fine-tune and every later render of the
+// removal. The photos' masks mark the target's pixels as not glossy (0), but after the removal the lifted,
+// inpainted surface is seen there. With intrinsic_emit = mask | max a Gaussian emits by its mean mask vote
+// (core/train/emit_weights.h), so the Gaussians the lift places on the table where the target stood took
+// the target's vote and emitted into the table's own traced rays: a bright ghost where the target stood
+// (session 12, steel_snowman: -1.08 dB). The region loss and the smoothness terms, which are restricted to
+// the glossy mask, also skipped that surface.
+//
+// Under the target's (and its mirror twin's) coverage, dilated by `dilate_px` for its soft edges, each
+// view's mask is filled from the surrounding pixels with the harmonic fill (a Unit map: exact on linear
+// ramps, so a hole inside the table fills with 1 and a hole on the table's border blends to its outside).
+#include <cstddef>
+#include <vector>
+
+#include "core/train/trainer.h"
+#include "render/removal/inpaint_mask.h"
+
+namespace goris {
+
+// Fills views[i].glossy_mask under holes[i].covered (views without a glossy mask are left alone; a size
+// mismatch throws goris::Error naming the view). Returns the number of pixels filled over all views.
+std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::vector<InpaintMaskView>& holes,
+                                      int dilate_px);
+
+}  // namespace goris
