@@ -102,6 +102,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_detect_fraction", c.intrinsic.detect_fraction);
   f("intrinsic_detect_width", c.intrinsic.detect_width);
   f("intrinsic_detect_after", c.intrinsic.detect_after);
+  f("intrinsic_detect_settled", c.intrinsic.detect_settled);
   f("intrinsic_detect_plane_tolerance", c.intrinsic.detect_plane_tolerance);
   f("inpaint_appearance_weight", c.inpaint_appearance_weight);
   f("inpaint_material_weight", c.inpaint_material_weight);
@@ -179,6 +180,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.detect_morph_radius < 0 || in.detect_morph_radius > 8) fail("intrinsic_detect_morph_radius must lie in 0..8");
   if (in.detect_width < 0) fail("intrinsic_detect_width must be >= 0 (0 = the training size)");
   if (in.detect_after < 0) fail("intrinsic_detect_after must be >= 0");
+  if (in.detect_settled < 0) fail("intrinsic_detect_settled must be >= 0");
   if (!(in.detect_plane_tolerance >= 0) || !std::isfinite(in.detect_plane_tolerance))
     fail("intrinsic_detect_plane_tolerance must be finite and >= 0");
   if (in.emit != "region" && in.emit != "mask" && in.emit != "max")

@@ -619,18 +619,21 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
   double ema_dt = 0, it_per_s = 0;
   auto last = clock::now();
 
-  while (!finished()) {
-    if (o.stop && o.stop->load()) {
-      checkpoint();
-      if (o.on_progress) o.on_progress(progress(it_per_s));
-      return RunResult::Stopped;
-    }
+  for (;;) {
+    // before_step also runs once the iterations are done: a decision due at the last iteration (--mode auto
+    // on a short run, render/train/auto_mode.h) may lengthen the run.
     if (o.before_step) {
       const auto t0 = clock::now();
       o.before_step(*this);
       const auto t1 = clock::now();
       state_.elapsed_s += std::chrono::duration<double>(t1 - t0).count();
       last += t1 - t0;
+    }
+    if (finished()) break;
+    if (o.stop && o.stop->load()) {
+      checkpoint();
+      if (o.on_progress) o.on_progress(progress(it_per_s));
+      return RunResult::Stopped;
     }
     const StepStats s = step();
     if (s.skipped) {

@@ -98,9 +98,23 @@ std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>&
          "iteration " + std::to_string(auto_detection_iteration(config));
 }
 
+int planned_shading_start(const TrainConfig& config) {
+  return std::max(config.shading_from(), std::min(config.intrinsic.detect_after, config.iterations / 2));
+}
+
 int auto_detection_iteration(const TrainConfig& config) {
-  return std::max(config.shading_from(),
-                  std::min(config.intrinsic.detect_after, config.iterations / 2));
+  return std::max(planned_shading_start(config), std::min(config.intrinsic.detect_settled, config.iterations));
+}
+
+TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_at) {
+  const int planned = planned_shading_start(config);
+  TrainConfig c = config;
+  if (decided_at <= planned) return c;
+  c.iterations = decided_at + std::max(config.iterations - planned, 0);
+  // The radiance phase's schedules end where they would have ended in the planned run.
+  if (c.lr.position_max_steps <= 0) c.lr.position_max_steps = config.iterations;
+  c.densify_until_fraction = float(double(config.densify_until_fraction) * config.iterations / c.iterations);
+  return c;
 }
 
 namespace {
@@ -154,6 +168,9 @@ std::string AutoDecision::message() const {
   return "--mode auto after iteration " + std::to_string(iteration) + ": " +
          (glossy ? "glossy regions (" + found + grown + ") -> intrinsic from now on with the masks in " + mask_dir.string()
                  : "no glossy regions (" + found + ") -> radiance to the end; masks in " + mask_dir.string()) +
+         (extended_by > 0 ? "; the run grows by " + std::to_string(extended_by) +
+                                " iterations so that the shading phase keeps its planned length"
+                          : "") +
          " (detection " + secs + ")";
 }
 
@@ -181,9 +198,11 @@ std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& ru
   TrainConfig next = config;
   next.auto_detect_glossy = false;
   if (det.glossy) {
+    next = lengthened_for_late_decision(next, d.iteration);
+    d.extended_by = next.iterations - config.iterations;
     next.mode = "intrinsic";
     next.glossy_mask_dir = d.mask_dir.string();
-    next.intrinsic.warmup = warmup_ending_at(config, d.iteration);
+    next.intrinsic.warmup = warmup_ending_at(next, d.iteration);
     trainer.switch_mode(next, make_renderer(next, trainer.extent(), trainer.device()), [&](std::vector<TrainView>& views) {
       for (size_t i = 0; i < views.size(); ++i) views[i].glossy_mask.assign(det.masks[i].begin(), det.masks[i].end());
       if (!next.intrinsic.normals.empty()) load_normal_priors(next.intrinsic.normals, views);

@@ -6,18 +6,20 @@
 //    intrinsic_auto_mask_fraction of their pixels > 0.5), otherwise radiance ("the glossy masks are empty").
 //  - Data without glossy masks (or use_glossy_masks false): radiance with config.auto_detect_glossy set.
 //    Once the geometry has settled (auto_detection_iteration: the end of the warm-up, TrainConfig::
-//    shading_from, but not before intrinsic_detect_after iterations or half the run, whichever comes first
-//    - on ../shared/datasets/lambert_room a 4K-iteration run's geometry at the paper's scaled warm-up, 533,
-//    is a blur that makes every edge look view-dependent) apply_auto_mode, called before every step, detects
+//    shading_from, but not before intrinsic_detect_after iterations or half the run, whichever comes first,
+//    nor before intrinsic_detect_settled iterations - on ../shared/datasets/lambert_room a 4K-iteration
+//    run's geometry at the paper's scaled warm-up, 533, is a blur that makes every edge look
+//    view-dependent; a late glossy decision lengthens the run, see lengthened_for_late_decision) and
+//    apply_auto_mode, called before every step and once at the end of the iterations, detects
 //    glossy regions from the photos (render/train/glossy_detection.h), writes the masks to
 //    RUN/detected_gloss/gloss_<view>.png with RUN/detected_gloss/summary.json, and either switches the
 //    trainer to intrinsic with those masks as the views' glossy masks (the model's material extras start
 //    from their initial values) or lets the run finish as pure radiance (no tracing, no environment map,
 //    no net).
 //
-// Persistence: the decision is part of the configuration. Switching sets mode "intrinsic",
-// glossy_mask_dir = RUN/detected_gloss, intrinsic_warmup to the switch (so that the shading phase's
-// schedules start there) and clears auto_detect_glossy; staying clears auto_detect_glossy.
+// Persistence: the decision is part of the configuration. Switching sets mode "intrinsic", the lengthened
+// iterations, glossy_mask_dir = RUN/detected_gloss, intrinsic_warmup to the switch (so that the shading
+// phase's schedules start there) and clears auto_detect_glossy; staying clears auto_detect_glossy.
 // RUN/config.json is rewritten at once and every later checkpoint stores the new configuration, so a
 // resumed run comes back in the mode it switched to, reading the same masks (prepare_training loads
 // glossy_mask_dir); a run resumed from a checkpoint written before the decision detects again when it
@@ -42,9 +44,23 @@ std::optional<double> glossy_mask_fraction(const std::vector<TrainView>& views);
 // user. No-op returning "" for any other mode.
 std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>& views);
 
-// The iteration after which the detection runs: max(TrainConfig::shading_from(), min(intrinsic_detect_after,
+// Where the shading phase would start: max(TrainConfig::shading_from(), min(intrinsic_detect_after,
 // iterations / 2)).
+int planned_shading_start(const TrainConfig& config);
+
+// The iteration after which the detection runs: the planned shading start, but not before
+// intrinsic_detect_settled iterations (capped at the run's end). Before about 2K iterations (128 px, 30K
+// points) the warmed-up geometry is still settling, and its misregistration reads as view dependence:
+// lambert_room, no glossy surface, showed 0.88 % evidence at iteration 1000 of a 2K run, more than
+// marble_monkey's 0.37 % (threshold 0.08 %), and 0.04 % at iteration 2000 (docs/bench/NOTES.md, session 13).
 int auto_detection_iteration(const TrainConfig& config);
+
+// A glossy decision later than planned (a run shorter than 2 x intrinsic_detect_settled) keeps the shading
+// phase the planned run would have had: iterations = decided_at + (iterations - planned start), with the
+// position learning-rate decay and the densification window ending where the planned run ends them. A
+// Lambertian scene's run keeps its length, so it still costs what the radiance baseline costs; a glossy
+// one trains longer than `--mode intrinsic` would. Returns the config unchanged when not late.
+TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_at);
 
 // Glossy masks of a folder written by the detection: gloss_<view name>.png at each view's size, into the
 // views' glossy_mask. Throws goris::Error naming the file when one is missing or has another size.
@@ -60,6 +76,7 @@ struct AutoDecision {
   int planes = 0;                // planes the masks were grown over
   std::size_t mask_pixels = 0;   // pixels in the grown masks (at the detection's size, like `covered`)
   double seconds = 0;            // rendering the depths and detecting
+  int extended_by = 0;           // iterations added to the run (lengthened_for_late_decision)
   std::filesystem::path mask_dir;
   std::string message() const;   // one line for the user
 };

@@ -304,6 +304,7 @@ TEST(AutoMode, MaskFractionRule) {
 
 TEST(AutoMode, DetectionWaitsForTheGeometry) {
   TrainConfig c;
+  c.intrinsic.detect_settled = 0;  // the planned start alone (the settled floor: the next test)
   c.iterations = 30000;
   EXPECT_EQ(auto_detection_iteration(c), 4000);  // the warm-up
   c.iterations = 4000;  // warm-up 533, but the geometry needs longer: half the run
@@ -315,6 +316,32 @@ TEST(AutoMode, DetectionWaitsForTheGeometry) {
   c.intrinsic.detect_after = 4000;
   c.intrinsic.warmup = 20000;  // a longer warm-up wins
   EXPECT_EQ(auto_detection_iteration(c), 2667);
+}
+
+TEST(AutoMode, ShortRunsDecideOnceTheGeometryHasSettledAndKeepTheirShadingPhase) {
+  TrainConfig c;  // detect_settled 2000
+  c.iterations = 2000;  // planned: half the run; the geometry settles only at 2000, the run's end
+  EXPECT_EQ(planned_shading_start(c), 1000);
+  EXPECT_EQ(auto_detection_iteration(c), 2000);
+  TrainConfig l = lengthened_for_late_decision(c, 2000);
+  EXPECT_EQ(l.iterations, 3000);  // the planned 1000 shading iterations follow the decision
+  EXPECT_EQ(l.lr.position_max_steps, 2000);
+  EXPECT_EQ(int(double(l.densify_until_fraction) * l.iterations + 0.5), 1500);  // the planned window
+  c.iterations = 3000;
+  EXPECT_EQ(auto_detection_iteration(c), 2000);
+  EXPECT_EQ(lengthened_for_late_decision(c, 2000).iterations, 3500);
+  c.iterations = 500;  // too short to settle: decided at the end
+  EXPECT_EQ(auto_detection_iteration(c), 500);
+  EXPECT_EQ(lengthened_for_late_decision(c, 500).iterations, 750);
+  c.iterations = 4000;  // long enough: as planned, nothing lengthened
+  EXPECT_EQ(auto_detection_iteration(c), 2000);
+  const TrainConfig same = lengthened_for_late_decision(c, 2000);
+  EXPECT_EQ(same.iterations, 4000);
+  EXPECT_EQ(same.lr.position_max_steps, 0);
+  EXPECT_FLOAT_EQ(same.densify_until_fraction, c.densify_until_fraction);
+  c.iterations = 2000;
+  c.intrinsic.detect_settled = 0;  // off: the planned start
+  EXPECT_EQ(auto_detection_iteration(c), 1000);
 }
 
 TEST(AutoMode, MaskFolderErrorsNameTheFile) {
@@ -353,6 +380,7 @@ TrainConfig tiny_auto_config() {
   c.intrinsic.warmup = 15000;
   c.intrinsic.env_resolution = 8;
   c.intrinsic.net_hidden_layers = 1;
+  c.intrinsic.detect_settled = 0;  // decide at the planned shading start (the late decision has its own test)
   c.checkpoint_interval = 10;
   c.keep_checkpoints = 10;
   return c;
@@ -485,6 +513,58 @@ TEST(AutoMode, StaysRadianceWhenNothingIsGlossy) {
   EXPECT_FALSE(saved.auto_detect_glossy);
   const Checkpoint last = read_checkpoint(checkpoint_path(run, 24), Device::CPU);
   EXPECT_FALSE(last.config.auto_detect_glossy);
+}
+
+TEST(AutoMode, ALateGlossyDecisionAtTheEndLengthensTheRun) {
+  // 40 iterations, shading planned from 20, but the geometry "settles" only at 40: run() decides after
+  // the last iteration and goes on for the planned 20 shading iterations.
+  const fs::path run = test::scratch_dir("auto_mode_late");
+  TrainConfig c = tiny_auto_config();
+  c.intrinsic.detect_settled = 40;
+  c.intrinsic.detect_threshold = 0.0f;  // forced "glossy"
+  c.intrinsic.detect_fraction = 0.0f;
+  c.checkpoint_interval = 100;
+  PreparedTraining p = prepare_training(run, c, std::nullopt);
+  Trainer& t = *p.trainer;
+  EXPECT_EQ(auto_detection_iteration(p.config), 40);
+  std::vector<AutoDecision> decisions;
+  Trainer::RunOptions ro;
+  ro.run_dir = run;
+  ro.before_step = [&](Trainer& tr) {
+    if (auto d = apply_auto_mode(tr, run)) decisions.push_back(*d);
+  };
+  EXPECT_EQ(t.run(ro), Trainer::RunResult::Finished);
+  ASSERT_EQ(decisions.size(), 1u);
+  EXPECT_TRUE(decisions[0].glossy);
+  EXPECT_EQ(decisions[0].iteration, 40);
+  EXPECT_EQ(decisions[0].extended_by, 20);
+  EXPECT_NE(decisions[0].message().find("grows by 20 iterations"), std::string::npos) << decisions[0].message();
+  EXPECT_TRUE(t.intrinsic());
+  EXPECT_EQ(t.state().iteration, 60);
+  EXPECT_EQ(t.config().iterations, 60);
+  EXPECT_EQ(t.config().shading_from(), 40);
+  EXPECT_EQ(t.config().lr.position_max_steps, 40);
+  EXPECT_GT(t.state().adam.steps[size_t(ParamGroup::Region)], 0);
+  const TrainConfig saved = read_run_config(run);
+  EXPECT_EQ(saved.iterations, 60);
+  EXPECT_EQ(saved.mode, "intrinsic");
+
+  // The same run on a scene with nothing glossy keeps its length.
+  const fs::path run2 = test::scratch_dir("auto_mode_late_radiance");
+  c.intrinsic.detect_threshold = 1e6f;
+  c.intrinsic.detect_fraction = 0.0008f;
+  PreparedTraining p2 = prepare_training(run2, c, std::nullopt);
+  decisions.clear();
+  ro.run_dir = run2;
+  ro.before_step = [&](Trainer& tr) {
+    if (auto d = apply_auto_mode(tr, run2)) decisions.push_back(*d);
+  };
+  p2.trainer->run(ro);
+  ASSERT_EQ(decisions.size(), 1u);
+  EXPECT_FALSE(decisions[0].glossy);
+  EXPECT_EQ(decisions[0].extended_by, 0);
+  EXPECT_EQ(p2.trainer->state().iteration, 40);
+  EXPECT_FALSE(p2.trainer->intrinsic());
 }
 
 TEST(AutoMode, EmbeddedSceneMasksChooseIntrinsic) {
