@@ -70,7 +70,7 @@ const std::vector<ConfigSpec>& ladder() {
        "full where the glossy masks mark >= 0.5 % of the pixels, else radiance, RGB inpainting and the target's shadow "
        "(--mode auto)"},
       {"auto-detect", "auto_detect", {"--mode", "auto", "--set", "use_glossy_masks=false"}, "", false,
-       "--mode auto with the glossy masks hidden: glossy regions detected from the photos after the warm-up"},
+       "--mode auto with the glossy masks hidden: glossy regions detected from the photos once the geometry has settled"},
       {"sh1", "intrinsic_sh1", {"--mode", "intrinsic", "--set", "max_sh_degree=1"}, "", false,
        "full with SH degree 1 (the glossy term carries the view dependence)"},
       {"budget", "intrinsic_budget",

@@ -111,9 +111,6 @@ TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_
   TrainConfig c = config;
   if (decided_at <= planned) return c;
   c.iterations = decided_at + std::max(config.iterations - planned, 0);
-  // The radiance phase's schedules end where they would have ended in the planned run.
-  if (c.lr.position_max_steps <= 0) c.lr.position_max_steps = config.iterations;
-  c.densify_until_fraction = float(double(config.densify_until_fraction) * config.iterations / c.iterations);
   return c;
 }
 

@@ -56,10 +56,13 @@ int planned_shading_start(const TrainConfig& config);
 int auto_detection_iteration(const TrainConfig& config);
 
 // A glossy decision later than planned (a run shorter than 2 x intrinsic_detect_settled) keeps the shading
-// phase the planned run would have had: iterations = decided_at + (iterations - planned start), with the
-// position learning-rate decay and the densification window ending where the planned run ends them. A
-// Lambertian scene's run keeps its length, so it still costs what the radiance baseline costs; a glossy
-// one trains longer than `--mode intrinsic` would. Returns the config unchanged when not late.
+// phase the planned run would have had: iterations = decided_at + (iterations - planned start). The
+// schedules scale with the new length, so the position learning rate rises again for the shading phase,
+// as it is there in a planned run: keeping the radiance run's decay (the learning rate at its final value
+// for the whole shading phase) cost steel_snowman's removal 4.3 dB on the medium schedule (17.63 vs 21.93
+// dB; docs/bench/NOTES.md, session 13). A Lambertian scene's run keeps its length, so it still costs what
+// the radiance baseline costs; a glossy one trains longer than `--mode intrinsic` would. Returns the config
+// unchanged when not late.
 TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_at);
 
 // Glossy masks of a folder written by the detection: gloss_<view name>.png at each view's size, into the
