@@ -5,9 +5,10 @@
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 set(DATA "${RESOURCES}/default_scene")
-# 40 iterations at 32 px; the warm-up (15000 of 30000, scaled) ends after iteration 20.
+# 40 iterations at 32 px; the warm-up (15000 of 30000, scaled) ends after iteration 20, and the detection
+# does not wait for settled geometry (intrinsic_detect_settled, tried at the end).
 set(common --resolution 32 --device cpu --init-points 3000 --iters 40 --set intrinsic_warmup=15000
-    --set intrinsic_env_resolution=8 --set intrinsic_net_hidden_layers=1)
+    --set intrinsic_env_resolution=8 --set intrinsic_net_hidden_layers=1 --set intrinsic_detect_settled=0)
 
 goris_ok(train "${DATA}" --out "${WORK}/masks" --mode auto ${common})
 expect_text("${OUT}" "--mode auto: intrinsic (the glossy masks mark")
@@ -81,3 +82,17 @@ if(NOT EXISTS "${RUN2}/environment.png")
 endif()
 goris_ok(train "${DATA}" --out "${RUN2}" --resume --iters 42 --device cpu)
 expect_text("${OUT}" "intrinsic mode: 40/40 views with glossy masks")
+
+# Decided late (the geometry "settles" at 40, the run's end), forced glossy: the run grows by the planned
+# 20 shading iterations.
+set(RUN3 "${WORK}/late")
+goris_ok(train "${DATA}" --out "${RUN3}" --mode auto ${common} --set use_glossy_masks=false
+         --set intrinsic_detect_threshold=0 --set intrinsic_detect_fraction=0 --set intrinsic_detect_settled=40)
+expect_text("${OUT}" "--mode auto after iteration 40:")
+expect_text("${OUT}" "the run grows by 20 iterations")
+expect_text("${OUT}" "done: 60 iterations")
+file(READ "${RUN3}/config.json" cfg)
+string(JSON iters GET "${cfg}" iterations)
+if(NOT iters EQUAL 60)
+  message(FATAL_ERROR "config.json of the lengthened run says ${iters} iterations")
+endif()
