@@ -1,6 +1,7 @@
 #include "core/inpaint/mask.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
@@ -79,5 +80,7 @@ Mask mask_from_image(const Image& image, float threshold) {
 void save_mask_png(const std::filesystem::path& path, const Mask& mask) { save_png(path, mask_to_image(mask)); }
 
 Mask read_mask_png(const std::filesystem::path& path) { return mask_from_image(read_image(path), 127.5f / 255.0f); }
+
+int soft_edge_radius(int width) { return std::max(1, int(std::lround(width / 128.0))); }
 
 }  // namespace goris

@@ -31,6 +31,9 @@ std::size_t count_set(const Mask& mask);
 Mask open_mask(const Mask& mask, int radius);
 Mask close_mask(const Mask& mask, int radius);
 Mask dilate_mask(const Mask& mask, int radius);
+// The dilation radius for a soft edge at this image width: one pixel per 128 (at least 1). The removal
+// grows the target's masks by it (blended silhouettes).
+int soft_edge_radius(int width);
 
 // Pixel-wise a AND b, a OR b (same sizes, else goris::Error).
 Mask mask_and(const Mask& a, const Mask& b);

@@ -24,7 +24,7 @@ Mask lighting_aware_mask(const std::vector<float>& e, int width, int height, con
     if (!std::isfinite(e[p])) throw Error("lighting-aware mask", "non-finite reflected label at pixel " + std::to_string(p));
     m.data[p] = e[p] > s.tau ? 255 : 0;
   }
-  const int r = s.dilate >= 0 ? s.dilate : std::max(1, int(std::lround(width / 128.0)));
+  const int r = s.dilate >= 0 ? s.dilate : soft_edge_radius(width);
   return dilate_mask(m, r);
 }
 

@@ -444,8 +444,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                                 : std::max(100, config.scaled_iteration(4000));
     TrainConfig ft = finetune_config(config, iters);
     if (intrinsic && !o.ablate.count("glossfill")) {  // removed_glossy_masks.h: no ghost where the target stood
-      const int dilate = std::max(1, int(std::lround(cameras.empty() ? 1.0 : cameras[0].width / 128.0)));
-      report.glossy_filled_pixels = fill_removed_glossy_masks(views, holes, dilate);
+      report.glossy_filled_pixels = fill_removed_glossy_masks(views, holes);
       if (std::any_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); })) {
         save_glossy_mask_folder(out / "glossy_masks", views);
         ft.glossy_mask_dir = (out / "glossy_masks").string();
@@ -458,7 +457,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       const int w = cameras[i].width, h = cameras[i].height;
       // Object mask of the data set (when given) U what the selection covers (dilated: soft edges), and the
       // reflections only under the paper's rule (by default their photos were dereflected in step 2).
-      Mask ex = dilate_mask(holes[i].covered, std::max(1, int(std::lround(w / 128.0))));
+      Mask ex = dilate_mask(holes[i].covered, soft_edge_radius(w));
       if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
       if (lighting[i].width == w && !o.dereflect_lighting) ex = mask_or(ex, lighting[i]);
       exclude[i] = std::move(ex);

@@ -7,8 +7,7 @@
 
 namespace goris {
 
-std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::vector<InpaintMaskView>& holes,
-                                      int dilate_px) {
+std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::vector<InpaintMaskView>& holes) {
   if (holes.size() != views.size())
     throw Error("removal: " + std::to_string(holes.size()) + " inpainting masks for " + std::to_string(views.size()) +
                 " training views");
@@ -22,7 +21,7 @@ std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::
     if (covered.width != w || covered.height != h || v.glossy_mask.size() != std::size_t(w) * std::size_t(h))
       throw Error("removal: the glossy mask or the target's coverage of training view " + v.name +
                   " does not have the view's size " + std::to_string(w) + "x" + std::to_string(h));
-    const Mask hole = dilate_mask(covered, dilate_px);
+    const Mask hole = dilate_mask(covered, soft_edge_radius(w));
     const std::size_t n = count_set(hole);
     if (n == 0) continue;
     if (n == hole.pixel_count()) continue;  // nothing to fill from: keep the photo's mask

@@ -7,7 +7,7 @@
 // (session 12, steel_snowman: -1.08 dB). The region loss and the smoothness terms, which are restricted to
 // the glossy mask, also skipped that surface.
 //
-// Under the target's (and its mirror twin's) coverage, dilated by `dilate_px` for its soft edges, each
+// Under the target's (and its mirror twin's) coverage, dilated by soft_edge_radius for its soft edges, each
 // view's mask is filled from the surrounding pixels with the harmonic fill (a Unit map: exact on linear
 // ramps, so a hole inside the table fills with 1 and a hole on the table's border blends to its outside).
 #include <cstddef>
@@ -20,7 +20,6 @@ namespace goris {
 
 // Fills views[i].glossy_mask under holes[i].covered (views without a glossy mask are left alone; a size
 // mismatch throws goris::Error naming the view). Returns the number of pixels filled over all views.
-std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::vector<InpaintMaskView>& holes,
-                                      int dilate_px);
+std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::vector<InpaintMaskView>& holes);
 
 }  // namespace goris

@@ -85,7 +85,7 @@ TEST(EmitWeights, RemovedTargetTakesTheSurroundingGlossyValue) {
   std::vector<InpaintMaskView> holes(2);
   holes[0].covered = hole.covered;
   holes[1].covered = hole.covered;
-  const std::size_t filled = fill_removed_glossy_masks(views, holes, 1);
+  const std::size_t filled = fill_removed_glossy_masks(views, holes);  // radius 1 at 64 px
   EXPECT_EQ(filled, count_set(dilate_mask(hole.covered, 1)));
   EXPECT_TRUE(views[1].glossy_mask.empty());
   const std::vector<float>& m = views[0].glossy_mask;
@@ -114,7 +114,7 @@ TEST(EmitWeights, RemovedTargetTakesTheSurroundingGlossyValue) {
   std::vector<InpaintMaskView> small(1);
   small[0].covered = Mask(n / 2, n / 2);
   std::vector<TrainView> one{view};
-  test::expect_error([&] { fill_removed_glossy_masks(one, small, 1); }, "training view r_000");
+  test::expect_error([&] { fill_removed_glossy_masks(one, small); }, "training view r_000");
 }
 
 TEST(EmitWeights, ConfigAcceptsOnlyRegionOrMask) {
