@@ -88,7 +88,7 @@ struct IntrinsicSettings {
   float detect_fraction = 0.0008f;
   int detect_width = 128;                // detection at this image width at most (0 = training size)
   int detect_after = 4000;               // iterations (not scaled) before detecting, at most half the run
-  int detect_settled = 2000;             // ... but never before this many (not scaled; render/train/auto_mode.h)
+  int detect_settled = 4000;             // ... but never before this many (not scaled; render/train/auto_mode.h)
   float detect_plane_tolerance = 0.05f;  // masks grown over the detections' plane(s), x camera distance (0 = off)
 };
 

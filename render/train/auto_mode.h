@@ -49,10 +49,11 @@ std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>&
 int planned_shading_start(const TrainConfig& config);
 
 // The iteration after which the detection runs: the planned shading start, but not before
-// intrinsic_detect_settled iterations (capped at the run's end). Before about 2K iterations (128 px, 30K
-// points) the warmed-up geometry is still settling, and its misregistration reads as view dependence:
-// lambert_room, no glossy surface, showed 0.88 % evidence at iteration 1000 of a 2K run, more than
-// marble_monkey's 0.37 % (threshold 0.08 %), and 0.04 % at iteration 2000 (docs/bench/NOTES.md, session 13).
+// intrinsic_detect_settled iterations (4000; capped at the run's end). While the geometry is still
+// settling its misregistration reads as view dependence. lambert_room (no glossy surface; threshold
+// 0.08 %, 128 px, 30K points) showed 0.88 % at iteration 1000 of a 2K run, more than marble_monkey's 0.37 %;
+// at iteration 2000 of 4K runs 0.03 / 0.12 / 0.08 % over seeds 0-2, at their end 0.00 %, while
+// marble_monkey keeps 0.19 % (docs/bench/NOTES.md, session 13).
 int auto_detection_iteration(const TrainConfig& config);
 
 // A glossy decision later than planned (a run shorter than 2 x intrinsic_detect_settled) keeps the shading

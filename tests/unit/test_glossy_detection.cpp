@@ -319,7 +319,8 @@ TEST(AutoMode, DetectionWaitsForTheGeometry) {
 }
 
 TEST(AutoMode, ShortRunsDecideOnceTheGeometryHasSettledAndKeepTheirShadingPhase) {
-  TrainConfig c;  // detect_settled 2000
+  TrainConfig c;
+  c.intrinsic.detect_settled = 2000;
   c.iterations = 2000;  // planned: half the run; the geometry settles only at 2000, the run's end
   EXPECT_EQ(planned_shading_start(c), 1000);
   EXPECT_EQ(auto_detection_iteration(c), 2000);
@@ -335,6 +336,12 @@ TEST(AutoMode, ShortRunsDecideOnceTheGeometryHasSettledAndKeepTheirShadingPhase)
   EXPECT_EQ(auto_detection_iteration(c), 2000);
   const TrainConfig same = lengthened_for_late_decision(c, 2000);
   EXPECT_EQ(same.iterations, 4000);
+  c.intrinsic.detect_settled = TrainConfig().intrinsic.detect_settled;  // the default, 4000: a 4K run
+  EXPECT_EQ(auto_detection_iteration(c), 4000);                         // decides at its end ...
+  EXPECT_EQ(lengthened_for_late_decision(c, 4000).iterations, 6000);   // ... and adds its 2K of shading
+  c.iterations = 30000;  // the full schedule: at the warm-up's end, as planned
+  EXPECT_EQ(auto_detection_iteration(c), 4000);
+  c.iterations = 4000;
   c.iterations = 2000;
   c.intrinsic.detect_settled = 0;  // off: the planned start
   EXPECT_EQ(auto_detection_iteration(c), 1000);
