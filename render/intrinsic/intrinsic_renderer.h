@@ -89,8 +89,9 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
     emit_or_region_ = or_region;
   }
   // The same rule for whatever model is rendered next (intrinsic_emit = mask | max on a trained run): the
-  // weights are recomputed from the centres and these masks at every forward pass, so they follow edits
-  // and removals (a per-Gaussian array kept from training would not). Empty = off.
+  // weights are recomputed from the centres and these masks in a forward pass whose centres differ from the
+  // last ones, so they follow edits and removals (a per-Gaussian array kept from training would not).
+  // Empty = off.
   void set_emit_masks(std::vector<GlossyMaskView> views, bool or_region) {
     emit_masks_ = std::move(views);
     emit_or_region_ = or_region;

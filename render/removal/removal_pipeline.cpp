@@ -445,7 +445,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     TrainConfig ft = finetune_config(config, iters);
     if (intrinsic && !o.ablate.count("glossfill")) {  // removed_glossy_masks.h: no ghost where the target stood
       report.glossy_filled_pixels = fill_removed_glossy_masks(views, holes);
-      if (std::any_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); })) {
+      // A glossy_mask_dir must hold every view's mask (load_glossy_mask_folder), so only a complete set is written.
+      if (std::all_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); })) {
         save_glossy_mask_folder(out / "glossy_masks", views);
         ft.glossy_mask_dir = (out / "glossy_masks").string();
       }
