@@ -229,8 +229,90 @@ std::vector<Plane> fit_planes(std::vector<glm::vec3> pts, float tolerance, const
   return planes;
 }
 
+// Where a plane is: the cells of a grid in the plane's coordinates that the views see on it (surface points
+// within the tolerance), closed over small gaps, with holes filled (an object's footprint, a patch that
+// every view sees with a reflection in it), keeping only the pieces that hold detections (not a wall
+// that crosses the plane's height far away).
+class PlaneExtent {
+ public:
+  PlaneExtent(const Plane& pl, const std::vector<glm::vec2>& on_plane, const std::vector<glm::vec2>& seeds) : pl_(pl) {
+    // An orthonormal basis of the plane, its origin the point nearest the world's.
+    const glm::vec3 a = std::abs(pl.n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    e1_ = glm::normalize(glm::cross(pl.n, a));
+    e2_ = glm::cross(pl.n, e1_);
+    origin_ = -pl.d * pl.n;
+    if (on_plane.empty()) return;
+    // The grid spans the points' 0.5 - 99.5 percentiles (a stray far point does not coarsen it).
+    auto percentile = [&](int axis, double q) {
+      std::vector<float> c;
+      c.reserve(on_plane.size());
+      for (const glm::vec2& x : on_plane) c.push_back(x[axis]);
+      const size_t k = std::min(c.size() - 1, size_t(q * double(c.size())));
+      std::nth_element(c.begin(), c.begin() + long(k), c.end());
+      return c[k];
+    };
+    lo_ = {percentile(0, 0.005), percentile(1, 0.005)};
+    const glm::vec2 hi(percentile(0, 0.995), percentile(1, 0.995));
+    cell_ = std::max(hi.x - lo_.x, hi.y - lo_.y) / float(kCells);
+    if (!(cell_ > 0)) return;
+    const int gw = int((hi.x - lo_.x) / cell_) + 1, gh = int((hi.y - lo_.y) / cell_) + 1;
+    cv::Mat occ = cv::Mat::zeros(gh + 2, gw + 2, CV_8U);  // a free border for the hole filling
+    auto mark = [&](const std::vector<glm::vec2>& pts, cv::Mat& m) {
+      for (const glm::vec2& x : pts) {
+        const cv::Point c = cell(x);
+        if (c.x >= 0 && c.y >= 0 && c.x < gw && c.y < gh) m.at<std::uint8_t>(c.y + 1, c.x + 1) = 1;
+      }
+    };
+    mark(on_plane, occ);
+    const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5));
+    cv::morphologyEx(occ, occ, cv::MORPH_CLOSE, disc);
+    occ.row(0).setTo(0), occ.row(occ.rows - 1).setTo(0);  // the closing may have reached the free border
+    occ.col(0).setTo(0), occ.col(occ.cols - 1).setTo(0);
+    cv::Mat outside = occ.clone();
+    cv::floodFill(outside, cv::Point(0, 0), cv::Scalar(2));
+    occ.setTo(1, outside == 0);  // holes: not reached from the border
+    cv::Mat labels;
+    cv::connectedComponents(occ, labels, 8, CV_32S);
+    std::vector<std::uint8_t> keep(size_t(gw + 2) * size_t(gh + 2) + 1, 0);
+    for (const glm::vec2& x : seeds) {
+      const cv::Point c = cell(x);
+      if (c.x >= 0 && c.y >= 0 && c.x < gw && c.y < gh) keep[size_t(labels.at<int>(c.y + 1, c.x + 1))] = 1;
+    }
+    keep[0] = 0;  // the background label
+    grid_ = cv::Mat::zeros(gh, gw, CV_8U);
+    for (int y = 0; y < gh; ++y)
+      for (int x = 0; x < gw; ++x) grid_.at<std::uint8_t>(y, x) = keep[size_t(labels.at<int>(y + 1, x + 1))];
+  }
+
+  glm::vec2 coordinates(const glm::vec3& x) const { return {glm::dot(x - origin_, e1_), glm::dot(x - origin_, e2_)}; }
+
+  // Whether the ray from `eye` through the surface point `x` crosses the plane inside its extent before
+  // reaching x: x then lies behind the plane - the virtual geometry a radiance model puts behind a mirror.
+  bool seen_through(const glm::vec3& eye, const glm::vec3& x, float tolerance) const {
+    if (grid_.empty()) return false;
+    const float se = glm::dot(pl_.n, eye) + pl_.d, sx = glm::dot(pl_.n, x) + pl_.d;
+    if (!(se * sx < 0) || !(std::abs(sx) > tolerance)) return false;
+    const glm::vec3 hit = eye + (se / (se - sx)) * (x - eye);
+    const cv::Point c = cell(coordinates(hit));
+    return c.x >= 0 && c.y >= 0 && c.x < grid_.cols && c.y < grid_.rows && grid_.at<std::uint8_t>(c.y, c.x) != 0;
+  }
+
+ private:
+  static constexpr int kCells = 160;  // along the longer side
+  cv::Point cell(glm::vec2 x) const {
+    return {int(std::floor((x.x - lo_.x) / cell_)), int(std::floor((x.y - lo_.y) / cell_))};
+  }
+  Plane pl_;
+  glm::vec3 e1_{0.0f}, e2_{0.0f}, origin_{0.0f};
+  glm::vec2 lo_{0.0f};
+  float cell_ = 0;
+  cv::Mat grid_;  // [rows][cols] 1 = the plane is there
+};
+
 // Grows the masks over the planes the detected pixels lie on: a glossy table top or mirror is glossy
-// everywhere, but reflections are only seen (detected) where they show something that changes.
+// everywhere, but reflections are only seen (detected) where they show something that changes. A pixel
+// joins when its surface point lies on a plane, or behind it seen through the plane's extent: a radiance
+// model renders a mirror's reflections as geometry behind it, and those are the pixels that matter most.
 void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& out, const GlossyDetectionSettings& s) {
   std::vector<glm::vec3> pts;
   std::vector<float> dist;
@@ -241,6 +323,7 @@ void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& 
         dist.push_back(glm::length(pts.back() - views[i].camera.center()));
       }
   if (pts.size() < size_t(s.plane_min_points)) return;
+  const std::vector<glm::vec3> seeds = pts;
   if (pts.size() > 20000) {  // a spread subset is plenty for the fit
     std::vector<glm::vec3> sub;
     const size_t step = pts.size() / 20000 + 1;
@@ -251,13 +334,29 @@ void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& 
   const float tolerance = s.plane_tolerance * dist[dist.size() / 2];
   const std::vector<Plane> planes = fit_planes(std::move(pts), tolerance, s);
   out.planes = int(planes.size());
+  // Each plane's extent from every covered pixel on it.
+  std::vector<PlaneExtent> extents;
+  for (const Plane& pl : planes) {
+    PlaneExtent probe(pl, {}, {});
+    std::vector<glm::vec2> on, seeded;
+    for (size_t i = 0; i < views.size(); ++i)
+      for (size_t p = 0; p < out.masks[i].size(); ++p)
+        if (views[i].alpha[p] > 0.5f && views[i].depth[p] > 0) {
+          const glm::vec3 x = surface_point(views[i], p);
+          if (pl.distance(x) <= tolerance) on.push_back(probe.coordinates(x));
+        }
+    for (const glm::vec3& x : seeds)
+      if (pl.distance(x) <= tolerance) seeded.push_back(probe.coordinates(x));
+    extents.emplace_back(pl, on, seeded);
+  }
   for (size_t i = 0; i < views.size(); ++i) {
     const ConsistencyView& v = views[i];
+    const glm::vec3 eye = v.camera.center();
     for (size_t p = 0; p < out.masks[i].size(); ++p) {
       if (out.masks[i][p] || !(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
       const glm::vec3 x = surface_point(v, p);
-      for (const Plane& pl : planes)
-        if (pl.distance(x) <= tolerance) {
+      for (size_t k = 0; k < planes.size(); ++k)
+        if (planes[k].distance(x) <= tolerance || extents[k].seen_through(eye, x, tolerance)) {
           out.masks[i][p] = 1;
           break;
         }

@@ -24,8 +24,11 @@
 // reflecting a dark room looks the same from everywhere, a rough surface's blurred reflections barely
 // change), but they are precise (> 90 % inside the data sets' glossy masks). So the masks are then grown
 // over the plane(s) most detections lie on (RANSAC on their surface points; a glossy table top or mirror
-// is glossy all over); detections on a curved object, spread over no plane, stay as they are. The decision
-// uses the detections before growing, and only a glossy scene's masks are grown.
+// is glossy all over); detections on a curved object, spread over no plane, stay as they are. Growing takes
+// the pixels whose surface point lies on such a plane, and those whose point lies behind it, seen through
+// the plane's extent (the area the views see on the plane, holes filled): a radiance model shows a mirror's
+// reflections of objects as geometry behind the mirror, and those reflections are what a removal must find.
+// The decision uses the detections before growing, and only a glossy scene's masks are grown.
 //
 // A radiance model explains mirror reflections by virtual geometry behind the surface, which is
 // photo-consistent; the detection relies on the reflections the model has not (yet) turned into geometry.

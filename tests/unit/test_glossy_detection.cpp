@@ -31,6 +31,7 @@ namespace fs = std::filesystem;
 struct SyntheticScene {
   bool view_dependent = false;  // the plane reflects a striped environment
   bool occluder = false;        // red square [-0.3, 0.3]^2 at z = 1.5
+  bool floor = false;           // a Lambertian floor at z = -1 around the disc
 };
 
 struct SyntheticView {
@@ -73,6 +74,11 @@ SyntheticView cast(const SyntheticScene& s, const Camera& cam) {
           const glm::vec3 env(0.5f + 0.5f * std::sin(8 * az), 0.5f + 0.5f * std::sin(8 * az + 2), 0.5f + 0.5f * std::sin(8 * az + 4));
           color = 0.3f * color + 0.7f * env;
         }
+        found = true;
+      }
+      if (!found && s.floor && d.z < 0) {
+        hit = eye + ((-1.0f - eye.z) / d.z) * d;
+        color = 0.8f * plane_texture(2.0f * hit + 1.0f);
         found = true;
       }
       if (!found) continue;
@@ -225,6 +231,53 @@ TEST(GlossyDetection, MasksGrowOverThePlaneOfTheDetections) {
   EXPECT_GT(double(plane_marked), 0.97 * double(plane));
   EXPECT_EQ(square_marked, seed_square) << "the square 1.5 above the plane was grown over";
   EXPECT_GT(square, 100u);
+}
+
+TEST(GlossyDetection, MasksGrowOverReflectionsTheModelPutsBehindThePlane) {
+  // A radiance model shows a mirror's reflections as geometry behind it: where the disc shows a patch of
+  // such virtual geometry (depth as if at z = -0.8), the surface points lie off the plane, but the views see
+  // them through the disc - they are glossy. The floor around the disc also lies behind the plane, but is
+  // seen beside it, not through it.
+  std::vector<SyntheticView> views = ring_views({true, true, true});
+  const std::vector<SyntheticView> lambertian = ring_views({false, true, true});
+  enum Kind { kOther, kPlane, kPatch, kFloor };
+  std::vector<std::vector<Kind>> kind(views.size());
+  for (size_t i = 0; i < views.size(); ++i) {
+    const Camera& c = views[i].camera;
+    const size_t hw = size_t(c.width) * c.height;
+    kind[i].assign(hw, kOther);
+    for (size_t p = 0; p < hw; ++p) {
+      if (!(views[i].alpha[p] > 0.5f)) continue;
+      const glm::vec3 d = c.ray_direction(float(p % c.width) + 0.5f, float(p / c.width) + 0.5f);
+      const float t = views[i].depth[p] / glm::dot(d, c.forward());
+      const glm::vec3 x = c.center() + t * d;
+      if (x.x < 0 || x.z > 0.5f)  // the glossy half of the disc only
+        for (int ch = 0; ch < 3; ++ch) views[i].image[ch * hw + p] = lambertian[i].image[ch * hw + p];
+      if (x.z < -0.5f) {
+        kind[i][p] = kFloor;
+      } else if (std::abs(x.z) < 1e-3f) {
+        kind[i][p] = kPlane;
+        if (std::abs(x.x - 0.5f) < 0.3f && std::abs(x.y) < 0.3f) {
+          kind[i][p] = kPatch;
+          views[i].depth[p] *= (-0.8f - c.center().z) / (x.z - c.center().z);
+        }
+      }
+    }
+  }
+  const GlossyDetection grown = detect(views);
+  ASSERT_TRUE(grown.glossy);
+  ASSERT_EQ(grown.planes, 1);
+  size_t count[4] = {}, marked[4] = {};
+  for (size_t i = 0; i < views.size(); ++i)
+    for (size_t p = 0; p < views[i].depth.size(); ++p) {
+      count[kind[i][p]] += 1;
+      marked[kind[i][p]] += grown.masks[i][p];
+    }
+  EXPECT_GT(count[kPatch], 200u);
+  EXPECT_GT(count[kFloor], 1000u);
+  EXPECT_GT(double(marked[kPlane]), 0.97 * double(count[kPlane]));
+  EXPECT_GT(double(marked[kPatch]), 0.97 * double(count[kPatch])) << "the reflections behind the plane";
+  EXPECT_LT(double(marked[kFloor]), 0.03 * double(count[kFloor])) << "the floor beside the disc";
 }
 
 TEST(GlossyDetection, NearestViewsFollowTheCameraDirection) {
