@@ -94,8 +94,15 @@ std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>&
   }
   config.mode = "radiance";
   config.auto_detect_glossy = true;
-  return "no glossy masks: radiance through the warm-up, then glossy regions are detected from the photos after "
-         "iteration " + std::to_string(auto_detection_iteration(config));
+  const int at = auto_detection_iteration(config);
+  std::string why = "no glossy masks: radiance through the warm-up, then glossy regions are detected from the photos after "
+                    "iteration " + std::to_string(at);
+  if (at < config.intrinsic.detect_settled)
+    why += "; caution: a run this short decides before the geometry has settled (" +
+           std::to_string(config.intrinsic.detect_settled) +
+           " iterations), when a Lambertian scene can look glossy - give glossy masks (gloss_*.png), train longer "
+           "or choose --mode radiance|intrinsic";
+  return why;
 }
 
 int planned_shading_start(const TrainConfig& config) {

@@ -41,7 +41,8 @@ std::optional<double> glossy_mask_fraction(const std::vector<TrainView>& views);
 
 // Resolves config.mode "auto" at the start of a run from the loaded training views (their glossy masks):
 // sets the mode (and auto_detect_glossy when the detection has to decide later) and returns why, for the
-// user. No-op returning "" for any other mode.
+// user, with a caution when the run ends before intrinsic_detect_settled (the decision may misfire on a
+// Lambertian scene). No-op returning "" for any other mode.
 std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>& views);
 
 // Where the shading phase would start: max(TrainConfig::shading_from(), min(intrinsic_detect_after,
