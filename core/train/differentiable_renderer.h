@@ -9,6 +9,7 @@
 #include "core/compute/device.h"
 #include "core/io/camera.h"
 #include "core/scene/gaussian_view.h"
+#include "core/train/depth_distortion.h"
 
 namespace goris {
 
@@ -48,6 +49,13 @@ class DifferentiableRenderer {
   // Adds dL/dparameters of the last forward's Gaussians into `grads` (grads.mean2d_grad_norm included).
   virtual void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) = 0;
 
+  // The depth distortion loss of the Gaussians seen by `camera` (a pass of its own, independent of the last
+  // forward): adds weight x dL/dparameters into `grads` and returns the unweighted loss; 0 where unsupported.
+  virtual double depth_distortion(const GaussianView& /*gaussians*/, const Camera& /*camera*/,
+                                  const DistortionDepthRange& /*range*/, float /*weight*/,
+                                  const GaussianGradView& /*grads*/) {
+    return 0.0;
+  }
   // Whether forward() wants the Gaussians' extra channels (model.view(true)) and returns them.
   virtual bool wants_extras() const { return false; }
   // Told the iteration about to run before its forward pass (e.g. to switch from the radiance warm-up to

@@ -45,6 +45,8 @@ void visit_fields(Config& c, F&& f) {
   f("depth_normal_weight", c.depth_normal_weight);
   f("depth_normal_from", c.depth_normal_from);
   f("depth_normal_median_ratio", c.depth_normal_median_ratio);
+  f("depth_distortion_weight", c.depth_distortion_weight);
+  f("depth_distortion_from", c.depth_distortion_from);
   f("sh_degree_interval", c.sh_degree_interval);
   f("max_sh_degree", c.max_sh_degree);
   f("densify_from_iter", c.densify.from_iter);
@@ -131,6 +133,9 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(random_init_box_ratio > 0)) fail("random_init_box_ratio must be positive");
   if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
   if (!(depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
+  if (!(depth_distortion_weight >= 0 && std::isfinite(depth_distortion_weight)))
+    fail("depth_distortion_weight must be finite and >= 0");
+  if (depth_distortion_from < 0) fail("depth_distortion_from must be >= 0");
   if (!(depth_normal_median_ratio >= 0 && depth_normal_median_ratio <= 1))
     fail("depth_normal_median_ratio must lie in [0, 1]");
   if (sh_degree_interval < 1) fail("sh_degree_interval must be at least 1");

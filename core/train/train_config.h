@@ -132,6 +132,10 @@ struct TrainConfig {
   // steel_snowman 1.38 dB in radiance mode and 1.30 dB in intrinsic mode, marble_monkey 0.10 dB; from the
   // start of shading (2000) 0.18 dB (docs/bench/NOTES.md, session 12).
   int depth_normal_from = 7000;
+  // Depth distortion (2DGS; the paper's stage 1 at 1000 for bounded scenes, on after 3K of 30K iterations,
+  // here scaled to the run's length): core/train/depth_distortion.h. 0 = off.
+  float depth_distortion_weight = 0.0f;
+  int depth_distortion_from = 3000;
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
   int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
   int max_sh_degree = 3;

@@ -51,8 +51,9 @@ ColorLossParts weighted_color_loss(const float* pred, const float* target, const
 }
 
 // Every loss term of a step by name (for messages about a bad step).
-std::array<std::pair<const char*, double>, 9> loss_term_list(const StepStats& s) {
-  return {{{"l1", s.l1}, {"ssim", s.ssim}, {"depth_normal", s.depth_normal}, {"normal_prior", s.normal_prior},
+std::array<std::pair<const char*, double>, 10> loss_term_list(const StepStats& s) {
+  return {{{"l1", s.l1}, {"ssim", s.ssim}, {"depth_normal", s.depth_normal}, {"distortion", s.distortion},
+           {"normal_prior", s.normal_prior},
            {"smoothness", s.smoothness}, {"region", s.region}, {"label", s.label}, {"appearance", s.appearance},
            {"material", s.material}}};
 }
@@ -243,6 +244,15 @@ StepStats Trainer::step() {
   upload(g_detached, dg_detached, go.extras_detached);
   upload(g_base, dg_base, go.base_color);
   renderer_->backward(gv, go, gg);
+  if (config_.depth_distortion_weight > 0 && it > config_.scaled_iteration(config_.depth_distortion_from)) {
+    out.distortion = renderer_->depth_distortion(gv, cam, DistortionDepthRange::for_extent(extent_),
+                                                 config_.depth_distortion_weight, gg);
+    out.loss += config_.depth_distortion_weight * out.distortion;
+    if (!std::isfinite(out.loss)) {
+      skip_step(it, "the loss is not finite (" + non_finite_terms(out) + ") on view " + view.name, out);
+      return out;
+    }
+  }
   if (with_extras) m.backprop_extras();
   if (it <= densify_until())
     state_.stats.add_view(view_grad_norm_.data(), fwd.radii, ndc_gradient_scale(w, h), m.count(), device_);

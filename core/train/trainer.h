@@ -74,7 +74,7 @@ struct TrainProgress {
 };
 
 struct StepStats {
-  double loss = 0, l1 = 0, ssim = 0, depth_normal = 0, psnr = 0;
+  double loss = 0, l1 = 0, ssim = 0, depth_normal = 0, distortion = 0, psnr = 0;
   // Intrinsic-mode terms (unweighted; 0 when off).
   double normal_prior = 0, smoothness = 0, region = 0, label = 0;
   double appearance = 0, material = 0;  // stage 2 (0 when off)

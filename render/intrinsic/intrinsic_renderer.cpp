@@ -12,6 +12,7 @@
 #include "core/util/error.h"
 #include "render/intrinsic/coarse_tracing.h"
 #include "render/intrinsic/own_state_io.h"
+#include "render/train/depth_distortion_pass.h"
 #include "render/train/raster_renderer.h"
 
 namespace goris {
@@ -130,6 +131,12 @@ RenderedImages IntrinsicRenderer::forward(const GaussianView& gaussians, const C
     r.color = frame_->shaded.color.data();
   }
   return r;
+}
+
+double IntrinsicRenderer::depth_distortion(const GaussianView& gaussians, const Camera& camera,
+                                           const DistortionDepthRange& range, float weight,
+                                           const GaussianGradView& grads) {
+  return depth_distortion_pass(gaussians, camera, raster_settings_, range, weight, grads, device_);
 }
 
 void IntrinsicRenderer::trace_rays(const ReflectionRays& rays, std::size_t first, std::size_t count,

@@ -1,5 +1,7 @@
 #include "render/train/raster_renderer.h"
 
+#include "render/train/depth_distortion_pass.h"
+
 namespace goris {
 
 RasterSettings RasterRenderer::settings_for(const TrainConfig& config) {
@@ -40,6 +42,11 @@ void RasterRenderer::backward(const GaussianView& gaussians, const ImageGradient
   go.extras = d.extras;
   rasterize_backward(gaussians, last_.state, go, grads);
   backward_detached_extras(gaussians, last_.state, d.extras_detached, grads);
+}
+
+double RasterRenderer::depth_distortion(const GaussianView& gaussians, const Camera& camera,
+                                        const DistortionDepthRange& range, float weight, const GaussianGradView& grads) {
+  return depth_distortion_pass(gaussians, camera, settings_, range, weight, grads, device_);
 }
 
 void backward_detached_extras(const GaussianView& gaussians, const RasterState& state, const float* d_extras,

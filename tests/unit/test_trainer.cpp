@@ -445,6 +445,30 @@ TEST(Trainer, DepthNormalConsistencyTrainsWithoutHarm) {
   EXPECT_GT(mean_psnr(t), 30.0);
 }
 
+TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
+  // 2DGS's depth distortion from its scaled start (3000 of 30K -> 40 of 400): 0 before, finite and
+  // positive after; the re-fit still converges and the term falls.
+  TrainConfig config = refit_config(400);
+  config.depth_distortion_weight = 100.0f;
+  ASSERT_EQ(config.scaled_iteration(config.depth_distortion_from), 40);
+  Scene s = make_scene(config, 32);
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(10)));
+  double first = 0, last = 0;
+  while (!t.finished()) {
+    const StepStats st = t.step();
+    const int it = t.state().iteration;
+    ASSERT_TRUE(std::isfinite(st.distortion));
+    if (it <= 40) ASSERT_EQ(st.distortion, 0.0) << it;
+    if (it > 40 && it <= 60) first += st.distortion;
+    if (it > 380) last += st.distortion;
+  }
+  EXPECT_GT(first, 0.0);
+  EXPECT_LT(last, first);
+  EXPECT_GT(mean_psnr(t), 30.0);
+  config.depth_distortion_weight = -1.0f;
+  EXPECT_THROW(config.validate("test"), Error);
+}
+
 TEST(Trainer, DensificationScheduleFitsShortRuns) {
   // until_iter beyond the run: density control stops at densify_until_fraction of the run (here half of
   // it), and a reset only happens when a pruning step follows it inside that window.
