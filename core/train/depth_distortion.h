@@ -28,6 +28,13 @@ struct DistortionDepthRange {
   static DistortionDepthRange for_extent(double extent) { return {extent / 20.0, extent * 25.0}; }
 };
 
+// Camera-space z of a world point, in T (the FD tests run in double): forward() . x + t.z.
+template <class T>
+T camera_z(const Camera& camera, const T* x) {
+  const glm::vec3 row = camera.forward();
+  return T(row.x) * x[0] + T(row.y) * x[1] + T(row.z) * x[2] + T(camera.t.z);
+}
+
 // NDC-like depth of camera z and its derivative; 0 (and no gradient) in front of the near plane.
 template <class T>
 T distortion_depth(T z, const DistortionDepthRange& r, T* dm_dz = nullptr) {
@@ -63,11 +70,8 @@ double depth_distortion_loss(const T* A, const T* M1, const T* M2, std::size_t h
 template <class T>
 void distortion_moments(const T* positions, std::size_t count, const Camera& camera, const DistortionDepthRange& r,
                         T center, T* out) {
-  const glm::vec3 row(camera.R[0][2], camera.R[1][2], camera.R[2][2]);  // z_cam = row . x + t.z
   for (std::size_t i = 0; i < count; ++i) {
-    const T* x = positions + 3 * i;
-    const T z = T(row.x) * x[0] + T(row.y) * x[1] + T(row.z) * x[2] + T(camera.t.z);
-    const T d = distortion_depth(z, r) - center;
+    const T d = distortion_depth(camera_z(camera, positions + 3 * i), r) - center;
     out[2 * i] = d;
     out[2 * i + 1] = d * d;
   }
@@ -78,12 +82,10 @@ void distortion_moments(const T* positions, std::size_t count, const Camera& cam
 template <class T>
 void distortion_moments_backward(const T* positions, std::size_t count, const Camera& camera,
                                  const DistortionDepthRange& r, T center, const T* g_moments, T* g_positions) {
-  const glm::vec3 row(camera.R[0][2], camera.R[1][2], camera.R[2][2]);
+  const glm::vec3 row = camera.forward();
   for (std::size_t i = 0; i < count; ++i) {
-    const T* x = positions + 3 * i;
-    const T z = T(row.x) * x[0] + T(row.y) * x[1] + T(row.z) * x[2] + T(camera.t.z);
     T dm = 0;
-    const T d = distortion_depth(z, r, &dm) - center;
+    const T d = distortion_depth(camera_z(camera, positions + 3 * i), r, &dm) - center;
     const T gz = (g_moments[2 * i] + T(2) * d * g_moments[2 * i + 1]) * dm;
     g_positions[3 * i + 0] += gz * T(row.x);
     g_positions[3 * i + 1] += gz * T(row.y);
@@ -94,12 +96,10 @@ void distortion_moments_backward(const T* positions, std::size_t count, const Ca
 // The median depth m of the centres in front of the near plane (0 if none): where distortion_moments centres.
 template <class T>
 T distortion_center(const T* positions, std::size_t count, const Camera& camera, const DistortionDepthRange& r) {
-  const glm::vec3 row(camera.R[0][2], camera.R[1][2], camera.R[2][2]);
   std::vector<T> m;
   m.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const T* x = positions + 3 * i;
-    const T z = T(row.x) * x[0] + T(row.y) * x[1] + T(row.z) * x[2] + T(camera.t.z);
+    const T z = camera_z(camera, positions + 3 * i);
     if (z > T(r.near)) m.push_back(distortion_depth(z, r));
   }
   if (m.empty()) return T(0);

@@ -215,10 +215,13 @@ StepStats Trainer::step() {
     for (size_t i = 0; i < g_base.size(); ++i) g_color[i] += g_base[i];
     g_base.clear();
   }
-  if (!std::isfinite(out.loss)) {
+  // A non-finite loss skips the step, naming the terms (checked again once the distortion pass has run).
+  const auto loss_not_finite = [&] {
+    if (std::isfinite(out.loss)) return false;
     skip_step(it, "the loss is not finite (" + non_finite_terms(out) + ") on view " + view.name, out);
-    return out;
-  }
+    return true;
+  };
+  if (loss_not_finite()) return out;
 
   // Backward.
   m.zero_grad();
@@ -248,10 +251,7 @@ StepStats Trainer::step() {
     out.distortion = renderer_->depth_distortion(gv, cam, DistortionDepthRange::for_extent(extent_),
                                                  config_.depth_distortion_weight, gg);
     out.loss += config_.depth_distortion_weight * out.distortion;
-    if (!std::isfinite(out.loss)) {
-      skip_step(it, "the loss is not finite (" + non_finite_terms(out) + ") on view " + view.name, out);
-      return out;
-    }
+    if (loss_not_finite()) return out;
   }
   if (with_extras) m.backprop_extras();
   if (it <= densify_until())

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/compute/buffer.h"
+#include "core/compute/host_device_image.h"
 #include "core/compute/memory.h"
 
 namespace goris {
@@ -12,11 +13,11 @@ double depth_distortion_pass(const GaussianView& gaussians, const Camera& camera
                              Device device) {
   const std::size_t n = std::size_t(gaussians.count);
   if (n == 0) return 0.0;
-  std::vector<float> positions(3 * n), moments(2 * n);
-  device_copy(positions.data(), Device::CPU, gaussians.positions, device, positions.size() * sizeof(float));
+  const HostView positions(gaussians.positions, 3 * n, device);  // no copy on the CPU
   const float center = distortion_center(positions.data(), n, camera, range);
+  std::vector<float> moments(2 * n);
   distortion_moments(positions.data(), n, camera, range, center, moments.data());
-  const Buffer<float> moments_dev(moments, device);
+  const DeviceGrad moments_dev(moments, device);
 
   GaussianView v = gaussians;  // same geometry, SH DC only, the moments as the extra channels
   v.sh_degree = 0;
@@ -27,13 +28,13 @@ double depth_distortion_pass(const GaussianView& gaussians, const Camera& camera
   const RasterOutput r = rasterize(v, camera, s, device);
 
   const std::size_t hw = r.gbuffer.pixels();
-  const std::vector<float> A = r.gbuffer.alpha.to_host(), M = r.gbuffer.extras.to_host();  // M: [2][H][W]
+  const HostView A(r.gbuffer.alpha.data(), hw, device), M(r.gbuffer.extras.data(), 2 * hw, device);  // M: [2][H][W]
   std::vector<float> gA(hw, 0.0f), gM(2 * hw, 0.0f);
   const double loss = depth_distortion_loss(A.data(), M.data(), M.data() + hw, hw, gA.data(), gM.data(),
                                             gM.data() + hw, weight);
   if (weight == 0.0f) return loss;
 
-  const Buffer<float> gA_dev(gA, device), gM_dev(gM, device);
+  const DeviceGrad gA_dev(gA, device), gM_dev(gM, device);
   Buffer<float> g_moments(2 * n, device);
   g_moments.fill_zero();
   GBufferGrad go;
@@ -47,10 +48,15 @@ double depth_distortion_pass(const GaussianView& gaussians, const Camera& camera
   gg.extras = g_moments.data();
   rasterize_backward(v, r.state, go, gg);
 
-  if (grads.positions) {  // the centres' depth through (m, m^2)
+  if (!grads.positions) return loss;
+  // The centres' depth through (d, d^2): in place on the CPU, a round trip for a device's gradients.
+  const HostView g_mom(g_moments.data(), 2 * n, device);
+  if (device == Device::CPU) {
+    distortion_moments_backward(positions.data(), n, camera, range, center, g_mom.data(), grads.positions);
+  } else {
     std::vector<float> gp(3 * n);
     device_copy(gp.data(), Device::CPU, grads.positions, device, gp.size() * sizeof(float));
-    distortion_moments_backward(positions.data(), n, camera, range, center, g_moments.to_host().data(), gp.data());
+    distortion_moments_backward(positions.data(), n, camera, range, center, g_mom.data(), gp.data());
     device_copy(grads.positions, device, gp.data(), Device::CPU, gp.size() * sizeof(float));
   }
   return loss;
