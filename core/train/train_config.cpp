@@ -80,6 +80,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_net_ease_until", c.intrinsic.net_ease_until);
   f("intrinsic_screen_space_filter", c.intrinsic.screen_space_filter);
   f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
+  f("intrinsic_net_residual", c.intrinsic.net_residual);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
   f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);

@@ -45,6 +45,7 @@ struct IntrinsicSettings {
   int net_ease_until = 10000;
   bool screen_space_filter = true; // L_ind and V through the screen-space glossy filter (+ssf)
   int net_hidden_layers = 6;       // 3x3 layers of the roughness net
+  bool net_residual = false;       // R_s = sigmoid(net + logit(roughness)), starting at R_s = R (ssf::NetConfig)
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
   // > 0: at the last warm-up iteration remove the Gaussians seen only behind glossy surfaces (the warm-up's

@@ -96,7 +96,8 @@ IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, De
       raster_settings_(RasterRenderer::settings_for(config)),
       env_(config.intrinsic.env_resolution, device, config.intrinsic.env_initial),
       env_adam_(env_.param_count(), device),
-      net_(ssf::NetConfig{3, 8, config.intrinsic.net_hidden_layers}, device, config.seed * 7919 + 17),
+      net_(ssf::NetConfig{3, 8, config.intrinsic.net_hidden_layers, config.intrinsic.net_residual ? 0 : -1}, device,
+           config.seed * 7919 + 17),
       net_adam_(net_.param_count(), device),
       tracer_(device) {
   if (!(extent > 0)) throw Error("intrinsic renderer", "the scene extent must be positive");
