@@ -47,16 +47,17 @@ T distortion_depth(T z, const DistortionDepthRange& r, T* dm_dz = nullptr) {
   return s * (T(1) - n / z);
 }
 
-// mean over pixels of (A M2 - M1^2) (clamped at 0 against rounding); adds weight x the gradients into g_*
-// (each [hw], any may be null).
+// mean over pixels of w (A M2 - M1^2) (the pair sum clamped at 0 against rounding; w = pixel_weight[p], or
+// 1 when it is null); adds weight x the gradients into g_* (each [hw], any may be null).
 template <class T>
 double depth_distortion_loss(const T* A, const T* M1, const T* M2, std::size_t hw, T* g_A, T* g_M1, T* g_M2,
-                             T weight) {
+                             T weight, const T* pixel_weight = nullptr) {
   if (hw == 0) return 0.0;
   double sum = 0;
-  const T s = weight / T(hw);
   for (std::size_t p = 0; p < hw; ++p) {
-    sum += std::max(double(A[p] * M2[p] - M1[p] * M1[p]), 0.0);
+    const T w = pixel_weight ? pixel_weight[p] : T(1);
+    const T s = weight * w / T(hw);
+    sum += double(w) * std::max(double(A[p] * M2[p] - M1[p] * M1[p]), 0.0);
     if (g_A) g_A[p] += s * M2[p];
     if (g_M1) g_M1[p] += s * T(-2) * M1[p];
     if (g_M2) g_M2[p] += s * A[p];

@@ -50,10 +50,11 @@ class DifferentiableRenderer {
   virtual void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) = 0;
 
   // The depth distortion loss of the Gaussians seen by `camera` (a pass of its own, independent of the last
-  // forward): adds weight x dL/dparameters into `grads` and returns the unweighted loss; 0 where unsupported.
+  // forward), weighted per pixel by pixel_weight ([H x W] on the host; null = 1): adds weight x
+  // dL/dparameters into `grads` and returns the unweighted loss; 0 where unsupported.
   virtual double depth_distortion(const GaussianView& /*gaussians*/, const Camera& /*camera*/,
                                   const DistortionDepthRange& /*range*/, float /*weight*/,
-                                  const GaussianGradView& /*grads*/) {
+                                  const float* /*pixel_weight*/, const GaussianGradView& /*grads*/) {
     return 0.0;
   }
   // Whether forward() wants the Gaussians' extra channels (model.view(true)) and returns them.

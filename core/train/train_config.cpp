@@ -47,6 +47,7 @@ void visit_fields(Config& c, F&& f) {
   f("depth_normal_median_ratio", c.depth_normal_median_ratio);
   f("depth_distortion_weight", c.depth_distortion_weight);
   f("depth_distortion_from", c.depth_distortion_from);
+  f("depth_distortion_glossy", c.depth_distortion_glossy);
   f("sh_degree_interval", c.sh_degree_interval);
   f("max_sh_degree", c.max_sh_degree);
   f("densify_from_iter", c.densify.from_iter);
@@ -137,6 +138,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(depth_distortion_weight >= 0 && std::isfinite(depth_distortion_weight)))
     fail("depth_distortion_weight must be finite and >= 0");
   if (depth_distortion_from < 0) fail("depth_distortion_from must be >= 0");
+  if (!(depth_distortion_glossy >= 0 && depth_distortion_glossy <= 1)) fail("depth_distortion_glossy must lie in [0, 1]");
   if (!(depth_normal_median_ratio >= 0 && depth_normal_median_ratio <= 1))
     fail("depth_normal_median_ratio must lie in [0, 1]");
   if (sh_degree_interval < 1) fail("sh_degree_interval must be at least 1");

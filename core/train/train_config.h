@@ -137,6 +137,10 @@ struct TrainConfig {
   // here scaled to the run's length): core/train/depth_distortion.h. 0 = off.
   float depth_distortion_weight = 0.0f;
   int depth_distortion_from = 3000;
+  // The distortion's weight on glossy-mask pixels relative to the rest (1 = the paper). Behind a planar
+  // mirror a radiance field needs a second, virtual surface (the mirror world) until the traced term
+  // carries the reflection; at 0 the loss leaves those pixels alone (README, "depth distortion").
+  float depth_distortion_glossy = 1.0f;
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
   int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
   int max_sh_degree = 3;

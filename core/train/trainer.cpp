@@ -140,6 +140,15 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
     }
 }
 
+const float* Trainer::distortion_pixel_weights(const TrainView& view) {
+  const float glossy = config_.depth_distortion_glossy;
+  if (glossy == 1.0f || view.glossy_mask.empty()) return nullptr;
+  distortion_weights_.resize(view.glossy_mask.size());
+  for (std::size_t p = 0; p < distortion_weights_.size(); ++p)
+    distortion_weights_[p] = 1.0f - (1.0f - glossy) * view.glossy_mask[p];
+  return distortion_weights_.data();
+}
+
 std::vector<Camera> Trainer::cameras() const {
   std::vector<Camera> c;
   c.reserve(views_.size());
@@ -249,7 +258,7 @@ StepStats Trainer::step() {
   renderer_->backward(gv, go, gg);
   if (config_.depth_distortion_weight > 0 && it > config_.scaled_iteration(config_.depth_distortion_from)) {
     out.distortion = renderer_->depth_distortion(gv, cam, DistortionDepthRange::for_extent(extent_),
-                                                 config_.depth_distortion_weight, gg);
+                                                 config_.depth_distortion_weight, distortion_pixel_weights(view), gg);
     out.loss += config_.depth_distortion_weight * out.distortion;
     if (loss_not_finite()) return out;
   }

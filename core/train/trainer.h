@@ -171,8 +171,12 @@ class Trainer {
                         std::vector<float>& g_base, std::vector<float>& g_normal, std::vector<float>& g_extras,
                         StepStats& out) const;
   std::vector<Camera> cameras() const;
+  // The depth distortion's per-pixel weights on `view` (depth_distortion_glossy on its glossy mask, 1
+  // elsewhere), or null for 1 everywhere. Points into distortion_weights_ or nowhere.
+  const float* distortion_pixel_weights(const TrainView& view);
 
   TrainConfig config_;
+  std::vector<float> distortion_weights_;
   std::vector<TrainView> views_;
   std::size_t emit_weights_count_ = std::size_t(-1);  // Gaussians when the emit weights were last set (intrinsic_emit = mask)
   float extent_;

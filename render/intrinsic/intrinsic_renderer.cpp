@@ -135,9 +135,9 @@ RenderedImages IntrinsicRenderer::forward(const GaussianView& gaussians, const C
 }
 
 double IntrinsicRenderer::depth_distortion(const GaussianView& gaussians, const Camera& camera,
-                                           const DistortionDepthRange& range, float weight,
+                                           const DistortionDepthRange& range, float weight, const float* pixel_weight,
                                            const GaussianGradView& grads) {
-  return depth_distortion_pass(gaussians, camera, raster_settings_, range, weight, grads, device_);
+  return depth_distortion_pass(gaussians, camera, raster_settings_, range, weight, pixel_weight, grads, device_);
 }
 
 void IntrinsicRenderer::trace_rays(const ReflectionRays& rays, std::size_t first, std::size_t count,

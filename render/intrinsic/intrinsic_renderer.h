@@ -79,7 +79,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   RenderedImages forward(const GaussianView& gaussians, const Camera& camera) override;
   void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) override;
   double depth_distortion(const GaussianView& gaussians, const Camera& camera, const DistortionDepthRange& range,
-                          float weight, const GaussianGradView& grads) override;
+                          float weight, const float* pixel_weight, const GaussianGradView& grads) override;
   void step_own_parameters(int iteration) override;
   std::string save_own_state() const override;
   void load_own_state(const std::string& bytes, const std::string& source) override;

@@ -9,8 +9,8 @@
 namespace goris {
 
 double depth_distortion_pass(const GaussianView& gaussians, const Camera& camera, const RasterSettings& settings,
-                             const DistortionDepthRange& range, float weight, const GaussianGradView& grads,
-                             Device device) {
+                             const DistortionDepthRange& range, float weight, const float* pixel_weight,
+                             const GaussianGradView& grads, Device device) {
   const std::size_t n = std::size_t(gaussians.count);
   if (n == 0) return 0.0;
   const HostView positions(gaussians.positions, 3 * n, device);  // no copy on the CPU
@@ -31,7 +31,7 @@ double depth_distortion_pass(const GaussianView& gaussians, const Camera& camera
   const HostView A(r.gbuffer.alpha.data(), hw, device), M(r.gbuffer.extras.data(), 2 * hw, device);  // M: [2][H][W]
   std::vector<float> gA(hw, 0.0f), gM(2 * hw, 0.0f);
   const double loss = depth_distortion_loss(A.data(), M.data(), M.data() + hw, hw, gA.data(), gM.data(),
-                                            gM.data() + hw, weight);
+                                            gM.data() + hw, weight, pixel_weight);
   if (weight == 0.0f) return loss;
 
   const DeviceGrad gA_dev(gA, device), gM_dev(gM, device);

@@ -13,9 +13,10 @@
 namespace goris {
 
 // Adds weight x dL/dparameters of the view's mean distortion into `grads` (positions, log_scales, rotations,
-// opacity_logits; null ones skipped) and returns the unweighted loss. Pointers on `device`.
+// opacity_logits; null ones skipped) and returns the unweighted loss. Pointers on `device`, except
+// pixel_weight: [H x W] on the host, the loss's weight per pixel (null = 1).
 double depth_distortion_pass(const GaussianView& gaussians, const Camera& camera, const RasterSettings& settings,
-                             const DistortionDepthRange& range, float weight, const GaussianGradView& grads,
-                             Device device);
+                             const DistortionDepthRange& range, float weight, const float* pixel_weight,
+                             const GaussianGradView& grads, Device device);
 
 }  // namespace goris

@@ -45,8 +45,9 @@ void RasterRenderer::backward(const GaussianView& gaussians, const ImageGradient
 }
 
 double RasterRenderer::depth_distortion(const GaussianView& gaussians, const Camera& camera,
-                                        const DistortionDepthRange& range, float weight, const GaussianGradView& grads) {
-  return depth_distortion_pass(gaussians, camera, settings_, range, weight, grads, device_);
+                                        const DistortionDepthRange& range, float weight, const float* pixel_weight,
+                                        const GaussianGradView& grads) {
+  return depth_distortion_pass(gaussians, camera, settings_, range, weight, pixel_weight, grads, device_);
 }
 
 void backward_detached_extras(const GaussianView& gaussians, const RasterState& state, const float* d_extras,

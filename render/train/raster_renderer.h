@@ -23,7 +23,7 @@ class RasterRenderer final : public DifferentiableRenderer {
   RenderedImages forward(const GaussianView& gaussians, const Camera& camera) override;
   void backward(const GaussianView& gaussians, const ImageGradients& d, const GaussianGradView& grads) override;
   double depth_distortion(const GaussianView& gaussians, const Camera& camera, const DistortionDepthRange& range,
-                          float weight, const GaussianGradView& grads) override;
+                          float weight, const float* pixel_weight, const GaussianGradView& grads) override;
   // The last forward pass (G-buffer and state), e.g. for the extra channels.
   const RasterOutput& last() const { return last_; }
 

@@ -114,15 +114,26 @@ TEST(DepthDistortion, ImageLossGradientMatchesFiniteDifferences) {
     img[hw + p] = img[p] * u(rng);
     img[2 * hw + p] = img[hw + p] * img[hw + p] / img[p] + 0.3 * u(rng);
   }
-  std::vector<double> g(3 * hw, 0.0);
   const double weight = 2.5;
-  depth_distortion_loss(img.data(), img.data() + hw, img.data() + 2 * hw, hw, g.data(), g.data() + hw,
-                        g.data() + 2 * hw, weight);
-  auto L = [&] {
-    return weight * depth_distortion_loss(img.data(), img.data() + hw, img.data() + 2 * hw, hw, (double*)nullptr,
-                                          (double*)nullptr, (double*)nullptr, 1.0);
-  };
-  for (std::size_t i = 0; i < img.size(); ++i) EXPECT_NEAR(g[i], central_difference(img, i, L), 1e-7) << i;
+  std::vector<double> pixel_weight(hw);
+  for (double& w : pixel_weight) w = u(rng);
+  const std::vector<const double*> weightings{nullptr, pixel_weight.data()};  // uniform, then per pixel
+  for (const double* pw : weightings) {
+    std::vector<double> g(3 * hw, 0.0);
+    depth_distortion_loss(img.data(), img.data() + hw, img.data() + 2 * hw, hw, g.data(), g.data() + hw,
+                          g.data() + 2 * hw, weight, pw);
+    auto L = [&] {
+      return weight * depth_distortion_loss(img.data(), img.data() + hw, img.data() + 2 * hw, hw, (double*)nullptr,
+                                            (double*)nullptr, (double*)nullptr, 1.0, pw);
+    };
+    for (std::size_t i = 0; i < img.size(); ++i) EXPECT_NEAR(g[i], central_difference(img, i, L), 1e-7) << i;
+  }
+  // A zero weight on a pixel removes it from the loss.
+  std::vector<double> only_first(hw, 0.0);
+  only_first[0] = 1.0;
+  EXPECT_NEAR(depth_distortion_loss(img.data(), img.data() + hw, img.data() + 2 * hw, hw, (double*)nullptr,
+                                    (double*)nullptr, (double*)nullptr, 1.0, only_first.data()),
+              (img[0] * img[2 * hw] - img[hw] * img[hw]) / double(hw), 1e-12);
 }
 
 TEST(DepthDistortion, MomentsBackwardMatchesFiniteDifferences) {
@@ -187,7 +198,7 @@ TEST(DepthDistortion, FloatPassMatchesTheDoubleMaths) {
   g.positions = gp.data(), g.log_scales = gs.data(), g.rotations = gr.data(), g.opacity_logits = go.data();
   const float weight = 3.0f;
   const double loss_f =
-      depth_distortion_pass(v, c.camera, RasterSettings::classic_3dgs(), kRange, weight, g, Device::CPU);
+      depth_distortion_pass(v, c.camera, RasterSettings::classic_3dgs(), kRange, weight, nullptr, g, Device::CPU);
   EXPECT_NEAR(loss_f, loss_d, 1e-4 * loss_d + 1e-9);
   auto close = [&](const std::vector<float>& f, const std::vector<double>& d, const char* name) {
     double scale = 1e-12;
@@ -217,7 +228,7 @@ TEST(DepthDistortion, TwoSurfacesOnOneRayCostAndTheGradientPullsThemTogether) {
   v.positions = pos.data(), v.log_scales = ls.data(), v.rotations = rot.data(), v.opacity_logits = op.data();
   v.sh = sh.data();
   auto run = [&](GaussianGradView g, float weight) {
-    return depth_distortion_pass(v, cam, RasterSettings::classic_3dgs(), kRange, weight, g, Device::CPU);
+    return depth_distortion_pass(v, cam, RasterSettings::classic_3dgs(), kRange, weight, nullptr, g, Device::CPU);
   };
   const double both = run({}, 0.f);
   EXPECT_GT(both, 1e-6);

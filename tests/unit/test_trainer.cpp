@@ -465,6 +465,31 @@ TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
   EXPECT_GT(first, 0.0);
   EXPECT_LT(last, first);
   EXPECT_GT(mean_psnr(t), 30.0);
+
+  // depth_distortion_glossy = 0 leaves glossy-mask pixels alone: with every pixel glossy the term is 0;
+  // with the left half glossy it is less than the whole image's.
+  auto distortion_after_start = [&](float glossy_weight, float glossy_left, float glossy_right) {
+    TrainConfig c = config;
+    c.depth_distortion_glossy = glossy_weight;
+    Scene sc = make_scene(c, 32);
+    for (TrainView& v : sc.views) {
+      const int w = v.camera.width;
+      v.glossy_mask.resize(std::size_t(w) * std::size_t(v.camera.height));
+      for (std::size_t p = 0; p < v.glossy_mask.size(); ++p)
+        v.glossy_mask[p] = int(p % std::size_t(w)) < w / 2 ? glossy_left : glossy_right;
+    }
+    Trainer tr(c, sc.views, 4.0f, sc.renderer, Trainer::initial_state(c, perturbed(10)));
+    double sum = 0;
+    for (int i = 0; i < 50; ++i) sum += tr.step().distortion;
+    return sum;
+  };
+  EXPECT_EQ(distortion_after_start(0.0f, 1.0f, 1.0f), 0.0);
+  const double half = distortion_after_start(0.0f, 1.0f, 0.0f), whole = distortion_after_start(1.0f, 1.0f, 0.0f);
+  EXPECT_GT(half, 0.0);
+  EXPECT_LT(half, whole);
+  config.depth_distortion_glossy = 1.5f;
+  EXPECT_THROW(config.validate("test"), Error);
+  config.depth_distortion_glossy = 1.0f;
   config.depth_distortion_weight = -1.0f;
   EXPECT_THROW(config.validate("test"), Error);
 }
