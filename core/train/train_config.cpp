@@ -75,6 +75,8 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_warmup_min_fraction", c.intrinsic.warmup_min_fraction);
   f("intrinsic_env_resolution", c.intrinsic.env_resolution);
   f("intrinsic_env_initial", c.intrinsic.env_initial);
+  f("intrinsic_init_roughness", c.intrinsic.init_roughness);
+  f("intrinsic_init_fresnel", c.intrinsic.init_fresnel);
   f("intrinsic_lr_env", c.intrinsic.lr_env);
   f("intrinsic_lr_env_final", c.intrinsic.lr_env_final);
   f("intrinsic_lr_net", c.intrinsic.lr_net);
@@ -171,6 +173,8 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.env_resolution < 1 || in.env_resolution > 4096 || (in.env_resolution & (in.env_resolution - 1)))
     fail("intrinsic_env_resolution must be a power of two in 1..4096");
   if (!(in.env_initial > 0)) fail("intrinsic_env_initial must be positive");
+  if (!(in.init_roughness > 0 && in.init_roughness < 1) || !(in.init_fresnel > 0 && in.init_fresnel < 1))
+    fail("intrinsic_init_roughness and intrinsic_init_fresnel must lie in (0, 1) (sigmoid-activated)");
   if (in.net_hidden_layers < 0 || in.net_hidden_layers > 16) fail("intrinsic_net_hidden_layers must lie in 0..16");
   if (!(in.ray_offset >= 0)) fail("intrinsic_ray_offset must be >= 0");
   if (in.coarse_max_level < 1 || in.coarse_max_level > 3) fail("intrinsic_coarse_max_level must lie in 1..3");

@@ -39,6 +39,8 @@ struct IntrinsicSettings {
   float warmup_min_fraction = 0.5f;
   int env_resolution = 64;         // cube map face size (paper 256; 64 suffices at the data sets' 256 px)
   float env_initial = 0.5f;        // initial radiance of every texel
+  float init_roughness = 0.5f;     // every Gaussian's roughness and F0 at the start (DESIGN.md §4: 0.5)
+  float init_fresnel = 0.5f;
   float lr_env = 0.03f;            // environment map: 0.03 -> 0.003 exponentially over the shading phase
   float lr_env_final = 0.003f;
   float lr_net = 1e-5f;            // roughness net, eased in between warmup and net_ease_until

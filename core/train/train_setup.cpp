@@ -61,9 +61,12 @@ float scene_extent(const Dataset& dataset) {
 }
 
 GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, Device device, std::string* how) {
+  GaussianInit init;
+  init.roughness = config.intrinsic.init_roughness;
+  init.fresnel = config.intrinsic.init_fresnel;
   if (!dataset.points.xyz.empty()) {
     if (how) *how = std::to_string(dataset.points.size()) + " SfM points";
-    return init_from_points(dataset.points.xyz, dataset.points.rgb, device);
+    return init_from_points(dataset.points.xyz, dataset.points.rgb, device, init);
   }
   std::vector<Camera> cams;
   for (const View& v : dataset.train) cams.push_back(v.camera);
@@ -76,7 +79,7 @@ GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, D
                   config.random_init_points, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
     *how = buf;
   }
-  return init_from_points(pts, cols, device);
+  return init_from_points(pts, cols, device, init);
 }
 
 }  // namespace goris
