@@ -400,6 +400,9 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   invalid = TrainConfig{};
   invalid.downscale = 0.5f;
   EXPECT_THROW(invalid.validate("cfg"), Error);
+  invalid = TrainConfig{};
+  invalid.intrinsic.init_roughness = 1.0f;  // sigmoid-activated: the logit would be infinite
+  EXPECT_THROW(invalid.validate("cfg"), Error);
   EXPECT_NO_THROW(TrainConfig{}.validate("cfg"));
 }
 
