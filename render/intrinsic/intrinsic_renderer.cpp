@@ -31,12 +31,6 @@ Buffer<float> grad_plane(const float* given, std::size_t n, Device d) {
   return b;
 }
 
-std::vector<float> download(const float* p, std::size_t n, Device d) {
-  std::vector<float> h(n);
-  device_copy(h.data(), Device::CPU, p, d, n * sizeof(float));
-  return h;
-}
-
 // Adds the wall time of its scope to `slot` when profiling (synchronising the device first and last).
 class StageTimer {
  public:

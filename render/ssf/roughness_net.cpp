@@ -18,13 +18,6 @@ namespace {
 constexpr const char* kOp = "roughness net";
 
 template <class T>
-std::vector<T> to_host(const T* p, std::size_t n, Device d) {
-  std::vector<T> v(n);
-  device_copy(v.data(), Device::CPU, p, d, n * sizeof(T));
-  return v;
-}
-
-template <class T>
 void ensure(Buffer<T>& b, std::size_t n, Device d) {
   if (b.size() != n || b.device() != d) b = Buffer<T>(n, d);
 }
@@ -117,7 +110,7 @@ void RoughnessNet<T>::add_residual_logit(Buffer<T>& pre_sigmoid) {
   // one plane per frame, next to the host-side assembly of the net's input (IntrinsicRenderer::net_forward).
   constexpr T kEps = T(1e-3);
   const std::size_t plane = std::size_t(h_) * std::size_t(w_);
-  const std::vector<T> x = to_host(acts_[0].data() + std::size_t(cfg_.residual_channel) * plane, plane, device_);
+  const std::vector<T> x = download(acts_[0].data() + std::size_t(cfg_.residual_channel) * plane, plane, device_);
   std::vector<T> z = pre_sigmoid.to_host();
   residual_slope_.assign(plane, T(0));
   for (std::size_t p = 0; p < plane; ++p) {
@@ -188,7 +181,7 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
   device_copy(g_a_.data(), device_, grad_rs.data(), device_, grad_rs.bytes());
   run.sigmoid_back(acts_.back().data(), g_a_.data(), plane);
   if (grad_input && cfg_.residual_channel >= 0) {  // through the logit offset; host-side like the forward
-    const std::vector<T> g = to_host(g_a_.data(), plane, device_);
+    const std::vector<T> g = download(g_a_.data(), plane, device_);
     std::vector<T> gi = grad_input->to_host();
     T* gc = gi.data() + std::size_t(cfg_.residual_channel) * plane;
     for (std::size_t p = 0; p < plane; ++p) gc[p] += g[p] * residual_slope_[p];

@@ -136,39 +136,58 @@ TEST(SsfActivations, GradientsMatchFiniteDifferences) {
   expect_fd(z, sigmoid_loss, a, "sigmoid");
 }
 
+// The net's parameters with every zero replaced by zero_fill(i) (biases and a zero-started output layer
+// then take part), its gradients of L = dot(R_s, g_rs) after one backward(), and R_s at those parameters.
+struct NetGradients {
+  std::vector<double> params, g_params, rs;
+};
+
+// Checks the gradients to the parameters and to `in` against central differences of L.
+NetGradients expect_net_gradients(RoughnessNet<double>& net, std::vector<double> in, int H, int W,
+                                  const std::vector<double>& g_rs, double (*zero_fill)(std::size_t)) {
+  NetGradients out;
+  out.params = net.params().to_host();
+  for (std::size_t i = 0; i < out.params.size(); ++i)
+    if (out.params[i] == 0.0) out.params[i] = zero_fill(i);
+  Buffer<double> rs;
+  auto loss = [&] {
+    net.params().upload(out.params.data(), out.params.size());
+    net.forward(Buffer<double>(in, Device::CPU), H, W, rs);
+    return dot(rs.to_host(), g_rs);
+  };
+  loss();
+  out.rs = rs.to_host();
+  net.zero_grad();
+  Buffer<double> g_in(std::vector<double>(in.size(), 0.0), Device::CPU);
+  net.backward(Buffer<double>(g_rs, Device::CPU), &g_in);
+  out.g_params = net.grads().to_host();
+  const std::vector<double> g_input = g_in.to_host();
+  expect_fd(out.params, loss, out.g_params, "parameter", 1e-6);
+  expect_fd(in, loss, g_input, "input", 1e-6);
+  net.params().upload(out.params.data(), out.params.size());
+  net.forward(Buffer<double>(in, Device::CPU), H, W, rs);  // back at the unperturbed point
+  return out;
+}
+
 TEST(SsfNet, WholeNetGradientsMatchFiniteDifferences) {
   const NetConfig cfg{3, 8, 2};
   const int H = 7, W = 6;
   const std::size_t plane = std::size_t(H) * W;
   RoughnessNet<double> net(cfg, Device::CPU, 42);
   std::mt19937 rng(31);
-  std::vector<double> in = random_vec(3 * plane, rng, 0.0, 2.0);
+  const std::vector<double> in = random_vec(3 * plane, rng, 0.0, 2.0);
   const std::vector<double> g_rs = random_vec(plane, rng);
-  std::vector<double> params = net.params().to_host();
-  for (std::size_t i = 0; i < params.size(); ++i)  // biases start at zero: make them exercise the ReLUs too
-    if (params[i] == 0.0) params[i] = 0.05 * double(i % 7) - 0.1;
-  Buffer<double> rs;
-  auto loss = [&] {
-    net.params().upload(params.data(), params.size());
-    net.forward(Buffer<double>(in, Device::CPU), H, W, rs);
-    return dot(rs.to_host(), g_rs);
-  };
-  loss();
-  net.zero_grad();
-  Buffer<double> g_in(std::vector<double>(in.size(), 0.0), Device::CPU);
-  net.backward(Buffer<double>(g_rs, Device::CPU), &g_in);
-  const std::vector<double> g_params = net.grads().to_host(), g_input = g_in.to_host();
-  for (double r : rs.to_host()) {
+  // Biases start at zero: make them exercise the ReLUs too.
+  const NetGradients g = expect_net_gradients(net, in, H, W, g_rs, [](std::size_t i) { return 0.05 * double(i % 7) - 0.1; });
+  for (double r : g.rs) {
     EXPECT_GT(r, 0.0);
     EXPECT_LT(r, 1.0);
   }
-  expect_fd(params, loss, g_params, "parameter", 1e-6);
-  expect_fd(in, loss, g_input, "input", 1e-6);
   // backward() adds: a second call doubles the parameter gradients.
-  loss();
   net.backward(Buffer<double>(g_rs, Device::CPU), nullptr);
   const std::vector<double> twice = net.grads().to_host();
-  for (std::size_t i = 0; i < twice.size(); ++i) ASSERT_NEAR(twice[i], 2 * g_params[i], 1e-12 * (1 + std::abs(g_params[i])));
+  for (std::size_t i = 0; i < twice.size(); ++i)
+    ASSERT_NEAR(twice[i], 2 * g.g_params[i], 1e-12 * (1 + std::abs(g.g_params[i])));
 }
 
 TEST(SsfNet, ResidualNetStartsAtItsInputAndGradientsMatchFiniteDifferences) {
@@ -184,23 +203,8 @@ TEST(SsfNet, ResidualNetStartsAtItsInputAndGradientsMatchFiniteDifferences) {
   net.forward(Buffer<double>(in, Device::CPU), H, W, rs);
   const std::vector<double> start = rs.to_host();
   for (std::size_t p = 0; p < plane; ++p) ASSERT_NEAR(start[p], in[p], 1e-12) << p;  // R_s = R at first
-
-  std::vector<double> params = net.params().to_host();
-  for (std::size_t i = 0; i < params.size(); ++i)
-    if (params[i] == 0.0) params[i] = 0.07 * double(i % 5) - 0.12;  // the zero output layer, biases
-  const std::vector<double> g_rs = random_vec(plane, rng);
-  auto loss = [&] {
-    net.params().upload(params.data(), params.size());
-    net.forward(Buffer<double>(in, Device::CPU), H, W, rs);
-    return dot(rs.to_host(), g_rs);
-  };
-  loss();
-  net.zero_grad();
-  Buffer<double> g_in(std::vector<double>(in.size(), 0.0), Device::CPU);
-  net.backward(Buffer<double>(g_rs, Device::CPU), &g_in);
-  const std::vector<double> g_params = net.grads().to_host(), g_input = g_in.to_host();
-  expect_fd(params, loss, g_params, "parameter", 1e-6);
-  expect_fd(in, loss, g_input, "input", 1e-6);
+  // The zero output layer and the biases take part with other values.
+  expect_net_gradients(net, in, H, W, random_vec(plane, rng), [](std::size_t i) { return 0.07 * double(i % 5) - 0.12; });
   EXPECT_THROW(RoughnessNet<double>(NetConfig{2, 8, 1, 2}, Device::CPU, 1), Error);  // no channel 2
 }
 
