@@ -115,6 +115,11 @@ void run_train(const Options& o) {
                 prep.glossy_views, views.size(), prep.mask_views,
                 config.intrinsic.normals.empty() ? "none" : config.intrinsic.normals.c_str(),
                 config.shading_from() + 1);
+  if (config.intrinsic.env_radius > 0) {
+    const glm::vec3& c = config.intrinsic.env_center;
+    std::printf("environment on a sphere of radius %.3g around (%.3g, %.3g, %.3g)\n", double(config.intrinsic.env_radius),
+                double(c.x), double(c.y), double(c.z));
+  }
   if (!prep.initial_model.empty()) std::printf("initial model: %s\n", prep.initial_model.c_str());
   write_run_config(run_dir, config);
   std::printf("training %s (%s, %zu views at %dx%d, extent %.3g) on %s for %d iterations -> %s\n", data.string().c_str(),

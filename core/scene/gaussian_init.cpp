@@ -142,8 +142,8 @@ GaussianModel init_from_points(const std::vector<glm::vec3>& points, const std::
   return device == Device::CPU ? std::move(m) : m.copy_to(device);
 }
 
-Box box_from_cameras(const std::vector<Camera>& cameras, float half_size_ratio) {
-  if (cameras.empty()) throw Error("random initialisation: no cameras to place the box");
+CameraFocus camera_focus(const std::vector<Camera>& cameras) {
+  if (cameras.empty()) throw Error("camera focus: no cameras");
   // Least-squares point nearest to every optical axis: sum (I - d d^T) (x - c) = 0.
   glm::dmat3 A(0.0);
   glm::dvec3 b(0.0);
@@ -163,10 +163,16 @@ Box box_from_cameras(const std::vector<Camera>& cameras, float half_size_ratio) 
   double dist = 0;
   for (const Camera& cam : cameras) dist += glm::length(glm::dvec3(cam.center()) - center);
   dist /= double(cameras.size());
-  const float h = float(dist) * half_size_ratio;
+  return {glm::vec3(center), float(dist)};
+}
+
+Box box_from_cameras(const std::vector<Camera>& cameras, float half_size_ratio) {
+  if (cameras.empty()) throw Error("random initialisation: no cameras to place the box");
+  const CameraFocus f = camera_focus(cameras);
+  const float h = f.mean_distance * half_size_ratio;
   Box box;
-  box.lo = glm::vec3(center) - glm::vec3(h);
-  box.hi = glm::vec3(center) + glm::vec3(h);
+  box.lo = f.center - glm::vec3(h);
+  box.hi = f.center + glm::vec3(h);
   return box;
 }
 

@@ -22,6 +22,14 @@ std::vector<float> knn_mean_distance(const std::vector<glm::vec3>& points, int k
 GaussianModel init_from_points(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& colors,
                                Device device, const GaussianInit& init = {});
 
+// The point nearest (least squares) to every camera's optical axis, and the cameras' mean distance to it:
+// what a capture looks at, and from how far. Parallel axes (one camera): a unit in front of the mean camera.
+struct CameraFocus {
+  glm::vec3 center{0.0f};
+  float mean_distance = 0.0f;
+};
+CameraFocus camera_focus(const std::vector<Camera>& cameras);
+
 // Axis-aligned box for random initialisation when a data set has no SfM points: centred on the point
 // nearest (least squares) to all optical axes, half-size `half_size_ratio` x the mean camera distance
 // to it (0.33 puts NeRF-synthetic's cameras at radius 4 around 3DGS's [-1.3, 1.3]^3 box).

@@ -75,6 +75,9 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_warmup_min_fraction", c.intrinsic.warmup_min_fraction);
   f("intrinsic_env_resolution", c.intrinsic.env_resolution);
   f("intrinsic_env_initial", c.intrinsic.env_initial);
+  f("intrinsic_env_distance", c.intrinsic.env_distance);
+  f("intrinsic_env_center", c.intrinsic.env_center);
+  f("intrinsic_env_radius", c.intrinsic.env_radius);
   f("intrinsic_init_roughness", c.intrinsic.init_roughness);
   f("intrinsic_init_fresnel", c.intrinsic.init_fresnel);
   f("intrinsic_lr_env", c.intrinsic.lr_env);
@@ -177,6 +180,11 @@ void TrainConfig::validate(const std::string& what) const {
     fail("intrinsic_init_roughness and intrinsic_init_fresnel must lie in (0, 1) (sigmoid-activated)");
   if (in.net_hidden_layers < 0 || in.net_hidden_layers > 16) fail("intrinsic_net_hidden_layers must lie in 0..16");
   if (!(in.ray_offset >= 0)) fail("intrinsic_ray_offset must be >= 0");
+  if (!(in.env_distance >= 0) || !std::isfinite(in.env_distance) || !(in.env_radius >= 0) ||
+      !std::isfinite(in.env_radius))
+    fail("intrinsic_env_distance and intrinsic_env_radius must be finite and >= 0 (0 = at infinity)");
+  if (!std::isfinite(in.env_center.x) || !std::isfinite(in.env_center.y) || !std::isfinite(in.env_center.z))
+    fail("intrinsic_env_center must be finite");
   if (in.coarse_max_level < 1 || in.coarse_max_level > 3) fail("intrinsic_coarse_max_level must lie in 1..3");
   if (!(in.auto_mask_fraction >= 0 && in.auto_mask_fraction <= 1) || !(in.detect_fraction >= 0 && in.detect_fraction <= 1))
     fail("intrinsic_auto_mask_fraction and intrinsic_detect_fraction must lie in [0, 1]");

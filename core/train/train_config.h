@@ -39,6 +39,13 @@ struct IntrinsicSettings {
   float warmup_min_fraction = 0.5f;
   int env_resolution = 64;         // cube map face size (paper 256; 64 suffices at the data sets' 256 px)
   float env_initial = 0.5f;        // initial radiance of every texel
+  // Where the environment lies (render/envmap/env_proxy_math.h). env_distance > 0: on a sphere around the
+  // point the training cameras look at, of radius env_distance x their mean distance to it; the trainer
+  // resolves it into env_center / env_radius (world units), which the run's config keeps, so every later
+  // render reads the same sphere. 0 (the paper): at infinity.
+  float env_distance = 0.0f;
+  glm::vec3 env_center{0.0f};
+  float env_radius = 0.0f;
   float init_roughness = 0.5f;     // every Gaussian's roughness and F0 at the start (DESIGN.md §4: 0.5)
   float init_fresnel = 0.5f;
   float lr_env = 0.03f;            // environment map: 0.03 -> 0.003 exponentially over the shading phase

@@ -60,6 +60,17 @@ float scene_extent(const Dataset& dataset) {
   return d > 0 ? d : 1.0f;
 }
 
+void resolve_environment_sphere(const Dataset& dataset, TrainConfig& config) {
+  IntrinsicSettings& in = config.intrinsic;
+  if (!(in.env_distance > 0) || in.env_radius > 0 || dataset.train.empty()) return;
+  std::vector<Camera> cams;
+  for (const View& v : dataset.train) cams.push_back(v.camera);
+  const CameraFocus f = camera_focus(cams);
+  if (!(f.mean_distance > 0)) throw Error(config.data, "the training cameras all sit at the point they look at");
+  in.env_center = f.center;
+  in.env_radius = in.env_distance * f.mean_distance;
+}
+
 GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, Device device, std::string* how) {
   GaussianInit init;
   init.roughness = config.intrinsic.init_roughness;

@@ -27,6 +27,10 @@ std::vector<TrainView> load_train_views(const std::vector<View>& views, const Da
 // The 3DGS scene extent: 1.1 x the largest distance of a training camera from their mean.
 float scene_extent(const Dataset& dataset);
 
+// intrinsic.env_distance > 0 and no sphere yet (env_radius 0): places the environment's sphere around the
+// point the training cameras look at, radius env_distance x their mean distance to it (IntrinsicSettings).
+void resolve_environment_sphere(const Dataset& dataset, TrainConfig& config);
+
 // The initial model on `device`: the data set's SfM points when it has some, otherwise
 // config.random_init_points random points in the box the training cameras look at (seeded by config.seed).
 // `how` receives a one-line description for the user.

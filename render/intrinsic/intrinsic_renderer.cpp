@@ -97,6 +97,8 @@ IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, De
   if (!(extent > 0)) throw Error("intrinsic renderer", "the scene extent must be positive");
   shading_settings_.ray_offset =
       config.intrinsic.ray_offset > 0 ? config.intrinsic.ray_offset : ShadingSettings::default_ray_offset(extent);
+  for (int c = 0; c < 3; ++c) shading_settings_.env_center[c] = config.intrinsic.env_center[c];
+  shading_settings_.env_radius = config.intrinsic.env_radius;
   traced_settings_.divide_opaque = config.intrinsic.divide_opaque;
   shading_from_ = config.shading_from();
   env_.update();

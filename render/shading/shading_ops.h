@@ -8,6 +8,7 @@
 #include "core/compute/primitives.h"
 #include "render/envmap/cube_map_math.h"
 #include "render/envmap/deferred_texel_grads.h"
+#include "render/envmap/env_proxy_math.h"
 #include "render/shading/shading_math.h"
 #include "render/shading/shading_types.h"
 
@@ -21,15 +22,30 @@ GORIS_HDI bool is_glossy(const SurfaceImagesT<T>& s, const ShadingSettings& st, 
   return M < T(st.glossy_max_region);
 }
 
+// Surface point of pixel p: x = camera centre + (depth / alpha) d_raw (depth is camera z, not ray length).
+template <class T>
+GORIS_HDI Vec3<T> surface_point(const Camera& cam, const SurfaceImagesT<T>& s, const PixelGeometry<T>& g,
+                                std::size_t p) {
+  return Vec3<T>(cam.center()) + (s.depth[p] / s.alpha[p]) * g.d_raw;
+}
+
+// dL/dx of surface_point -> dL/d(depth), dL/d(alpha) (+=).
+template <class T>
+GORIS_HDI void surface_point_vjp(const SurfaceImagesT<T>& s, const SurfaceGradsT<T>& g, const PixelGeometry<T>& geo,
+                                 std::size_t p, const Vec3<T>& dx) {
+  const T a = s.alpha[p];
+  const T dz = glm::dot(dx, geo.d_raw);
+  if (g.depth) g.depth[p] += dz / a;
+  if (g.alpha) g.alpha[p] -= dz * s.depth[p] / (a * a);
+}
+
 // Surface point and reflection ray of pixel p.
 template <class T>
 GORIS_HDI void reflection_ray(const Camera& cam, const SurfaceImagesT<T>& s, const ShadingSettings& st,
                               std::size_t p, Vec3<T>* origin, Vec3<T>* dir) {
   const std::size_t P = s.pixels();
   const PixelGeometry<T> g = pixel_geometry(cam, int(p % s.width), int(p / s.width), plane3(s.normal, P, p));
-  const Vec3<T> centre(cam.center());
-  const Vec3<T> x = centre + (s.depth[p] / s.alpha[p]) * g.d_raw;  // depth is camera z, not ray length
-  *origin = x + T(st.ray_offset) * g.wr;
+  *origin = surface_point(cam, s, g, p) + T(st.ray_offset) * g.wr;
   *dir = g.wr;
 }
 
@@ -75,10 +91,7 @@ void rays_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, cons
     const Vec3<T> dorg = dorigins ? Vec3<T>(dorigins[3 * i], dorigins[3 * i + 1], dorigins[3 * i + 2]) : Vec3<T>(T(0));
     Vec3<T> dwr = T(st.ray_offset) * dorg;
     if (ddirections) dwr += Vec3<T>(ddirections[3 * i], ddirections[3 * i + 1], ddirections[3 * i + 2]);
-    const T a = s.alpha[p];
-    const T dz = glm::dot(dorg, geo.d_raw);  // x = centre + (depth / alpha) d_raw
-    if (g.depth) g.depth[p] += dz / a;
-    if (g.alpha) g.alpha[p] -= dz * s.depth[p] / (a * a);
+    surface_point_vjp(s, g, geo, p, dorg);
     if (g.normal) add_plane3(g.normal, P, p, reflection_vjp_to_camera_normal(geo, dwr));
   });
 }
@@ -128,6 +141,7 @@ struct CombineState {
   PixelGeometry<T> geo;
   Materials<T> mat;
   T rough;          // roughness handed to the lookup
+  envmap::ProxyHit<T> env_hit;  // where the environment is read (env_hit.dir; omega_r at infinity)
   T k;              // Schlick weight (constant)
   Vec3<T> F, Lind, Ldir, G;
   T V;
@@ -145,7 +159,10 @@ GORIS_HDI CombineState<T> combine_state(const Camera& cam, const SurfaceImagesT<
   c.F = c.mat.f0 + (Vec3<T>(T(1)) - c.mat.f0) * c.k;
   c.Lind = plane3(L, P, p);
   c.V = V[p];
-  c.Ldir = envmap::cube_lookup(env, c.geo.wr, c.rough);
+  const Vec3<T> x = st.env_radius > 0.0f ? surface_point(cam, s, c.geo, p) : Vec3<T>(T(0));
+  const Vec3<T> centre(T(st.env_center[0]), T(st.env_center[1]), T(st.env_center[2]));
+  c.env_hit = envmap::proxy_hit(x, c.geo.wr, centre, T(st.env_radius));
+  c.Ldir = envmap::cube_lookup(env, c.env_hit.dir, c.rough);
   c.G = c.F * (c.Lind + c.Ldir * c.V);
   return c;
 }
@@ -199,10 +216,12 @@ void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, con
     if (dL) dL[p] = dLind.x, dL[P + p] = dLind.y, dL[2 * P + p] = dLind.z;
     if (dV) dV[p] = glm::dot(dLind, c.Ldir);
     const Vec3<T> df0 = dF * (T(1) - c.k);
-    Vec3<T> dwr;
+    Vec3<T> dlook, dwr(T(0)), dx(T(0));
     T drough;
-    envmap::cube_lookup_vjp(env, c.geo.wr, c.rough, dLdir, direct, &dwr, &drough);
-    envmap::DeferredTexelGrads<T>::record(records, p, c.geo.wr, c.rough, dLdir);
+    envmap::cube_lookup_vjp(env, c.env_hit.dir, c.rough, dLdir, direct, &dlook, &drough);
+    envmap::DeferredTexelGrads<T>::record(records, p, c.env_hit.dir, c.rough, dLdir);
+    envmap::proxy_hit_vjp(c.env_hit, c.geo.wr, T(st.env_radius), dlook, &dwr, &dx);
+    if (c.env_hit.hit) surface_point_vjp(s, g, c.geo, p, dx);
     // Through the normalisation by alpha: x_hat = x * scale.
     const T sc = c.mat.scale;
     if (g.region) g.region[p] += dM * sc;

@@ -50,6 +50,9 @@ struct ShadingSettings {
   // Divide M, F0 and roughness by alpha (per-surface values instead of coverage-weighted sums), the way
   // depth is divided by alpha and the normal normalised. Off: use the rasterized sums as they are.
   bool normalize_materials = true;
+  // The environment map's sphere (envmap/env_proxy_math.h): radius 0 = at infinity (the paper).
+  float env_center[3] = {0.0f, 0.0f, 0.0f};
+  float env_radius = 0.0f;
 
   // The authors start rays 0.1 world units off the surface on scenes whose 3DGS "extent" (1.1 x the camera
   // spread radius) is about 4-5; scaled to other scenes that is 0.02 x extent.

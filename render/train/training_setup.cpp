@@ -48,6 +48,7 @@ PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, s
   if (p.dataset.train.empty()) throw Error(config.data, "the data set has no training views");
   select_training_data(config, p.dataset);
   p.extent = scene_extent(p.dataset);
+  resolve_environment_sphere(p.dataset, config);
   std::vector<TrainView> views = load_train_views(p.dataset.train, dopt, on_view);
   if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);
   // "auto": from the glossy masks, or radiance until the detection after the warm-up (auto_mode.h).

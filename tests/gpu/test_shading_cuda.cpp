@@ -37,12 +37,13 @@ void expect_close(const std::vector<float>& a, const std::vector<float>& b, floa
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], tol * (1 + std::abs(a[i]))) << what << "[" << i << "]";
 }
 
-}  // namespace
-
-TEST(ShadingCuda, AgreesWithCpu) {
-  GORIS_REQUIRE_GPU();
+// env_radius > 0: the environment on a sphere around the camera (env_proxy_math.h).
+void expect_cuda_agrees_with_cpu(float env_radius) {
   const ShadingScene s = ShadingScene::make(21, false, true);
-  const ShadingSettings st;
+  ShadingSettings st;
+  const glm::vec3 cam_centre = s.cam.center();
+  for (int c = 0; c < 3; ++c) st.env_center[c] = cam_centre[c] + 0.1f * float(c);
+  st.env_radius = env_radius;
   std::vector<float> dC(3 * s.P());
   for (std::size_t i = 0; i < dC.size(); ++i) dC[i] = std::sin(0.7f * float(i));
   struct Result {
@@ -84,4 +85,16 @@ TEST(ShadingCuda, AgreesWithCpu) {
   expect_close(cpu.dL, gpu.dL, 1e-5f, "d L_ind");
   expect_close(cpu.dV, gpu.dV, 1e-5f, "d V");
   expect_close(cpu.env_grads, gpu.env_grads, 1e-4f, "env grads");
+}
+
+}  // namespace
+
+TEST(ShadingCuda, AgreesWithCpu) {
+  GORIS_REQUIRE_GPU();
+  expect_cuda_agrees_with_cpu(0.0f);
+}
+
+TEST(ShadingCuda, AgreesWithCpuWithTheEnvironmentOnASphere) {
+  GORIS_REQUIRE_GPU();
+  expect_cuda_agrees_with_cpu(6.0f);
 }

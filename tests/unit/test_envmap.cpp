@@ -1,6 +1,6 @@
 // The environment cube map: face mapping, the prefilter and its adjoint, lookups and their gradients (to
 // texels, direction, roughness) by finite differences in double precision, the EnvironmentMap class wiring
-// (float against the double reference) and its input checks.
+// (float against the double reference) and its input checks; the distance-aware lookup (env_proxy_math.h).
 #include <cmath>
 #include <random>
 #include <vector>
@@ -8,6 +8,7 @@
 #include "core/util/error.h"
 #include "render/envmap/cube_map_ops.h"
 #include "render/envmap/environment_map.h"
+#include "render/envmap/env_proxy_math.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
@@ -259,4 +260,51 @@ TEST(EnvMap, BadInputIsRejected) {
   EXPECT_THROW(env.lookup(nullptr, nullptr, 3, nullptr), Error);
   EXPECT_THROW(env.equirect_image(1), Error);
   if (!cuda_compiled()) EXPECT_THROW(EnvironmentMap(4, Device::CUDA), Error);
+}
+
+// The environment on a sphere: a point on it is read in one direction from every surface point inside
+// (what lets one map hold a near light), a huge sphere reads omega_r, points outside read omega_r.
+TEST(EnvProxy, APointOnTheSphereIsSeenInOneDirectionFromEverywhere) {
+  const Vec3<double> c(0.3, -0.2, 0.5), light(1.0, 2.0, 3.5);
+  const double R = glm::length(light - c);
+  const Vec3<double> expected = (light - c) / R;
+  for (const Vec3<double> x : {Vec3<double>(0, 0, 0), Vec3<double>(1, -1, 0.2), Vec3<double>(-1.5, 0.5, 0)}) {
+    const Vec3<double> w = glm::normalize(light - x);
+    const ProxyHit<double> h = proxy_hit(x, w, c, R);
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(glm::length(h.dir - expected), 0.0, 1e-12);
+    EXPECT_NEAR(h.t, glm::length(light - x), 1e-12);
+  }
+  const Vec3<double> x(0.4, 0.1, -0.3), w = glm::normalize(Vec3<double>(0.2, -0.7, 0.4));
+  EXPECT_NEAR(glm::length(proxy_hit(x, w, c, 1e7).dir - w), 0.0, 1e-6);
+  const ProxyHit<double> outside = proxy_hit(Vec3<double>(10, 0, 0), w, c, R);
+  EXPECT_FALSE(outside.hit);
+  EXPECT_EQ(outside.dir, w);
+  EXPECT_FALSE(proxy_hit(x, w, c, 0.0).hit);  // radius 0: at infinity
+}
+
+TEST(EnvProxy, DirectionGradientsMatchFiniteDifferences) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  const Vec3<double> c(0.2, 0.1, -0.3);
+  const double R = 3.0, h = 1e-6;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec3<double> x = c + 0.8 * R * glm::normalize(Vec3<double>(g(rng), g(rng), g(rng))) * std::abs(g(rng)) / 3.0;
+    const Vec3<double> w = glm::normalize(Vec3<double>(g(rng), g(rng), g(rng)));
+    const Vec3<double> gout(g(rng), g(rng), g(rng));
+    if (!(glm::length(x - c) < R)) continue;
+    const ProxyHit<double> hit = proxy_hit(x, w, c, R);
+    ASSERT_TRUE(hit.hit);
+    EXPECT_NEAR(glm::length(hit.dir), 1.0, 1e-12);
+    Vec3<double> dw(0.0), dx(0.0);
+    proxy_hit_vjp(hit, w, R, gout, &dw, &dx);
+    for (int k = 0; k < 3; ++k) {
+      Vec3<double> wp = w, wm = w, xp = x, xm = x;
+      wp[k] += h, wm[k] -= h, xp[k] += h, xm[k] -= h;
+      const double fdw = glm::dot(gout, proxy_hit(x, wp, c, R).dir - proxy_hit(x, wm, c, R).dir) / (2 * h);
+      const double fdx = glm::dot(gout, proxy_hit(xp, w, c, R).dir - proxy_hit(xm, w, c, R).dir) / (2 * h);
+      EXPECT_NEAR(dw[k], fdw, 1e-6 * (1 + std::abs(fdw))) << "trial " << trial << " w[" << k << "]";
+      EXPECT_NEAR(dx[k], fdx, 1e-6 * (1 + std::abs(fdx))) << "trial " << trial << " x[" << k << "]";
+    }
+  }
 }

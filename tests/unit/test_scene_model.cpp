@@ -11,6 +11,7 @@
 #include "core/scene/gaussian_init.h"
 #include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians.h"
+#include "core/train/train_setup.h"
 #include "core/util/error.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
@@ -147,6 +148,33 @@ TEST(GaussianInit, RandomBoxFromCameras) {
   for (const auto& p : p1)
     for (int a = 0; a < 3; ++a) EXPECT_TRUE(p[a] >= box.lo[a] && p[a] <= box.hi[a]);
   for (const auto& col : c1) EXPECT_LE(col.r, 1.0f / 255.0f);
+}
+
+// intrinsic_env_distance puts the environment on a sphere around what the cameras look at, once: the
+// resolved centre and radius are what the run keeps; 0 leaves it at infinity.
+TEST(GaussianInit, EnvironmentSphereAroundWhatTheCamerasLookAt) {
+  Dataset ds;
+  for (int k = 0; k < 8; ++k) {
+    const float a = 6.2831853f * k / 8;
+    View v;
+    v.camera = look_at_camera(glm::vec3(4 * std::cos(a), 4 * std::sin(a), 1.0f), glm::vec3(0.2f, -0.1f, 0.0f), 64, 64, 60);
+    ds.train.push_back(v);
+  }
+  TrainConfig config;
+  resolve_environment_sphere(ds, config);
+  EXPECT_EQ(config.intrinsic.env_radius, 0.0f);
+  config.intrinsic.env_distance = 1.5f;
+  resolve_environment_sphere(ds, config);
+  EXPECT_NEAR(config.intrinsic.env_center.x, 0.2f, 0.05f);
+  EXPECT_NEAR(config.intrinsic.env_center.y, -0.1f, 0.05f);
+  EXPECT_NEAR(config.intrinsic.env_center.z, 0.0f, 0.05f);
+  EXPECT_NEAR(config.intrinsic.env_radius, 1.5f * std::sqrt(16.0f + 1.0f), 0.1f);
+  const float radius = config.intrinsic.env_radius;
+  config.intrinsic.env_distance = 3.0f;  // a resumed run keeps its sphere
+  resolve_environment_sphere(ds, config);
+  EXPECT_EQ(config.intrinsic.env_radius, radius);
+  config.intrinsic.env_distance = -1.0f;
+  EXPECT_THROW(config.validate("test"), Error);
 }
 
 TEST(Filter3d, HighestSamplingRateOfTheCamerasThatSee) {

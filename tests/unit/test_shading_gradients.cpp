@@ -2,6 +2,7 @@
 // respect to every input (D, M, F0, roughness, normal, alpha, depth, L_ind', V', the environment texels),
 // the reflection-ray construction (depth, alpha, normal) and the traced-results-to-images step (with and
 // without the authors' division by alpha on opaque rays).
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -46,11 +47,16 @@ struct SurfaceGradBuffers {
   }
 };
 
-void check_combine(unsigned seed, bool mirror_f0, bool normalize) {
+// env_radius > 0: the environment on a sphere around the camera (every surface point inside it), so the
+// lookup direction also depends on the surface point, hence on depth and alpha.
+void check_combine(unsigned seed, bool mirror_f0, bool normalize, float env_radius = 0.0f) {
   ShadingScene s = ShadingScene::make(seed, mirror_f0, true);
   if (mirror_f0 && !normalize) s.f0.assign(s.f0.size(), 1.0);  // F0 = 1 without the division as well
   ShadingSettings st;
   st.normalize_materials = normalize;
+  const glm::vec3 cam_centre = s.cam.center();
+  for (int c = 0; c < 3; ++c) st.env_center[c] = cam_centre[c] + 0.3f * float(c) - 0.2f;
+  st.env_radius = env_radius;
   const auto w = random_weights(3 * s.P(), seed + 100);
   auto loss = [&] {
     const auto out = shade(s.cam, s.view(), buf(s.L), buf(s.V), s.env(), st, Device::CPU);
@@ -60,12 +66,18 @@ void check_combine(unsigned seed, bool mirror_f0, bool normalize) {
   Buffer<double> dL, dV;
   std::vector<double> genv(s.chain.size(), 0.0);
   shade_backward(s.cam, s.view(), buf(s.L), buf(s.V), s.env(), st, buf(w), g.view(), dL, dV, genv.data(), Device::CPU);
-  const std::string tag = std::string(mirror_f0 ? "mirror " : "") + (normalize ? "normalized " : "raw ");
+  const std::string tag = std::string(mirror_f0 ? "mirror " : "") + (normalize ? "normalized " : "raw ") +
+                          (env_radius > 0 ? "sphere " : "");
   check_fd(tag + "D", s.color, g.color, loss);
   check_fd(tag + "M", s.region, g.region, loss);
   check_fd(tag + "roughness", s.rough, g.rough, loss);
   check_fd(tag + "alpha", s.alpha, g.alpha, loss);
-  check_fd(tag + "depth", s.depth, g.depth, loss);  // zero: depth only moves the ray origins
+  check_fd(tag + "depth", s.depth, g.depth, loss);  // at infinity zero: depth only moves the ray origins
+  if (env_radius > 0) {  // on the sphere the surface point moves the lookup
+    double largest = 0;
+    for (double v : g.depth) largest = std::max(largest, std::abs(v));
+    EXPECT_GT(largest, 1e-3) << tag;
+  }
   check_fd(tag + "L_ind'", s.L, host(dL), loss);
   check_fd(tag + "V'", s.V, host(dV), loss);
   check_fd(tag + "env texels", s.chain, genv, loss);
@@ -82,6 +94,11 @@ TEST(ShadingGradients, CombineOnMirrorsIncludingTheNormal) { check_combine(2, tr
 TEST(ShadingGradients, CombineWithoutMaterialNormalisation) {
   check_combine(3, false, false);
   check_combine(4, true, false);
+}
+TEST(ShadingGradients, CombineWithTheEnvironmentOnASphere) {
+  check_combine(5, false, true, 6.0f);
+  check_combine(6, true, true, 6.0f);
+  check_combine(7, true, false, 6.0f);
 }
 
 TEST(ShadingGradients, ReflectionRaysBackward) {
