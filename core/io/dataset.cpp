@@ -28,6 +28,13 @@ SceneBounds camera_bounds(const std::vector<View>& views) {
   return b;
 }
 
+std::vector<Camera> cameras_of(const std::vector<View>& views) {
+  std::vector<Camera> c;
+  c.reserve(views.size());
+  for (const View& v : views) c.push_back(v.camera);
+  return c;
+}
+
 SceneBounds Dataset::camera_bounds() const { return goris::camera_bounds(train.empty() ? test : train); }
 
 namespace {

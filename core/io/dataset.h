@@ -92,5 +92,7 @@ Image load_view_full_image(const View& view, const DatasetOptions& options, Devi
 ImageSize scaled_size(int width, int height, const DatasetOptions& options);
 
 SceneBounds camera_bounds(const std::vector<View>& views);
+// The views' cameras, in order.
+std::vector<Camera> cameras_of(const std::vector<View>& views);
 
 }  // namespace goris

@@ -63,9 +63,7 @@ float scene_extent(const Dataset& dataset) {
 void resolve_environment_sphere(const Dataset& dataset, TrainConfig& config) {
   IntrinsicSettings& in = config.intrinsic;
   if (!(in.env_distance > 0) || in.env_radius > 0 || dataset.train.empty()) return;
-  std::vector<Camera> cams;
-  for (const View& v : dataset.train) cams.push_back(v.camera);
-  const CameraFocus f = camera_focus(cams);
+  const CameraFocus f = camera_focus(cameras_of(dataset.train));
   if (!(f.mean_distance > 0)) throw Error(config.data, "the training cameras all sit at the point they look at");
   in.env_center = f.center;
   in.env_radius = in.env_distance * f.mean_distance;
@@ -79,9 +77,7 @@ GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, D
     if (how) *how = std::to_string(dataset.points.size()) + " SfM points";
     return init_from_points(dataset.points.xyz, dataset.points.rgb, device, init);
   }
-  std::vector<Camera> cams;
-  for (const View& v : dataset.train) cams.push_back(v.camera);
-  const Box box = box_from_cameras(cams, config.random_init_box_ratio);
+  const Box box = box_from_cameras(cameras_of(dataset.train), config.random_init_box_ratio);
   std::vector<glm::vec3> pts, cols;
   random_points(box, size_t(config.random_init_points), config.seed, pts, cols);
   if (how) {

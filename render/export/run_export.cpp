@@ -29,13 +29,6 @@ namespace {
 
 constexpr int kHoldoutOrbitFrames = 16;  // held-out cameras when the data set has no test split
 
-std::vector<Camera> cameras_of(const std::vector<View>& views) {
-  std::vector<Camera> c;
-  c.reserve(views.size());
-  for (const View& v : views) c.push_back(v.camera);
-  return c;
-}
-
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 

@@ -194,8 +194,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   if (ds.train.empty()) throw Error(config.data, "the data set has no training views");
   select_training_data(config, ds);  // stage 2 sees the views and masks stage 1 trained with
   const float extent = scene_extent(ds);
-  std::vector<Camera> cameras;
-  for (const View& v : ds.train) cameras.push_back(v.camera);
+  const std::vector<Camera> cameras = cameras_of(ds.train);
   const bool intrinsic = config.mode == "intrinsic";
   const bool materials = intrinsic && !o.ablate.count("material");
 

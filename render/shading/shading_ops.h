@@ -159,9 +159,8 @@ GORIS_HDI CombineState<T> combine_state(const Camera& cam, const SurfaceImagesT<
   c.F = c.mat.f0 + (Vec3<T>(T(1)) - c.mat.f0) * c.k;
   c.Lind = plane3(L, P, p);
   c.V = V[p];
-  const Vec3<T> x = st.env_radius > 0.0f ? surface_point(cam, s, c.geo, p) : Vec3<T>(T(0));
   const Vec3<T> centre(T(st.env_center[0]), T(st.env_center[1]), T(st.env_center[2]));
-  c.env_hit = envmap::proxy_hit(x, c.geo.wr, centre, T(st.env_radius));
+  c.env_hit = envmap::proxy_hit(surface_point(cam, s, c.geo, p), c.geo.wr, centre, T(st.env_radius));
   c.Ldir = envmap::cube_lookup(env, c.env_hit.dir, c.rough);
   c.G = c.F * (c.Lind + c.Ldir * c.V);
   return c;
