@@ -7,7 +7,8 @@
 #   demo/                                             an end-to-end intrinsic demo run on CUDA
 # Usage: bash tests/gpu/device_check.sh [tests|bench|all]   (default: all)
 # Each step has its own time limit, and a failed step does not stop the next one; the exit status is the
-# number of failed steps.
+# number of failed steps. The limits of `all` add up to more than one 600 s device call: run `tests` and
+# `bench` as two calls (what a cut-off call wrote to $OUT still comes back).
 set -uo pipefail
 what=${1:-all}
 OUT=${OUT:-device-out}
