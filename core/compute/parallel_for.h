@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/compute/device.h"
+#include "core/compute/hd.h"
 #include "core/util/error.h"
 
 #if defined(__CUDACC__)
@@ -17,6 +18,7 @@
 #endif
 
 namespace goris {
+GORIS_BACKEND_NAMESPACE_BEGIN
 
 #if defined(__CUDACC__)
 template <class F>
@@ -44,4 +46,5 @@ void parallel_for(Device d, std::size_t n, F fn, std::size_t cpu_grain = 256) {
 #endif
 }
 
+GORIS_BACKEND_NAMESPACE_END
 }  // namespace goris

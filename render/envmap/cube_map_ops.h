@@ -12,6 +12,7 @@
 #include "render/envmap/deferred_texel_grads.h"
 
 namespace goris::envmap::ops {
+GORIS_BACKEND_NAMESPACE_BEGIN
 
 // Texel values are exp(parameter): Adam's steps on log radiance are relative, which suits lighting that
 // spans orders of magnitude (HDR sky vs. shadowed walls), and radiance stays positive without clamps.
@@ -102,4 +103,5 @@ void lookup_backward(Device d, const CubeMipsT<T>& mips, const T* dirs, const T*
   texels.flush(mips);
 }
 
+GORIS_BACKEND_NAMESPACE_END
 }  // namespace goris::envmap::ops

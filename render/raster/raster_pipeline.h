@@ -19,6 +19,7 @@
 #include "render/raster/projection.h"
 
 namespace goris::raster {
+GORIS_BACKEND_NAMESPACE_BEGIN
 
 template <class T>
 T read_element(const Buffer<T>& b, std::size_t i) {
@@ -238,4 +239,5 @@ void backward_gaussians(const GaussiansT<T>& g, const RasterStateT<T>& st, const
   });
 }
 
+GORIS_BACKEND_NAMESPACE_END
 }  // namespace goris::raster

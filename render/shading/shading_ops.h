@@ -13,6 +13,7 @@
 #include "render/shading/shading_types.h"
 
 namespace goris::shading::ops {
+GORIS_BACKEND_NAMESPACE_BEGIN
 
 template <class T>
 GORIS_HDI bool is_glossy(const SurfaceImagesT<T>& s, const ShadingSettings& st, std::size_t p) {
@@ -233,4 +234,5 @@ void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, con
   texels.flush(env);
 }
 
+GORIS_BACKEND_NAMESPACE_END
 }  // namespace goris::shading::ops
