@@ -1,31 +1,57 @@
 #!/usr/bin/env bash
 # The GPU checks in one call, for a machine that has a GPU but none of our Debian packages (the lent
 # device): run from the repository root after `./dev device-bundle` made device-bundle/bundle.tar.xz here
-# and the call carried the device-bundle folder. Writes everything to $OUT (default: device-out):
-#   gpu.txt, devices.txt, tests/<binary>.{log,xml}   the CUDA tests (CUDA vs CPU agreement, gradients)
-#   bench_*.txt                                       compute, raster, trace and intrinsic benchmarks
-#   demo/                                             an end-to-end intrinsic demo run on CUDA
-# Usage: bash tests/gpu/device_check.sh [tests|bench|all]   (default: all)
-# Each step has its own time limit, and a failed step does not stop the next one; the exit status is the
-# number of failed steps. The limits of `all` add up to more than one 600 s device call: run `tests` and
-# `bench` as two calls (what a cut-off call wrote to $OUT still comes back).
+# and the call carried the device-bundle folder. Data sets for the pipeline bench are optional: put
+# half-size copies under device-bundle/data/ (tests/gpu/half_size_dataset.py; the carry limit is 64 MiB).
+#
+# Usage: DEADLINE=SECONDS bash tests/gpu/device_check.sh [tests] [bench] [pipeline] [all]   (default: all, 560 s)
+#   tests     the CUDA test binaries (CUDA vs CPU agreement, gradients), side by side
+#   bench     the raster (512 px, 200K Gaussians), trace (512 px) and compute benchmarks
+#   pipeline  the pipeline bench on CUDA over device-bundle/data/* (PIPELINE_CONFIGS, default
+#             baseline,full,auto; medium schedule), then the intrinsic benchmark on its first `full` run
+#
+# Every step gets its own time limit, cut to what is left before DEADLINE, and a failed step does not stop
+# the next. The device returns at most 8 files from $OUT, so the logs go to a work folder that is packed
+# into $OUT/device_check.tgz after every step (a call cut off still returns what had finished); the step
+# summary is $OUT/summary.txt. The exit status is the number of failed steps.
+# The archive holds gpu.txt, devices.txt, tests/<binary>.{txt,xml}, bench_*.txt and pipeline/ (results,
+# charts and each run's result.json).
 set -uo pipefail
-what=${1:-all}
+what=" ${*:-all} "
+wants() { [[ $what == *" $1 "* || $what == *" all "* ]]; }
 OUT=${OUT:-device-out}
+DEADLINE=${DEADLINE:-560}
 B=device-bundle
-mkdir -p "$OUT/tests"
+W=$(mktemp -d)
+mkdir -p "$OUT" "$W/tests"
 failed=0
 
-step() {  # step NAME SECONDS COMMAND... : run with a time limit, log to $OUT/NAME.txt, count failures
+pack() {  # the small files of the work folder into one archive in $OUT (a returned file has at most 16 MiB):
+  # no checkpoints or PLYs, and of the pipeline's run folders only each run's result.json and logs
+  (cd "$W" && find . -type f -size -4M ! -name '*.ckpt*' ! -name '*.ply' \
+    \( ! -path './pipeline/runs/*' -o -name result.json -o -name '*.log' \) -print0 |
+    tar -czf "$OUT/device_check.tgz.tmp" --null -T - && mv "$OUT/device_check.tgz.tmp" "$OUT/device_check.tgz")
+}
+left() { echo $((DEADLINE - SECONDS)); }
+note() { echo "$*" | tee -a "$OUT/summary.txt"; }
+
+step() {  # step NAME SECONDS COMMAND... : run with a time limit (cut to the deadline), log to NAME.txt
   local name=$1 secs=$2
   shift 2
-  echo "== $name (limit ${secs}s)"
+  local l
+  l=$(left)
+  [ "$secs" -gt $((l - 10)) ] && secs=$((l - 10))
+  if [ "$secs" -lt 5 ]; then
+    note "== $name: skipped, the deadline is near"
+    return
+  fi
   local t0=$SECONDS
-  timeout "$secs" "$@" >"$OUT/$name.txt" 2>&1
+  timeout "$secs" "$@" >"$W/$name.txt" 2>&1
   local rc=$?
-  echo "   rc $rc, $((SECONDS - t0)) s"
-  tail -n 3 "$OUT/$name.txt" | sed 's/^/   /'
+  note "== $name (limit ${secs}s): rc $rc, $((SECONDS - t0)) s"
+  tail -n 3 "$W/$name.txt" | sed 's/^/   /' | tee -a "$OUT/summary.txt"
   [ $rc -eq 0 ] || failed=$((failed + 1))
+  pack
 }
 
 if [ ! -x "$B/bin/goris" ]; then
@@ -37,24 +63,46 @@ fi
 export LD_LIBRARY_PATH="$PWD/$B/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export GORIS_RESOURCE_DIR="$PWD/resources" GORIS_BINARY_DIR="$PWD/$B/scratch"
 [ -d "$B/shared" ] && export GORIS_SHARED_DIR="$PWD/$B/shared"
-G="$B/bin/goris"
+G="$PWD/$B/bin/goris"
 
-(nvidia-smi -L; nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv) >"$OUT/gpu.txt" 2>&1
+(nvidia-smi -L; nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv; nproc) >"$W/gpu.txt" 2>&1
+cp "$W/gpu.txt" "$OUT/gpu.txt"
 step devices 60 "$G" devices
 
-if [ "$what" = tests ] || [ "$what" = all ]; then
+if wants tests; then
+  # Side by side: each binary is mostly CPU reference work, and the device has 16 cores.
+  t0=$SECONDS
+  limit=$(($(left) - 20 < 200 ? $(left) - 20 : 200))
   for t in "$B"/bin/test_*; do
     n=$(basename "$t")
-    step "tests/$n" 300 "$t" --gtest_output="xml:$OUT/tests/$n.xml"
+    (timeout "$limit" "$t" --gtest_output="xml:$W/tests/$n.xml" >"$W/tests/$n.txt" 2>&1; echo $? >"$W/tests/$n.rc") &
   done
+  wait
+  for rc in "$W"/tests/*.rc; do
+    n=$(basename "$rc" .rc)
+    note "== tests/$n: rc $(cat "$rc"), $(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$W/tests/$n.txt" | tr '\n' ' ')"
+    [ "$(cat "$rc")" = 0 ] || failed=$((failed + 1))
+  done
+  note "   tests took $((SECONDS - t0)) s side by side (limit ${limit}s each)"
+  pack
 fi
 
-if [ "$what" = bench ] || [ "$what" = all ]; then
-  step bench_compute 120 "$G" bench compute
-  step bench_raster 180 "$G" bench raster --device all --res 512 --gaussians 200000
-  [ -n "${GORIS_SHARED_DIR:-}" ] && step bench_trace 180 "$G" bench trace --shared "$GORIS_SHARED_DIR" --image 512
-  step demo 420 "$G" demo --data "$PWD/resources/default_scene" --device cuda --mode intrinsic --out "$OUT/demo"
-  [ -d "$OUT/demo/run" ] && step bench_intrinsic 180 "$G" bench intrinsic "$OUT/demo/run" --device cuda
+if wants bench; then
+  step bench_raster 90 "$G" bench raster --device all --res 512 --gaussians 200000
+  [ -n "${GORIS_SHARED_DIR:-}" ] && step bench_trace 90 "$G" bench trace --shared "$GORIS_SHARED_DIR" --image 512
+  step bench_compute 60 "$G" bench compute
 fi
-echo "device_check: $failed step(s) failed; outputs in $OUT"
+
+if wants pipeline; then
+  data=()
+  for d in "$B"/data/*/; do [ -f "$d/transforms_train.json" ] && data+=("$PWD/${d%/}"); done
+  if [ ${#data[@]} -gt 0 ]; then
+    step pipeline $(($(left) - 70)) "$G" bench pipeline --data "${data[@]}" --configs "${PIPELINE_CONFIGS:-baseline,full,auto}" \
+      --schedule medium --init-points 30000 --device cuda --out "$W/pipeline"
+    run=$(find "$W/pipeline/runs" -path '*medium/full/run' -type d 2>/dev/null | head -n 1)
+    [ -n "$run" ] && step bench_intrinsic 50 "$G" bench intrinsic "$run" --device cuda
+  fi
+fi
+note "device_check: $failed step(s) failed; $((SECONDS)) s"
+pack
 exit "$failed"
