@@ -481,8 +481,10 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   std::vector<std::string> scenes;
   for (const Row& r : rows)
     if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-  // The overall chart: one marker per configuration x schedule, the mean over the scenes where it succeeded.
+  // The overall chart: one marker per configuration x schedule, the mean over the scenes. A configuration
+  // that did not succeed on every scene is left out: its mean would compare other scenes than its neighbours'.
   std::vector<Row> means;
+  std::string partial;
   for (const auto& c : ladder())
     for (const auto& s : o_.schedules) {
       Row m;  // its time is the mean of the rows' times on the chosen axis (kept in train_s and cpu_s alike)
@@ -493,12 +495,18 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
           m.psnr += r.psnr, m.train_s += axis.of(r), ++n;
         }
       if (n == 0) continue;
+      if (n < int(scenes.size())) {
+        partial += (partial.empty() ? "" : ", ") + std::string(c.name) + " / " + s + " (" + std::to_string(n) + " of " +
+                   std::to_string(scenes.size()) + ")";
+        continue;
+      }
       m.psnr /= n, m.train_s /= n, m.cpu_s = m.train_s;
       means.push_back(m);
     }
   std::vector<std::string> missing;  // charts with nothing to draw
   const std::string title = scenes.size() == 1 ? "PSNR against time: " + scenes[0]
                                                : "PSNR against time: mean over " + std::to_string(scenes.size()) + " scenes";
+  if (!partial.empty()) md += "\nLeft out of the mean chart (a result on only some of the scenes): " + partial + ".\n";
   if (write_chart(means, title, out_ / "chart", axis)) md += "\n![PSNR against time](chart.png)\n";
   else missing.push_back("chart");
   for (const auto& sc : scenes) {
