@@ -1,7 +1,8 @@
 # Coarse tracing end to end on the embedded default scene: a short intrinsic `goris train` with
 # intrinsic_coarse_tracing=true reports the rays it traced and saved, and `goris bench intrinsic
 # --coarse-tracing both` times the fully traced and the coarse frame of the same view with their ray counts
-# and the PSNR between them; a bad key value is refused.
+# and the PSNR between them; --resolution renders the same view at another width (the frame-rate line
+# names it); a bad key value is refused.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 set(RUN "${WORK}/run")
@@ -27,6 +28,10 @@ string(REGEX MATCH "\\| on \\| ([0-9]+) / ([0-9]+) \\|" on_row "${OUT}")
 if(NOT on_row OR NOT CMAKE_MATCH_1 LESS CMAKE_MATCH_2)
   message(FATAL_ERROR "coarse row: fewer rays than glossy pixels expected\n${OUT}")
 endif()
+
+goris_ok(bench intrinsic "${RUN}" --repeats 1 --resolution 96 --device cpu)
+expect_text("${OUT}" "at 96x96")
+expect_text("${OUT}" "traced shading frame at 96x96, coarse tracing on:")
 
 goris_fails("intrinsic_coarse_max_level" train "${RESOURCES}/default_scene" --out "${WORK}/bad" --mode intrinsic
             --iters 5 --set intrinsic_coarse_max_level=7)

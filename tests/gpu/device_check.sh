@@ -8,7 +8,8 @@
 #   tests     the CUDA test binaries (CUDA vs CPU agreement, gradients), side by side
 #   bench     the raster (512 px, 200K Gaussians), trace (512 px) and compute benchmarks
 #   pipeline  the pipeline bench on CUDA over device-bundle/data/* (PIPELINE_CONFIGS, default
-#             baseline,full,auto; medium schedule), then the intrinsic benchmark on its first `full` run
+#             baseline,full,auto; medium schedule), then the intrinsic benchmark on a `full` run at its
+#             resolution and at 512 px, and a per-kernel table of one 512 px iteration where ncu exists
 #
 # Every step gets its own time limit, cut to what is left before DEADLINE, and a failed step does not stop
 # the next. The device returns at most 8 files from $OUT, so the logs go to a work folder that is packed
@@ -97,10 +98,20 @@ if wants pipeline; then
   data=()
   for d in "$B"/data/*/; do [ -f "$d/transforms_train.json" ] && data+=("$PWD/${d%/}"); done
   if [ ${#data[@]} -gt 0 ]; then
-    step pipeline $(($(left) - 70)) "$G" bench pipeline --data "${data[@]}" --configs "${PIPELINE_CONFIGS:-baseline,full,auto}" \
+    step pipeline $(($(left) - 150)) "$G" bench pipeline --data "${data[@]}" --configs "${PIPELINE_CONFIGS:-baseline,full,auto}" \
       --schedule medium --init-points 30000 --device cuda --out "$W/pipeline"
-    run=$(find "$W/pipeline/runs" -path '*medium/full/run' -type d 2>/dev/null | head -n 1)
-    [ -n "$run" ] && step bench_intrinsic 50 "$G" bench intrinsic "$run" --device cuda
+    # The time split of one intrinsic iteration on a `full` run (steel_snowman's when there is one), at the
+    # run's resolution and at 512 px (the traced shading frame rate), then a per-kernel table (ncu).
+    run=$(find "$W/pipeline/runs" -path '*medium/full/run' -type d 2>/dev/null | sort -r | head -n 1)
+    if [ -n "$run" ]; then
+      step bench_intrinsic 30 "$G" bench intrinsic "$run" --device cuda
+      step bench_intrinsic_512 30 "$G" bench intrinsic "$run" --device cuda --resolution 512
+      if command -v ncu >/dev/null; then
+        step profile_512 80 ncu --csv --metrics gpu__time_duration.sum --log-file "$W/profile_512.csv" \
+          "$G" bench intrinsic "$run" --device cuda --resolution 512 --repeats 1
+        python3 "$PWD/tests/gpu/kernel_table.py" "$W/profile_512.csv" >"$W/profile_512_kernels.md" 2>&1
+      fi
+    fi
   fi
 fi
 note "device_check: $failed step(s) failed; $((SECONDS)) s"
