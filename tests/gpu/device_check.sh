@@ -12,8 +12,8 @@
 #             resolution and at 512 px, and a per-kernel table of one 512 px iteration where ncu exists
 #
 # Durations seen on an H200 (session 19), for planning a 15-minute device budget: machine start and carry
-# about 35 s; tests 2 s (side by side); bench 90 s (trace 85 of it); pipeline with the default configs on the
-# three 128 px scenes 221 s, with all configurations about 600 s. Ask for one call with everything needed:
+# about 35 s; tests 2 s (side by side); bench 90 s (trace 85 of it); pipeline with baseline, full, auto and
+# distilled on the three 128 px scenes 221 s, with all configurations about 600 s. Ask for one call with everything needed:
 # the machine is handed back after 30 s idle, so a second call usually pays for a new start.
 #
 # Every step gets its own time limit, cut to what is left before DEADLINE, and a failed step does not stop
