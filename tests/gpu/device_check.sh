@@ -13,8 +13,8 @@
 #
 # Durations seen on an H200 (session 19), for planning a 15-minute device budget: machine start and carry
 # about 35 s; tests 2 s (side by side); bench 90 s (trace 85 of it); pipeline with baseline, full, auto and
-# distilled on the three 128 px scenes 221 s, with all configurations about 600 s. Ask for one call with everything needed:
-# the machine is handed back after 30 s idle, so a second call usually pays for a new start.
+# distilled on the three 128 px scenes 221 s, with all configurations about 600 s. Ask for everything in
+# one call: the machine is handed back after 30 s idle, so a second call usually pays for a new start.
 #
 # Every step gets its own time limit, cut to what is left before DEADLINE, and a failed step does not stop
 # the next. The device returns at most 8 files from $OUT, so the logs go to a work folder that is packed
