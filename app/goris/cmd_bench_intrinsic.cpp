@@ -5,7 +5,8 @@
 // compares the two set-ups on the same frame: time and PSNR). Medians over --repeats iterations (after one
 // warm-up), stages timed with the device synchronised around each; "cpu ms" is the process CPU time of the
 // whole iteration (all threads). --resolution renders the view at another width than the run trained at
-// (the Gaussians do not depend on it), e.g. the 512 px frame rate of a run trained at 128 px.
+// (the Gaussians do not depend on it), e.g. the 512 px frame rate of a run trained at 128 px. --kernels
+// adds the time of every parallel_for launch site over the timed iterations (core/compute/kernel_profile.h).
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "app/goris/command.h"
+#include "core/compute/kernel_profile.h"
 #include "core/compute/memory.h"
 #include "core/io/dataset.h"
 #include "core/train/image_losses.h"
@@ -45,11 +47,13 @@ struct Measured {
   std::vector<float> color;
 };
 
-Measured measure(IntrinsicRenderer& ir, GaussianModel& model, const TrainView& v, Device device, int repeats) {
+Measured measure(IntrinsicRenderer& ir, GaussianModel& model, const TrainView& v, Device device, int repeats,
+                 bool kernels) {
   const size_t hw = size_t(v.camera.width) * v.camera.height;
   Measured m;
   for (int r = 0; r <= repeats; ++r) {
     ir.set_profile(r > 0);
+    kernel_profile::enable(kernels && r > 0);
     const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     const RenderedImages out = ir.forward(model.view(true), v.camera);
@@ -63,6 +67,7 @@ Measured measure(IntrinsicRenderer& ir, GaussianModel& model, const TrainView& v
     ir.backward(model.view(true), d, model.grad_view(true));
     model.backprop_extras();
     device_synchronize(device);
+    kernel_profile::enable(false);
     if (r == 0) continue;  // warm-up (allocations, BVH build)
     const IntrinsicTimes& t = ir.times();
     m.total.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
@@ -104,7 +109,7 @@ void print_stages(const char* name, const Measured& m) {
 }
 
 void run_bench_intrinsic(const std::string& run, int view_index, int repeats, int threads, const std::string& dev,
-                         const std::string& coarse, int coarse_max_level, int resolution) {
+                         const std::string& coarse, int coarse_max_level, int resolution, bool kernels) {
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
@@ -133,7 +138,8 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
     TrainConfig c = config;
     c.intrinsic.coarse_tracing = on;
     const auto renderer = load_run_renderer(run_dir, c, scene_extent(ds), device);
-    results.push_back(measure(*as_intrinsic(renderer.get()), model, v, device, repeats));
+    kernel_profile::reset();
+    results.push_back(measure(*as_intrinsic(renderer.get()), model, v, device, repeats, kernels));
   }
 
   std::printf("# goris bench intrinsic: one stage-1 iteration with shading (forward + backward)\n");
@@ -162,6 +168,9 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
   }
   if (results.size() == 2)
     std::printf("\nPSNR of the coarse frame against the fully traced one: %.2f dB\n", psnr(results[1].color, results[0].color));
+  if (kernels)
+    std::printf("\nparallel_for launch sites over the %d timed iterations (coarse tracing %s):\n\n%s", repeats,
+                modes.back().first.c_str(), kernel_profile::markdown_table().c_str());
 }
 
 void setup_bench_intrinsic(CLI::App& root) {
@@ -175,6 +184,7 @@ void setup_bench_intrinsic(CLI::App& root) {
   auto coarse = std::make_shared<std::string>("run");
   auto coarse_level = std::make_shared<int>(0);
   auto resolution = std::make_shared<int>(0);
+  auto kernels = std::make_shared<bool>(false);
   c->add_option("run", *run, "An intrinsic run folder (goris train --mode intrinsic)")->required();
   c->add_option("--view", *view, "Training view index")->capture_default_str();
   c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
@@ -190,7 +200,12 @@ void setup_bench_intrinsic(CLI::App& root) {
   c->add_option("--resolution", *resolution, "Render the view at this width in pixels (0 = the run's)")
       ->capture_default_str()
       ->check(CLI::Range(0, 8192));
-  c->callback([=] { run_bench_intrinsic(*run, *view, *repeats, *threads, *device, *coarse, *coarse_level, *resolution); });
+  c->add_flag("--kernels", *kernels,
+              "Also time every parallel_for launch site over the timed iterations (the last coarse-tracing set-up; "
+              "on CUDA each launch is synchronised, so the stage times grow)");
+  c->callback([=] {
+    run_bench_intrinsic(*run, *view, *repeats, *threads, *device, *coarse, *coarse_level, *resolution, *kernels);
+  });
 }
 
 }  // namespace

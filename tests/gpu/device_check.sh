@@ -9,7 +9,8 @@
 #   bench     the raster (512 px, 200K Gaussians), trace (512 px) and compute benchmarks
 #   pipeline  the pipeline bench on CUDA over device-bundle/data/* (PIPELINE_CONFIGS, default
 #             baseline,full,auto; medium schedule), then the intrinsic benchmark on a `full` run at its
-#             resolution and at 512 px, and a per-kernel table of one 512 px iteration where ncu exists
+#             resolution and at 512 px, its parallel_for launch sites (--kernels) and, where ncu exists,
+#             a table of every kernel of one 512 px iteration
 #
 # Durations seen on an H200 (session 19), for planning a 15-minute device budget: machine start and carry
 # about 35 s; tests 2 s (side by side); bench 90 s (trace 85 of it); pipeline with baseline, full, auto and
@@ -106,11 +107,13 @@ if wants pipeline; then
     step pipeline $(($(left) - 150)) "$G" bench pipeline --data "${data[@]}" --configs "${PIPELINE_CONFIGS:-baseline,full,auto}" \
       --schedule medium --init-points 30000 --device cuda --out "$W/pipeline"
     # The time split of one intrinsic iteration on a `full` run (steel_snowman's when there is one), at the
-    # run's resolution and at 512 px (the traced shading frame rate), then a per-kernel table (ncu).
+    # run's resolution and at 512 px (the traced shading frame rate), the time of each parallel_for launch
+    # site (--kernels), and where ncu exists a table of every kernel.
     run=$(find "$W/pipeline/runs" -path '*medium/full/run' -type d 2>/dev/null | sort -r | head -n 1)
     if [ -n "$run" ]; then
       step bench_intrinsic 30 "$G" bench intrinsic "$run" --device cuda
       step bench_intrinsic_512 30 "$G" bench intrinsic "$run" --device cuda --resolution 512
+      step kernels_512 30 "$G" bench intrinsic "$run" --device cuda --resolution 512 --repeats 2 --kernels
       if command -v ncu >/dev/null; then
         step profile_512 80 ncu --csv --metrics gpu__time_duration.sum --log-file "$W/profile_512.csv" \
           "$G" bench intrinsic "$run" --device cuda --resolution 512 --repeats 1
