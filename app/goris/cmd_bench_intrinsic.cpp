@@ -92,6 +92,14 @@ double psnr(const std::vector<float>& a, const std::vector<float>& b) {
   return psnr_from_mse(mse<float>(a.data(), b.data(), std::min(a.size(), b.size())));
 }
 
+// The shaded frame (the forward stages) and the backward, each the sum of its stages' medians.
+double forward_ms(const Measured& m) {
+  return median(m.raster) + median(m.rays) + median(m.trace) + median(m.filter) + median(m.shade);
+}
+double backward_ms(const Measured& m) {
+  return median(m.raster_b) + median(m.trace_b) + median(m.filter_b) + median(m.shade_b);
+}
+
 double saved_percent(const Measured& m) { return m.glossy ? 100.0 * (1.0 - double(m.traced) / double(m.glossy)) : 0.0; }
 
 void print_stages(const char* name, const Measured& m) {
@@ -154,15 +162,12 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
   std::printf("|---|---|---|---|---|---|---|\n");
   for (size_t i = 0; i < modes.size(); ++i) {
     const Measured& m = results[i];
-    const double fwd = median(m.raster) + median(m.rays) + median(m.trace) + median(m.filter) + median(m.shade);
-    const double bwd = median(m.raster_b) + median(m.trace_b) + median(m.filter_b) + median(m.shade_b);
     std::printf("| %s | %zu / %zu | %.1f %% | %.1f | %.1f | %.1f | %.2f |\n", modes[i].first.c_str(), m.traced, m.glossy,
-                saved_percent(m), fwd, bwd, median(m.total), psnr(m.color, v.image));
+                saved_percent(m), forward_ms(m), backward_ms(m), median(m.total), psnr(m.color, v.image));
   }
   // The shaded frame alone (the forward stages, each timed between device synchronisations).
   for (size_t i = 0; i < modes.size(); ++i) {
-    const Measured& m = results[i];
-    const double fwd = median(m.raster) + median(m.rays) + median(m.trace) + median(m.filter) + median(m.shade);
+    const double fwd = forward_ms(results[i]);
     std::printf("\ntraced shading frame at %dx%d, coarse tracing %s: %.2f ms forward = %.0f frames per second\n",
                 v.camera.width, v.camera.height, modes[i].first.c_str(), fwd, fwd > 0 ? 1000.0 / fwd : 0.0);
   }
