@@ -6,7 +6,8 @@
 // warm-up), stages timed with the device synchronised around each; "cpu ms" is the process CPU time of the
 // whole iteration (all threads). --resolution renders the view at another width than the run trained at
 // (the Gaussians do not depend on it), e.g. the 512 px frame rate of a run trained at 128 px. --kernels
-// adds the time of every parallel_for launch site over the timed iterations (core/compute/kernel_profile.h).
+// adds the time of every launch site (parallel_for and the timed blocks around the rasterizer's blend, the
+// tracer on the CPU, sorts and scans) over the timed iterations (core/compute/kernel_profile.h).
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -174,7 +175,7 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
   if (results.size() == 2)
     std::printf("\nPSNR of the coarse frame against the fully traced one: %.2f dB\n", psnr(results[1].color, results[0].color));
   if (kernels)
-    std::printf("\nparallel_for launch sites over the %d timed iterations (coarse tracing %s):\n\n%s", repeats,
+    std::printf("\nlaunch sites over the %d timed iterations (coarse tracing %s):\n\n%s", repeats,
                 modes.back().first.c_str(), kernel_profile::markdown_table().c_str());
 }
 
@@ -206,7 +207,7 @@ void setup_bench_intrinsic(CLI::App& root) {
       ->capture_default_str()
       ->check(CLI::Range(0, 8192));
   c->add_flag("--kernels", *kernels,
-              "Also time every parallel_for launch site over the timed iterations (the last coarse-tracing set-up; "
+              "Also time every launch site (parallel_for, blend, CPU tracer, sorts, scans) over the timed iterations (the last coarse-tracing set-up; "
               "on CUDA each launch is synchronised, so the stage times grow)");
   c->callback([=] {
     run_bench_intrinsic(*run, *view, *repeats, *threads, *device, *coarse, *coarse_level, *resolution, *kernels);

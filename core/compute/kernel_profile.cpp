@@ -1,5 +1,7 @@
 #include "core/compute/kernel_profile.h"
 
+#include "core/compute/memory.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -23,6 +25,7 @@ std::string short_function(const char* pretty) {
       if (eq == std::string::npos || eq > end) break;
       std::string value = with.substr(eq + 3, end - eq - 3);
       if (value.rfind("goris::Device::", 0) == 0) value.erase(0, 15);
+      if (value.find("<lambda") != std::string::npos) value = "lambda";  // a callback's type: long, says little
       templ += (templ.empty() ? "<" : ", ") + value;
       at = end + 2;
     }
@@ -62,6 +65,18 @@ void record(const std::source_location& site, double ms) {
   t.ms += ms;
 }
 
+Scope::Scope(Device device, const std::source_location& site) : device_(device), site_(site), on_(enabled()) {
+  if (!on_) return;
+  device_synchronize(device_);  // earlier asynchronous work is not this block's
+  t0_ = std::chrono::steady_clock::now();
+}
+
+Scope::~Scope() {
+  if (!on_) return;
+  device_synchronize(device_);
+  record(site_, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count());
+}
+
 std::vector<SiteTime> sites() {
   std::vector<SiteTime> v;
   {
@@ -78,7 +93,8 @@ std::string markdown_table() {
   long calls = 0;
   for (const SiteTime& t : v) total += t.ms, calls += t.calls;
   char line[512];
-  std::snprintf(line, sizeof line, "%ld parallel_for launches at %zu sites, %.3f ms in all\n\n", calls, v.size(), total);
+  std::snprintf(line, sizeof line, "%ld launches (parallel_for and timed blocks) at %zu sites, %.3f ms in all\n\n", calls,
+                v.size(), total);
   std::string s = line;
   s += "| launch site | where | calls | total ms | mean us | share |\n|---|---|--:|--:|--:|--:|\n";
   for (const SiteTime& t : v) {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/compute/kernel_profile.h"
 #include "core/compute/primitives.h"
 #include "core/util/error.h"
 
@@ -101,6 +102,7 @@ void sort_by_key(Buffer<std::uint64_t>& keys, Buffer<std::uint32_t>& values, int
     throw Error("sort_by_key: " + std::to_string(keys.size()) + " keys but " + std::to_string(values.size()) + " values");
   if (keys.device() != values.device()) throw Error("sort_by_key: keys and values live on different devices");
   end_bit = std::clamp(end_bit, 1, 64);
+  kernel_profile::Scope scope(keys.device());
   if (keys.device() == Device::CUDA) GORIS_ON_CUDA(cuda_sort_by_key(keys.data(), values.data(), keys.size(), end_bit));
   cpu_sort_by_key(keys.data(), values.data(), keys.size(), end_bit);
 }
@@ -109,6 +111,7 @@ template <class T>
 static void scan(const Buffer<T>& in, Buffer<T>& out, bool inclusive) {
   if (out.size() != in.size() || out.device() != in.device())
     throw Error("scan: output must have the input's size and device");
+  kernel_profile::Scope scope(in.device());
   if (in.device() == Device::CUDA) GORIS_ON_CUDA(cuda_scan<T>(in.data(), out.data(), in.size(), inclusive));
   cpu_scan<T>(in.data(), out.data(), in.size(), inclusive);
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/compute/kernel_profile.h"
 #include "render/raster/lane_hit_cpu.h"
 #include "render/raster/lanes_cpu.h"
 #include "render/raster/raster_cpu.h"
@@ -228,7 +229,10 @@ void backward_cpu(const GaussiansT<T>& g, const RasterStateT<T>& st, const GBuff
   const int stride = grad_slot_stride(st.n_extras);
   Buffer<T> partials(st.n_instances * std::size_t(stride));
   const int n_tiles = st.tiles_x * st.tiles_y;
-  tbb::parallel_for(0, n_tiles, [&](int tile) { backward_tile(tile, g, st, grad_out, partials.data()); });
+  {
+    kernel_profile::Scope scope(Device::CPU);
+    tbb::parallel_for(0, n_tiles, [&](int tile) { backward_tile(tile, g, st, grad_out, partials.data()); });
+  }
   st.times.backward_blend = timer.lap();
   backward_gaussians(g, st, partials, out);
   st.times.backward_gaussians = timer.lap();

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/compute/kernel_profile.h"
 #include "render/raster/lane_hit_cpu.h"
 #include "render/raster/lanes_cpu.h"
 #include "render/raster/raster_cpu.h"
@@ -162,7 +163,10 @@ void forward_cpu(const GaussiansT<T>& g, const Camera& cam, const RasterSettings
   st.n_contrib = Buffer<std::uint32_t>(P);
   st.median_index = Buffer<std::uint32_t>(P);
   const int n_tiles = st.tiles_x * st.tiles_y;
-  tbb::parallel_for(0, n_tiles, [&](int tile) { blend_tile(tile, g, st, out); });
+  {
+    kernel_profile::Scope scope(Device::CPU);
+    tbb::parallel_for(0, n_tiles, [&](int tile) { blend_tile(tile, g, st, out); });
+  }
   st.times.blend = timer.lap();
 }
 

@@ -5,6 +5,7 @@
 #include <cuda_runtime.h>
 
 #include "core/compute/cuda_check.h"
+#include "core/compute/kernel_profile.h"
 #include "render/raster/raster_cpu.h"
 #include "render/raster/raster_pipeline.h"
 #include "render/raster/rasterizer_cuda.h"
@@ -260,8 +261,11 @@ void forward_cuda(const GaussiansT<float>& g, const Camera& cam, const RasterSet
                      out.median_depth.data(), out.normal.data(), out.extras.data(),
                      st.final_T.data(), st.n_contrib.data(), st.median_index.data()};
   const int n_tiles = st.tiles_x * st.tiles_y;
-  blend_forward_kernel<<<n_tiles, kBlock>>>(blend_params(g, st), o);
-  GORIS_CUDA_CHECK(cudaGetLastError());
+  {
+    kernel_profile::Scope scope(Device::CUDA);
+    blend_forward_kernel<<<n_tiles, kBlock>>>(blend_params(g, st), o);
+    GORIS_CUDA_CHECK(cudaGetLastError());
+  }
   st.times.blend = timer.lap();
 }
 
@@ -276,8 +280,11 @@ void backward_cuda(const GaussiansT<float>& g, const RasterStateT<float>& st, co
   partials.fill_zero();
   const BackwardIn in{st.final_T.data(), st.n_contrib.data(), st.median_index.data(), grad_out, partials.data()};
   const int n_tiles = st.tiles_x * st.tiles_y;
-  blend_backward_kernel<<<n_tiles, kBlock>>>(blend_params(g, st), in);
-  GORIS_CUDA_CHECK(cudaGetLastError());
+  {
+    kernel_profile::Scope scope(Device::CUDA);
+    blend_backward_kernel<<<n_tiles, kBlock>>>(blend_params(g, st), in);
+    GORIS_CUDA_CHECK(cudaGetLastError());
+  }
   st.times.backward_blend = timer.lap();
   backward_gaussians(g, st, partials, out);
   st.times.backward_gaussians = timer.lap();

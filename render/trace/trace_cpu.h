@@ -18,6 +18,7 @@
 #include <xmmintrin.h>
 #endif
 
+#include "core/compute/kernel_profile.h"
 #include "render/raster/raster_types.h"
 #include "render/trace/trace_ray.h"
 #include "render/trace/trace_types.h"
@@ -83,6 +84,7 @@ Vec3<T> ray_vec(const T* p, std::size_t r) { return Vec3<T>(p[3 * r], p[3 * r + 
 template <class T, class MakeCollector>
 void forward_cpu(const TraceScene<T>& sc, const TraceRaysT<T>& rays, int k, const TraceOutputsT<T>& out,
                  MakeCollector&& make_collector) {
+  kernel_profile::Scope scope(Device::CPU);
   tbb::enumerable_thread_specific<HitScratch<T>> scratch(round_capacity(k, sc.count));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.count, 32), [&](const tbb::blocked_range<std::size_t>& r) {
     DenormalsOff ftz;
@@ -113,6 +115,7 @@ void backward_cpu(const TraceScene<T>& sc, const GaussiansT<T>& g, const TraceRa
                   const TraceOutputGradsT<T>& grad_out, const GaussianGradsT<T>& grads,
                   const TraceRayGradsT<T>& ray_grads, T* grad_emit, std::size_t max_scratch_bytes,
                   MakeCollector&& make_collector) {
+  kernel_profile::Scope scope(Device::CPU);
   const std::size_t stride = std::size_t(record_stride(sc.sh_degree, sc.n_extras));
   const std::size_t per_slot = std::max<std::size_t>(1, std::size_t(sc.count) * stride * sizeof(T));
   const int slots = int(std::clamp<std::size_t>(max_scratch_bytes / per_slot, 1,

@@ -2,7 +2,8 @@
 # intrinsic_coarse_tracing=true reports the rays it traced and saved, and `goris bench intrinsic
 # --coarse-tracing both` times the fully traced and the coarse frame of the same view with their ray counts
 # and the PSNR between them; --resolution renders the same view at another width (the frame-rate line
-# names it) and --kernels adds the time of each parallel_for launch site; a bad key value is refused.
+# names it) and --kernels adds the time of each launch site (parallel_for, the blend, the CPU tracer); a bad
+# key value is refused.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 set(RUN "${WORK}/run")
@@ -34,9 +35,11 @@ expect_text("${OUT}" "at 96x96")
 expect_text("${OUT}" "traced shading frame at 96x96, coarse tracing on:")
 
 goris_ok(bench intrinsic "${RUN}" --repeats 1 --kernels --device cpu)
-expect_text("${OUT}" "parallel_for launch sites over the 1 timed iterations")
+expect_text("${OUT}" "launch sites over the 1 timed iterations")
 expect_text("${OUT}" "| launch site | where | calls | total ms |")
 expect_text("${OUT}" "goris::shading::ops::shade<float> | shading_ops.h:")
+expect_text("${OUT}" "goris::raster::forward_cpu<float> | raster_forward_cpu.cpp:")
+expect_text("${OUT}" "goris::trace::forward_cpu<float, lambda> | trace_cpu.h:")
 
 goris_fails("intrinsic_coarse_max_level" train "${RESOURCES}/default_scene" --out "${WORK}/bad" --mode intrinsic
             --iters 5 --set intrinsic_coarse_max_level=7)

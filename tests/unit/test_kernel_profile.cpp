@@ -1,4 +1,5 @@
-// kernel_profile: parallel_for's per-launch-site timing (CPU here; the CUDA path records the same way).
+// kernel_profile: per-launch-site timing of parallel_for and of Scope blocks (CPU here; the CUDA path records
+// the same way).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -55,8 +56,28 @@ TEST(KernelProfile, RecordsEachCallSiteOnlyWhenEnabled) {
   for (std::size_t i = 1; i < sites.size(); ++i) EXPECT_GE(sites[i - 1].ms, sites[i].ms);  // largest first
 
   const std::string table = kernel_profile::markdown_table();
-  EXPECT_NE(table.find("5 parallel_for launches at 3 sites"), std::string::npos) << table;
+  EXPECT_NE(table.find("5 launches (parallel_for and timed blocks) at 3 sites"), std::string::npos) << table;
   EXPECT_NE(table.find("| launch site | where | calls |"), std::string::npos);
   kernel_profile::reset();
   EXPECT_TRUE(kernel_profile::sites().empty());
+}
+
+TEST(KernelProfile, ScopeTimesABlockUnderItsSite) {
+  kernel_profile::reset();
+  { kernel_profile::Scope off(Device::CPU); }  // disabled: nothing recorded
+  EXPECT_TRUE(kernel_profile::sites().empty());
+  kernel_profile::enable(true);
+  for (int i = 0; i < 3; ++i) {
+    kernel_profile::Scope scope(Device::CPU);
+    std::vector<float> v(100000, 1.0f);
+    volatile float sum = 0;
+    for (float x : v) sum = sum + x;
+  }
+  kernel_profile::enable(false);
+  const auto sites = kernel_profile::sites();
+  ASSERT_EQ(sites.size(), 1u);
+  EXPECT_EQ(sites[0].calls, 3);
+  EXPECT_GT(sites[0].ms, 0.0);
+  EXPECT_NE(sites[0].function.find("ScopeTimesABlockUnderItsSite"), std::string::npos) << sites[0].function;
+  kernel_profile::reset();
 }
