@@ -5,7 +5,6 @@
 // (.cu files), which is how one kernel source serves both backends: a .cpp driver and a .cu driver
 // include the same GORIS_HD maths. With kernel_profile enabled, each call's time is recorded under its
 // call site (the defaulted source_location).
-#include <chrono>
 #include <cstddef>
 #include <source_location>
 
@@ -36,18 +35,16 @@ template <class F>
 void parallel_for(Device d, std::size_t n, F fn, std::size_t cpu_grain = 256,
                   const std::source_location& site = std::source_location::current()) {
   if (n == 0) return;
-  const bool profile = kernel_profile::enabled();
   if (d == Device::CPU) {
-    const auto t0 = profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+    kernel_profile::Scope timed(Device::CPU, site);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, cpu_grain), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) fn(i);
     });
-    if (profile)
-      kernel_profile::record(site, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     return;
   }
 #if defined(__CUDACC__)
   constexpr unsigned block = 256;
+  const bool profile = kernel_profile::enabled();  // kernel time between two events (Scope would add launch latency)
   static thread_local cudaEvent_t start = nullptr, stop = nullptr;
   if (profile) {
     if (!start) {  // one pair per instantiation and thread, kept for the process's life
@@ -66,7 +63,7 @@ void parallel_for(Device d, std::size_t n, F fn, std::size_t cpu_grain = 256,
     kernel_profile::record(site, ms);
   }
 #else
-  (void)profile, (void)site;
+  (void)site;
   throw Error("parallel_for on CUDA was called from a host-only translation unit (move the caller into a .cu file)");
 #endif
 }
