@@ -14,7 +14,6 @@
 #include <glm/glm.hpp>
 
 #include "core/compute/hd.h"
-#include "render/envmap/hd_atomic.h"
 
 namespace goris::envmap {
 
@@ -187,11 +186,39 @@ GORIS_HDI Vec3<T> cube_lookup(const CubeMipsT<T>& m, const Vec3<T>& dir, T rough
   return out;
 }
 
-// VJP of cube_lookup: adds dL/d(texel) into grad_texels (same layout as m.texels, atomically; null: skipped)
-// and returns dL/d(direction) and dL/d(roughness) through the out-parameters.
+// The texels a lookup reads: up to 8 taps (4 bilinear taps on each of the two levels), each with its texel
+// offset and weight, so d lookup / d texel[idx[t] + ch] = w[t] per channel (taps may repeat a texel where
+// they are clamped at a face edge; their weights then add).
+template <class T>
+struct LookupTaps {
+  long long idx[8];
+  T w[8];
+  int n = 0;
+};
+
+template <class T>
+GORIS_HDI LookupTaps<T> lookup_taps(const CubeMipsT<T>& m, const Vec3<T>& dir, T roughness) {
+  const LookupPlan<T> p = plan_lookup(m, dir, roughness);
+  const int lv[2] = {p.l0, p.l1};
+  const T lw[2] = {T(1) - p.f, p.f};
+  LookupTaps<T> taps;
+  for (int s = 0; s < 2; ++s) {
+    if (s == 1 && !(p.f > T(0))) break;
+    const Bilinear<T> b = bilinear_taps(m.resolution, lv[s], p.coord.face, p.coord.u, p.coord.v);
+    for (int q = 0; q < 4; ++q, ++taps.n) {
+      taps.idx[taps.n] = b.idx[q];
+      taps.w[taps.n] = lw[s] * b.w[q];
+    }
+  }
+  return taps;
+}
+
+// VJP of cube_lookup for the direction and the roughness: dL/d(direction) and dL/d(roughness) through the
+// out-parameters. The texels' gradient is lookup_taps' weights times dout, which callers sum in a fixed
+// order (deferred_texel_grads.h).
 template <class T>
 GORIS_HDI void cube_lookup_vjp(const CubeMipsT<T>& m, const Vec3<T>& dir, T roughness, const Vec3<T>& dout,
-                               T* grad_texels, Vec3<T>* ddir, T* droughness) {
+                               Vec3<T>* ddir, T* droughness) {
   const LookupPlan<T> p = plan_lookup(m, dir, roughness);
   const CubeCoord<T>& c = p.coord;
   const int lv[2] = {p.l0, p.l1};
@@ -206,9 +233,6 @@ GORIS_HDI void cube_lookup_vjp(const CubeMipsT<T>& m, const Vec3<T>& dir, T roug
     bilinear_uv_grad(m.texels, b, &gu, &gv);
     du += lw[s] * glm::dot(dout, gu);
     dv += lw[s] * glm::dot(dout, gv);
-    if (grad_texels)
-      for (int q = 0; q < 4; ++q)
-        for (int ch = 0; ch < 3; ++ch) atomic_add_hd(grad_texels + b.idx[q] + ch, lw[s] * b.w[q] * dout[ch]);
   }
   *ddir = cube_coord_vjp(c, du, dv);
   *droughness = p.f > T(0) ? glm::dot(dout, vals[1] - vals[0]) * p.dlevel_dr : T(0);

@@ -82,20 +82,19 @@ void lookup(Device d, const CubeMipsT<T>& mips, const T* dirs, const T* roughnes
   });
 }
 
-// Backward of lookup: chain_grad += dL/dtexels (CUDA: atomic; CPU: in a fixed order, see
+// Backward of lookup: chain_grad += dL/dtexels (in a fixed order on both backends, see
 // deferred_texel_grads.h), ddirs / droughness written (null: skipped).
 template <class T>
 void lookup_backward(Device d, const CubeMipsT<T>& mips, const T* dirs, const T* roughness, const T* dout,
                      std::size_t n, T* chain_grad, std::type_identity_t<T>* ddirs,
                      std::type_identity_t<T>* droughness) {
   DeferredTexelGrads<T> texels(d, chain_grad, n);
-  T* const direct = texels.direct();
   T* const records = texels.records();
   parallel_for(d, n, [=] GORIS_HD(std::size_t i) {
     const Vec3<T> dir(dirs[3 * i], dirs[3 * i + 1], dirs[3 * i + 2]), g(dout[3 * i], dout[3 * i + 1], dout[3 * i + 2]);
     Vec3<T> gd;
     T gr;
-    cube_lookup_vjp(mips, dir, roughness[i], g, direct, &gd, &gr);
+    cube_lookup_vjp(mips, dir, roughness[i], g, &gd, &gr);
     DeferredTexelGrads<T>::record(records, i, dir, roughness[i], g);
     if (ddirs) ddirs[3 * i] = gd.x, ddirs[3 * i + 1] = gd.y, ddirs[3 * i + 2] = gd.z;
     if (droughness) droughness[i] = gr;

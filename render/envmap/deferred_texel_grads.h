@@ -1,29 +1,33 @@
 #pragma once
-// Gradient sums into the environment map's texels in a fixed order on the CPU. Many pixels look up the same
-// texels; on CUDA they add atomically (order free), but on the CPU the same atomics would make every
-// training run differ in the last bits from the one before. So the CPU's parallel pass records each pixel's
-// lookup (direction, roughness, upstream gradient) and flush() adds them on one thread in pixel order: a few
-// ms next to the tracing, and a run repeats bit for bit on the same machine.
+// Gradient sums into the environment map's texels in a fixed order, on both backends. Many pixels look up
+// the same texels; adding their gradients with atomics would make every training run differ in the last
+// bits from the one before. So the parallel pass records each pixel's lookup (direction, roughness,
+// upstream gradient) and flush() expands the records into one row per texel tap and adds them with
+// add_rows_in_key_order, in pixel order: the same sums as a serial loop over the pixels, on the CPU and
+// on CUDA alike, and a run repeats bit for bit.
 #include <cstddef>
-#include <vector>
+#include <cstdint>
 
-#include "core/compute/device.h"
+#include "core/compute/buffer.h"
+#include "core/compute/ordered_sum.h"
 #include "render/envmap/cube_map_math.h"
 
 namespace goris::envmap {
+GORIS_BACKEND_NAMESPACE_BEGIN
 
 template <class T>
 class DeferredTexelGrads {
  public:
   static constexpr int kStride = 7;  // direction (3), roughness, upstream gradient (3)
+  static constexpr int kTaps = 8;    // lookup_taps' most
 
+  // grad_texels: the chain's gradient on d (null: nothing is recorded or added).
   DeferredTexelGrads(Device d, T* grad_texels, std::size_t n) : grad_(grad_texels) {
-    if (d == Device::CPU && grad_texels) records_.assign(kStride * n, T(0));
+    if (!grad_texels) return;
+    records_ = Buffer<T>(kStride * n, d);
+    records_.fill_zero();  // pixels that look nothing up keep a zero gradient: no taps
   }
-  // What the parallel pass hands cube_lookup_vjp: the texel gradient when it may add atomically (CUDA),
-  // null when its lookups are recorded instead.
-  T* direct() const { return records_.empty() ? grad_ : nullptr; }
-  // Where the parallel pass records lookups (null: not deferring).
+  // Where the parallel pass records lookups (null: not recording).
   T* records() { return records_.empty() ? nullptr : records_.data(); }
 
   static GORIS_HDI void record(T* records, std::size_t i, const Vec3<T>& dir, T roughness, const Vec3<T>& dout) {
@@ -32,22 +36,36 @@ class DeferredTexelGrads {
     r[0] = dir.x, r[1] = dir.y, r[2] = dir.z, r[3] = roughness, r[4] = dout.x, r[5] = dout.y, r[6] = dout.z;
   }
 
-  // Adds the recorded lookups' texel gradients, in index order (no-op when not deferring).
-  void flush(const CubeMipsT<T>& mips) const {
+  // Adds the recorded lookups' texel gradients, texel by texel in record order.
+  void flush(const CubeMipsT<T>& mips) {
     const std::size_t n = records_.size() / kStride;
-    for (std::size_t i = 0; i < n; ++i) {
-      const T* r = records_.data() + kStride * i;
+    if (n == 0) return;
+    const Device d = records_.device();
+    const OrderedKeyLayout layout(std::uint64_t(chain_size(mips.resolution, mips.levels) / 3), kTaps * n);
+    Buffer<std::uint64_t> keys(kTaps * n, d);
+    Buffer<T> rows(3 * kTaps * n, d);
+    std::uint64_t* const key = keys.data();
+    T* const row = rows.data();
+    const T* const rec = records_.data();
+    const CubeMipsT<T> m = mips;
+    parallel_for(d, n, [=] GORIS_HD(std::size_t i) {
+      const T* r = rec + kStride * i;
       const Vec3<T> dout(r[4], r[5], r[6]);
-      if (dout.x == T(0) && dout.y == T(0) && dout.z == T(0)) continue;
-      Vec3<T> ddir;
-      T drough;
-      cube_lookup_vjp(mips, Vec3<T>(r[0], r[1], r[2]), r[3], dout, grad_, &ddir, &drough);
-    }
+      LookupTaps<T> taps;
+      if (dout.x != T(0) || dout.y != T(0) || dout.z != T(0)) taps = lookup_taps(m, Vec3<T>(r[0], r[1], r[2]), r[3]);
+      for (int t = 0; t < kTaps; ++t) {
+        const std::size_t j = kTaps * i + t;
+        key[j] = t < taps.n ? layout.key(std::uint64_t(taps.idx[t] / 3), j) : layout.unused();
+        for (int ch = 0; ch < 3; ++ch) row[3 * j + ch] = t < taps.n ? taps.w[t] * dout[ch] : T(0);
+      }
+    });
+    add_rows_in_key_order(layout, keys, rows.data(), 3, grad_);
   }
 
  private:
   T* grad_;
-  std::vector<T> records_;
+  Buffer<T> records_;
 };
 
+GORIS_BACKEND_NAMESPACE_END
 }  // namespace goris::envmap

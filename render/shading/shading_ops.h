@@ -190,14 +190,13 @@ void shade(Device d, const Camera& cam, const SurfaceImagesT<T>& s, const T* L, 
 }
 
 // Backward of shade: surface grads +=, dL / dV written (zero off the surface), env_grad += dL/dtexels
-// (CUDA: atomic; CPU: in a fixed order, see deferred_texel_grads.h).
+// (in a fixed order on both backends, see deferred_texel_grads.h).
 template <class T>
 void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, const T* L, const T* V,
                     const envmap::CubeMipsT<T>& env, const ShadingSettings& st, const T* dcolor,
                     const SurfaceGradsT<T>& g, T* dL, T* dV, T* env_grad) {
   const std::size_t P = s.pixels();
   envmap::DeferredTexelGrads<T> texels(d, env_grad, P);
-  T* const direct = texels.direct();
   T* const records = texels.records();
   parallel_for(d, P, [=] GORIS_HD(std::size_t p) {
     const Vec3<T> dC = plane3(dcolor, P, p);
@@ -218,7 +217,7 @@ void shade_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, con
     const Vec3<T> df0 = dF * (T(1) - c.k);
     Vec3<T> dlook, dwr(T(0)), dx(T(0));
     T drough;
-    envmap::cube_lookup_vjp(env, c.env_hit.dir, c.rough, dLdir, direct, &dlook, &drough);
+    envmap::cube_lookup_vjp(env, c.env_hit.dir, c.rough, dLdir, &dlook, &drough);
     envmap::DeferredTexelGrads<T>::record(records, p, c.env_hit.dir, c.rough, dLdir);
     envmap::proxy_hit_vjp(c.env_hit, c.geo.wr, T(st.env_radius), dlook, &dwr, &dx);
     if (c.env_hit.hit) surface_point_vjp(s, g, c.geo, p, dx);

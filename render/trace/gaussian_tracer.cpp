@@ -158,7 +158,7 @@ void GaussianTracer::backward(const TraceRays& rays, const TraceOutputGrads& gra
   const GaussiansT<float> g = to_raster_view(m.view);
   const GaussianGradsT<float> gg = to_raster_grads(grads);
   if (m.device == Device::CUDA) {
-    backward_cuda(sc, m.lbvh.view(), g, rays, grad_out, gg, ray_grads, grad_emit);
+    backward_cuda(sc, m.lbvh.view(), g, rays, grad_out, gg, ray_grads, grad_emit, m.settings.max_grad_scratch_bytes);
   } else if (m.settings.cpu_accel == TraceAccel::Embree) {
     backward_cpu(sc, g, rays, m.settings.hits_per_round, grad_out, gg, ray_grads, grad_emit,
                  m.settings.max_grad_scratch_bytes, [&] { return m.embree->collector(sc.prims); });

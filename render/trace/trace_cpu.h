@@ -78,9 +78,6 @@ std::vector<TracePrim<T>> make_prims_cpu(const GaussiansT<T>& g, std::type_ident
   return prims;
 }
 
-template <class T>
-Vec3<T> ray_vec(const T* p, std::size_t r) { return Vec3<T>(p[3 * r], p[3 * r + 1], p[3 * r + 2]); }
-
 template <class T, class MakeCollector>
 void forward_cpu(const TraceScene<T>& sc, const TraceRaysT<T>& rays, int k, const TraceOutputsT<T>& out,
                  MakeCollector&& make_collector) {
@@ -92,7 +89,7 @@ void forward_cpu(const TraceScene<T>& sc, const TraceRaysT<T>& rays, int k, cons
     auto collect = make_collector();
     RayResult<T> res;
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      trace_ray(sc, ray_vec(rays.origins, i), ray_vec(rays.directions, i), rays.t_min, list, collect, res);
+      trace_ray(sc, ray_at(rays.origins, i), ray_at(rays.directions, i), rays.t_min, list, collect, res);
       if (out.color)
         for (int c = 0; c < 3; ++c) out.color[3 * i + c] = res.color[c];
       if (out.depth) out.depth[i] = res.depth;
@@ -141,7 +138,7 @@ void backward_cpu(const TraceScene<T>& sc, const GaussiansT<T>& g, const TraceRa
         for (std::size_t i = b * kBlock, end = std::min(rays.count, i + kBlock); i < end; ++i) {
           Vec3<T> dorig(T(0)), ddir(T(0));
           if (load_upstream(grad_out.color, grad_out.depth, grad_out.alpha, grad_out.extras, sc.n_extras, i, up))
-            trace_ray_backward(sc, ray_vec(rays.origins, i), ray_vec(rays.directions, i), rays.t_min, up, list,
+            trace_ray_backward(sc, ray_at(rays.origins, i), ray_at(rays.directions, i), rays.t_min, up, list,
                                collect, acc, dorig, ddir);
           for (int c = 0; c < 3; ++c) {
             if (ray_grads.origins) ray_grads.origins[3 * i + c] = dorig[c];

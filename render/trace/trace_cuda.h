@@ -1,6 +1,6 @@
 #pragma once
 // The CUDA backend of the tracer (trace_cuda.cu): prims and the LBVH built on the GPU, one thread per ray
-// with a fixed-size hit list in registers/local memory, gradients summed with atomics. In a build without
+// with a fixed-size hit list in registers/local memory, gradients summed in a fixed order. In a build without
 // CUDA these throw goris::Error (trace_no_cuda.cpp).
 #include "render/raster/raster_types.h"
 #include "render/trace/trace_build.h"
@@ -14,6 +14,6 @@ void build_cuda(const GaussiansT<float>& g, PrimData& prims, LbvhData& bvh);
 void forward_cuda(const TraceScene<float>& sc, const LbvhView& bvh, const TraceRays& rays, const TraceOutputs& out);
 void backward_cuda(const TraceScene<float>& sc, const LbvhView& bvh, const GaussiansT<float>& g,
                    const TraceRays& rays, const TraceOutputGrads& grad_out, const GaussianGradsT<float>& grads,
-                   const TraceRayGrads& ray_grads, float* grad_emit);
+                   const TraceRayGrads& ray_grads, float* grad_emit, std::size_t budget_bytes);
 
 }  // namespace goris::trace

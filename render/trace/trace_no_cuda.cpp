@@ -12,7 +12,8 @@ namespace {
 void build_cuda(const GaussiansT<float>&, PrimData&, LbvhData&) { no_cuda(); }
 void forward_cuda(const TraceScene<float>&, const LbvhView&, const TraceRays&, const TraceOutputs&) { no_cuda(); }
 void backward_cuda(const TraceScene<float>&, const LbvhView&, const GaussiansT<float>&, const TraceRays&,
-                   const TraceOutputGrads&, const GaussianGradsT<float>&, const TraceRayGrads&, float*) {
+                   const TraceOutputGrads&, const GaussianGradsT<float>&, const TraceRayGrads&, float*,
+                   std::size_t) {
   no_cuda();
 }
 

@@ -198,6 +198,10 @@ GORIS_HDI T hit_phi(const TraceScene<T>& sc, const RayUpstream<T>& up, std::uint
   return phi;
 }
 
+// Row i of a [n][3] array of ray origins or directions.
+template <class T>
+GORIS_HDI Vec3<T> ray_at(const T* p, std::size_t i) { return Vec3<T>(p[3 * i], p[3 * i + 1], p[3 * i + 2]); }
+
 // Back-propagates one ray: adds per-Gaussian records through acc.add(index, value) (index = g * stride +
 // slot) and returns dL/d(ray origin) and dL/d(ray direction). Re-traces the same rounds as trace_ray; each
 // round is walked back to front (3DGS) with R = sum of phi w over the hits after it, so one-round rays are

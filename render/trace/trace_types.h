@@ -20,7 +20,8 @@ struct TraceSettings {
   TraceAccel cpu_accel = TraceAccel::Embree;
   // Refit the BVH instead of rebuilding it when build() sees the same number of Gaussians as before.
   bool refit = true;
-  // Cap on the per-thread gradient scratch of the CPU backward pass (threads are limited to fit it).
+  // Memory cap of the backward pass's gradient scratch: on the CPU the per-thread records (threads are
+  // limited to fit it), on CUDA the per-hit records of one chunk of rays (trace_backward_ordered.h).
   std::size_t max_grad_scratch_bytes = std::size_t(512) << 20;
 };
 

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/compute/buffer.h"
+#include "core/compute/ordered_sum.h"
 #include "core/compute/parallel_for.h"
 #include "core/compute/primitives.h"
 #include "tests/support/test_support.h"
@@ -76,5 +77,26 @@ TEST(CudaCompute, ScansAndReductionsMatchCpu) {
     for (std::size_t i = 0; i < n; ++i) ASSERT_NEAR(a[i], b[i], 1e-3 * (1 + std::abs(a[i]))) << "n=" << n;
     EXPECT_NEAR(reduce_sum(fg), reduce_sum(fc), 1e-3 * (1 + std::abs(reduce_sum(fc))));
     EXPECT_EQ(reduce_max(fg), reduce_max(fc));
+  }
+}
+
+// Ordered sums are plain float adds in key order: CUDA and CPU give the same bits.
+TEST(CudaCompute, OrderedSumsMatchCpuExactly) {
+  GORIS_REQUIRE_GPU();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1e3f, 1e3f);
+  const std::uint32_t targets = 1000;
+  const int width = 3;
+  for (std::size_t n : kSizes) {
+    const OrderedKeyLayout layout(targets, n);
+    std::vector<std::uint64_t> keys(n);
+    std::vector<float> rows(n * width), out(targets * width, 0.5f);
+    for (std::size_t i = 0; i < n; ++i) keys[i] = i % 5 == 4 ? layout.unused() : layout.key(rng() % targets, n - 1 - i);
+    for (float& v : rows) v = u(rng);
+    Buffer<std::uint64_t> kc(keys, Device::CPU), kg(keys, Device::CUDA);
+    Buffer<float> rg(rows, Device::CUDA), oc(out, Device::CPU), og(out, Device::CUDA);
+    add_rows_in_key_order(layout, kc, rows.data(), width, oc.data());
+    add_rows_in_key_order(layout, kg, rg.data(), width, og.data());
+    ASSERT_EQ(og.to_host(), oc.to_host()) << "n=" << n;
   }
 }

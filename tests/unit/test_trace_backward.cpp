@@ -1,12 +1,14 @@
 // The production (float) backward pass of GaussianTracer against the double-precision backward of the same
 // maths (checked by finite differences in test_trace_gradients.cpp), on Embree and the LBVH; round sizes,
-// the gradient-scratch cap and the accumulate/write contract.
+// the gradient-scratch cap and the accumulate/write contract; the CUDA backend's ordered backward
+// (trace_backward_ordered.h) run on the CPU: the same gradients, bit for bit the same in every chunking.
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "render/trace/gaussian_tracer.h"
+#include "render/trace/trace_backward_ordered.h"
 #include "render/trace/trace_cpu.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_trace_scenes.h"
@@ -90,29 +92,41 @@ AllGrads<float> tracer_grads(const Problem& p, const TraceSettings& settings) {
   return g;
 }
 
-AllGrads<double> double_grads(const Problem& p) {
-  const SceneArrays<double> s = p.scene.cast<double>();
-  TraceRaySet<double> rays;
+// The CPU backward (per-thread records) or the CUDA backend's ordered backward run on the CPU with
+// `budget` bytes of records, in precision T, against brute-force hits.
+enum class Backward { PerThread, Ordered };
+
+template <class T>
+AllGrads<T> reference_grads(const Problem& p, Backward how = Backward::PerThread,
+                            std::size_t budget = std::size_t(1) << 30) {
+  const SceneArrays<T> s = p.scene.cast<T>();
+  TraceRaySet<T> rays;
   rays.origins.assign(p.rays.origins.begin(), p.rays.origins.end());
   rays.directions.assign(p.rays.directions.begin(), p.rays.directions.end());
   const auto gv = s.view();
   const auto prims = tr::make_prims_cpu(gv);
-  tr::TraceScene<double> sc{s.count, prims.data(), s.sh.data(), s.sh_degree, s.extras.data(), s.n_extras, s.emit.data()};
-  AllGrads<double> g(std::size_t(s.count), std::size_t(s.n_extras), rays.count());
-  GaussianGradsT<double> gg;
+  tr::TraceScene<T> sc{s.count, prims.data(), s.sh.data(), s.sh_degree, s.extras.data(), s.n_extras, s.emit.data()};
+  AllGrads<T> g(std::size_t(s.count), std::size_t(s.n_extras), rays.count());
+  GaussianGradsT<T> gg;
   gg.positions = g.positions.data();
   gg.log_scales = g.log_scales.data();
   gg.rotations = g.rotations.data();
   gg.opacity_logits = g.logits.data();
   gg.sh = g.sh.data();
   gg.extras = g.extras.data();
-  const std::vector<double> c(p.up.color.begin(), p.up.color.end()), d(p.up.depth.begin(), p.up.depth.end()),
+  const std::vector<T> c(p.up.color.begin(), p.up.color.end()), d(p.up.depth.begin(), p.up.depth.end()),
       a(p.up.alpha.begin(), p.up.alpha.end()), e(p.up.extras.begin(), p.up.extras.end());
-  tr::backward_cpu(sc, gv, rays.view(), 64, TraceOutputGradsT<double>{c.data(), d.data(), a.data(), e.data()}, gg,
-                   TraceRayGradsT<double>{g.origins.data(), g.directions.data()}, g.emit.data(), std::size_t(1) << 30,
-                   [&] { return tr::BruteForceCollector<double>{prims.data(), sc.count}; });
+  const TraceOutputGradsT<T> up{c.data(), d.data(), a.data(), e.data()};
+  const TraceRayGradsT<T> rg{g.origins.data(), g.directions.data()};
+  const tr::BruteForceCollector<T> collector{prims.data(), sc.count};
+  if (how == Backward::Ordered)
+    tr::backward_ordered<4>(Device::CPU, sc, collector, gv, rays.view(), up, gg, rg, g.emit.data(), budget);
+  else
+    tr::backward_cpu(sc, gv, rays.view(), 64, up, gg, rg, g.emit.data(), budget, [&] { return collector; });
   return g;
 }
+
+AllGrads<double> double_grads(const Problem& p) { return reference_grads<double>(p); }
 
 // Every entry within rel_tol of the group's largest magnitude (gradients of hits near thresholds are noisy
 // in float, relative to the group, not to themselves).
@@ -181,4 +195,26 @@ TEST(TraceBackward, ParameterGradientsAccumulateRayGradientsAreWritten) {
   bool any = false;
   for (float v : orig_once) any = any || (v != 0.f && v != 123.f);
   EXPECT_TRUE(any);
+}
+
+// The CUDA backend's backward (records summed per Gaussian in ray order) is the same maths: it agrees with
+// the CPU's in double precision, and in float its sums are the same bits however the rays are chunked
+// (one chunk; chunks of a few rays, some traced twice after overflowing their slots) and from run to run.
+TEST(TraceBackward, OrderedBackwardAgreesAndRepeatsBitForBitInEveryChunking) {
+  const Problem p = make_problem(24);
+  const auto ref = double_grads(p);
+  expect_close(reference_grads<double>(p, Backward::Ordered), ref, 1e-12, "ordered (double)");
+  const auto one_chunk = reference_grads<float>(p, Backward::Ordered);
+  expect_close(one_chunk, ref, 2e-5, "ordered (float)");
+  const std::size_t stride = std::size_t(tr::record_stride(p.scene.sh_degree, p.scene.n_extras));
+  const std::size_t record = stride * sizeof(float) + 24;  // the budget per record backward_ordered assumes
+  for (std::size_t records : {1, 7, 100, 1000}) {
+    const auto chunked = reference_grads<float>(p, Backward::Ordered, records * record);
+    const auto a = chunked.groups(), b = one_chunk.groups();
+    for (std::size_t k = 0; k < a.size(); ++k)
+      EXPECT_EQ(*a[k].second, *b[k].second) << a[k].first << " with a budget of " << records << " records";
+  }
+  const auto again = reference_grads<float>(p, Backward::Ordered);
+  EXPECT_EQ(again.positions, one_chunk.positions);
+  EXPECT_EQ(again.sh, one_chunk.sh);
 }
