@@ -117,13 +117,31 @@ __device__ float warp_sum(float v) {
   return v;
 }
 
+constexpr int kWarps = kBlock / 32;
+constexpr int kMaxGradStride = kGExtras + kMaxExtras;
+constexpr int kGroup = 8;  // instances whose warp sums wait in shared memory (8 KB) before being added
+
+// Slots of the instances j0 .. j0 + count - 1 (batch positions) = their warps' sums added in warp order, so
+// the result does not depend on which warp finished first (atomics on the slots did). Each instance
+// belongs to one tile, hence one block: a plain store.
+__device__ void add_warp_sums(const float* s_warp, const std::uint32_t* s_slot, int j0, int count, int stride,
+                              float* partials) {
+  for (int e = int(threadIdx.x); e < count * stride; e += kBlock) {
+    const int jj = e / stride, c = e % stride;
+    float sum = 0.f;
+    for (int w = 0; w < kWarps; ++w) sum += s_warp[(jj * kWarps + w) * kMaxGradStride + c];
+    if (sum != 0.f) partials[std::size_t(s_slot[j0 + jj]) * stride + c] = sum;
+  }
+}
+
 // One thread per pixel walks its contributors back to front (3DGS): see raster_backward_cpu.cpp for the
-// single-scalar form of the "what lies behind" term. Each warp sums its pixels' gradient for a Gaussian and
-// adds it to the instance's slot.
+// single-scalar form of the "what lies behind" term. Each warp sums its pixels' gradient for a Gaussian;
+// the block adds the warps' sums into the instance's slot in a fixed order.
 __global__ void __launch_bounds__(kBlock) blend_backward_kernel(BlendParams p, BackwardIn in) {
   __shared__ float s_pk[kBlock * kPackedStride];
   __shared__ float s_ex[kBlock * kMaxExtras];
   __shared__ std::uint32_t s_slot[kBlock];
+  __shared__ float s_warp[kGroup * kWarps * kMaxGradStride];
   const int tile = blockIdx.x;
   const int x = (tile % p.tiles_x) * kTileSize + int(threadIdx.x) % kTileSize;
   const int y = (tile / p.tiles_x) * kTileSize + int(threadIdx.x) / kTileSize;
@@ -207,10 +225,19 @@ __global__ void __launch_bounds__(kBlock) blend_backward_kernel(BlendParams p, B
           eval_hit_vjp(conic, op, h, dalpha, gs);
         }
       }
-      if (!__any_sync(0xffffffffu, hit)) continue;
+      // Warp sums of this instance into shared memory; every kGroup instances (and at the batch's end) the
+      // block adds them warp by warp into the instances' slots.
+      const int jj = j % kGroup, warp = int(threadIdx.x) / 32;
+      const bool any = __any_sync(0xffffffffu, hit);
+      float* const s_w = &s_warp[(jj * kWarps + warp) * kMaxGradStride];
       for (int c = 0; c < stride; ++c) {
-        const float v = warp_sum(gs[c]);
-        if ((threadIdx.x & 31) == 0 && v != 0.f) atomicAdd(&in.partials[std::size_t(s_slot[j]) * stride + c], v);
+        const float v = any ? warp_sum(gs[c]) : 0.f;
+        if ((threadIdx.x & 31) == 0) s_w[c] = v;
+      }
+      if (jj == kGroup - 1 || j == n - 1) {
+        __syncthreads();
+        add_warp_sums(s_warp, s_slot, j - jj, jj + 1, stride, in.partials);
+        __syncthreads();
       }
     }
     b_end = b_begin;

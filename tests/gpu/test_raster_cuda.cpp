@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "render/raster/blend.h"
 #include "render/raster/rasterizer.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_raster_scenes.h"
@@ -81,7 +82,8 @@ RunResult run(const test::RasterScene<float>& s, const Camera& cam, const Raster
   return r;
 }
 
-void compare(const test::RasterScene<float>& s, const Camera& cam, const RasterSettings& rs) {
+// Random dL/d(colour, alpha, depth, median depth, normal, extras).
+std::vector<std::vector<float>> random_upstream(const test::RasterScene<float>& s, const Camera& cam) {
   const std::size_t P = std::size_t(cam.width) * cam.height;
   std::mt19937 rng(1);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
@@ -90,6 +92,11 @@ void compare(const test::RasterScene<float>& s, const Camera& cam, const RasterS
     dl.emplace_back(std::max<std::size_t>(n, 1));
     for (auto& x : dl.back()) x = u(rng);
   }
+  return dl;
+}
+
+void compare(const test::RasterScene<float>& s, const Camera& cam, const RasterSettings& rs) {
+  const auto dl = random_upstream(s, cam);
   const RunResult c = run(s, cam, rs, Device::CPU, dl);
   const RunResult g = run(s, cam, rs, Device::CUDA, dl);
   EXPECT_EQ(c.radii, g.radii);
@@ -151,4 +158,30 @@ TEST(RasterCuda, MatchesCpuClassicRuleAndShDegrees) {
     const auto scene = test::random_scene<float>(rng, spec);
     compare(scene, test::random_camera(rng, 64, 48, 60.f, 4.f), RasterSettings::classic_3dgs());
   }
+}
+
+// The blend's backward adds each tile's warp sums in warp order (no atomics): the gradients repeat bit for
+// bit, here with the most extra channels (the widest gradient slots).
+TEST(RasterCuda, BackwardRepeatsBitForBit) {
+  GORIS_REQUIRE_GPU();
+  std::mt19937 rng(11);
+  test::SceneSpec spec;
+  spec.count = 4000;
+  spec.n_extras = raster::kMaxExtras;
+  spec.scale_lo = 0.01f;
+  spec.scale_hi = 0.1f;
+  const auto scene = test::random_scene<float>(rng, spec);
+  const Camera cam = test::random_camera(rng, 200, 150, 180.f, 4.f);
+  const auto dl = random_upstream(scene, cam);
+  const RasterSettings rs = RasterSettings::mip_splatting();
+  const RunResult a = run(scene, cam, rs, Device::CUDA, dl), b = run(scene, cam, rs, Device::CUDA, dl);
+  EXPECT_EQ(a.d_pos, b.d_pos);
+  EXPECT_EQ(a.d_ls, b.d_ls);
+  EXPECT_EQ(a.d_rot, b.d_rot);
+  EXPECT_EQ(a.d_op, b.d_op);
+  EXPECT_EQ(a.d_sh, b.d_sh);
+  EXPECT_EQ(a.d_ext, b.d_ext);
+  const RunResult c = run(scene, cam, rs, Device::CPU, dl);
+  EXPECT_LT(rel_l2(a.d_ext, c.d_ext), 1e-3) << "d extras against the CPU";
+  EXPECT_LT(rel_l2(a.d_pos, c.d_pos), 1e-3) << "d positions against the CPU";
 }
