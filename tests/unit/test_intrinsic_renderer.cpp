@@ -19,78 +19,15 @@
 #include "render/raster/rasterizer.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/train/raster_renderer.h"
+#include "tests/support/intrinsic_scene.h"
 #include "tests/support/model_values.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;
-using goris::test::expect_error;
-using goris::test::expect_gradient;
-using goris::test::look_at;
+using namespace goris::test;
 
 namespace {
-
-
-
-float logit(float p) { return std::log(p / (1 - p)); }
-
-// A glossy floor (a grid of flat Gaussians at z = 0, region weight ~0.05) and a rough coloured blob above
-// it (region ~0.95) whose reflection the floor shows.
-GaussianModel floor_and_blob(std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> u(-1, 1);
-  const int grid = 8, blob = 12, n = grid * grid + blob;
-  GaussianModel m(Device::CPU);
-  m.allocate(size_t(n));
-  for (int i = 0; i < n; ++i) {
-    const bool is_floor = i < grid * grid;
-    float* p = m.values(Param::Position) + 3 * i;
-    float* s = m.values(Param::LogScale) + 3 * i;
-    if (is_floor) {
-      p[0] = -1.0f + 2.0f * ((i % grid) + 0.5f) / grid;
-      p[1] = -1.0f + 2.0f * ((i / grid) + 0.5f) / grid;
-      p[2] = 0.0f;
-      s[0] = s[1] = std::log(0.16f);
-      s[2] = std::log(0.01f);
-    } else {
-      p[0] = 0.25f * u(rng);
-      p[1] = 0.25f * u(rng);
-      p[2] = 0.45f + 0.15f * u(rng);
-      for (int a = 0; a < 3; ++a) s[a] = std::log(0.12f);
-    }
-    float* q = m.values(Param::Rotation) + 4 * i;
-    q[0] = 1.0f;
-    q[1] = 0.05f * u(rng);
-    q[2] = 0.05f * u(rng);
-    q[3] = 0.05f * u(rng);
-    m.values(Param::OpacityLogit)[i] = is_floor ? 3.0f : 2.0f;
-    float* sh = m.values(Param::Sh) + 48 * i;
-    std::fill(sh, sh + 48, 0.0f);
-    for (int c = 0; c < 3; ++c) sh[c] = is_floor ? -0.8f + 0.1f * u(rng) : 1.2f * u(rng);
-    float* e = m.values(Param::ExtraLogit) + extra::kCount * i;
-    for (int k = 0; k < extra::kCount; ++k) e[k] = 0.3f * u(rng);
-    e[extra::kRegion] = logit(is_floor ? 0.05f : 0.95f);
-    e[extra::kRoughness] = logit(is_floor ? 0.1f : 0.6f);
-    for (int c = 0; c < 3; ++c) e[extra::kFresnel + c] = logit(is_floor ? 0.6f : 0.04f) + 0.2f * u(rng);
-    e[extra::kLabel] = logit(is_floor ? 0.02f : 0.98f);
-  }
-  m.sh_degree = 0;
-  m.max_sh_degree = 0;
-  return m;
-}
-
-TrainConfig intrinsic_config(int iterations) {
-  TrainConfig c;
-  c.mode = "intrinsic";
-  c.iterations = iterations;
-  c.device = "cpu";
-  c.max_sh_degree = 0;
-  c.filter_3d = false;
-  c.intrinsic.env_resolution = 8;
-  c.intrinsic.warmup = 0;
-  c.checkpoint_interval = 0;
-  return c;
-}
 
 Camera test_camera(int size = 40) { return look_at({2.2f, -0.4f, 1.6f}, {0, 0, 0.1f}, size, 55); }
 
@@ -372,44 +309,6 @@ TEST(IntrinsicRenderer, OwnStateRoundTripsAndRejectsForeignFiles) {
   expect_error([&] { b.load_own_state("not a state file at all", "junk.bin"); }, "junk.bin");
 }
 
-namespace {
-
-// Three views of `truth` shaded by the intrinsic renderer, with its region / label as glossy / object masks.
-std::vector<TrainView> shaded_views(const TrainConfig& cfg, GaussianModel truth) {
-  auto target_renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
-  target_renderer->set_shading(true);
-  std::vector<TrainView> views;
-  const glm::vec3 eyes[3] = {{2.2f, -0.4f, 1.6f}, {-1.8f, 1.2f, 1.5f}, {0.3f, 2.2f, 1.7f}};
-  for (int k = 0; k < 3; ++k) {
-    TrainView v;
-    v.name = "v" + std::to_string(k);
-    v.camera = look_at(eyes[k], {0, 0, 0.1f}, 32, 55);
-    const RenderedImages r = target_renderer->forward(truth.view(true), v.camera);
-    const size_t hw = 32 * 32;
-    v.image.assign(r.color, r.color + 3 * hw);
-    v.glossy_mask.assign(hw, 0.0f);
-    v.object_mask.assign(hw, 0.0f);
-    for (size_t p = 0; p < hw; ++p) {  // the rendered region / label as masks
-      v.glossy_mask[p] = r.extras[extra::kRegion * hw + p] < 0.5f && r.alpha[p] > 0.5f ? 1.0f : 0.0f;
-      v.object_mask[p] = r.extras[extra::kLabel * hw + p] > 0.5f ? 1.0f : 0.0f;
-    }
-    views.push_back(std::move(v));
-  }
-  return views;
-}
-
-// floor_and_blob(4) with its colour and label off: what the training has to recover.
-GaussianModel perturbed_start() {
-  GaussianModel start = floor_and_blob(4);
-  for (size_t i = 0; i < start.count(); ++i) {
-    start.values(Param::Sh)[48 * i] += 0.3f;
-    start.values(Param::ExtraLogit)[extra::kCount * i + extra::kLabel] = 0.0f;
-  }
-  return start;
-}
-
-}  // namespace
-
 TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
   // Targets rendered by the intrinsic renderer from the scene itself; training starts from a perturbed copy.
   TrainConfig cfg = intrinsic_config(40);
@@ -443,11 +342,7 @@ TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
 TEST(IntrinsicRenderer, CpuTrainingRepeatsBitForBit) {
   // Two trainings from the same start, densification included, end identical (model, Adam moments,
   // environment map and net): the tracer's and the environment map's gradient sums have a fixed order.
-  TrainConfig cfg = intrinsic_config(24);
-  cfg.densify.from_iter = 6;
-  cfg.densify.interval = 6;
-  cfg.densify.until_iter = 18;
-  cfg.densify.grad_threshold = 1e-6f;
+  const TrainConfig cfg = densifying_intrinsic_config();
   const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
   auto train = [&] {
     auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
