@@ -59,13 +59,26 @@ void add_rows_in_key_order(const OrderedKeyLayout& layout, Buffer<std::uint64_t>
   const std::uint64_t* const k = keys.data();
   const OrderedKeyLayout L = layout;
   const std::size_t w = std::size_t(width);
-  // One thread per (sorted row, column); only the first row of each target's run does the work.
+  // One thread per (sorted row, column); only the first row of each target's run does the work. The run's
+  // end comes from a binary search first, so the adds run over a known range whose loads can overlap (a
+  // popular target has thousands of rows, and its thread bounds the pass).
   parallel_for(d, n * w, [=] GORIS_HD(std::size_t e) {
     const std::size_t j = e / w, c = e % w;
     const std::uint64_t t = L.target(k[j]);
     if (t >= L.targets || (j > 0 && L.target(k[j - 1]) == t)) return;
+    std::size_t lo = j + 1, hi = n;  // first row past the run
+    while (lo < hi) {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      if (L.target(k[mid]) == t)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
     T acc = out[t * w + c];
-    for (std::size_t m = j; m < n && L.target(k[m]) == t; ++m) acc += rows[std::size_t(p[m]) * w + c];
+#if defined(__CUDA_ARCH__)
+#pragma unroll 8
+#endif
+    for (std::size_t m = j; m < lo; ++m) acc += rows[std::size_t(p[m]) * w + c];
     out[t * w + c] = acc;
   });
 }
