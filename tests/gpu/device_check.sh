@@ -4,9 +4,16 @@
 # and the call carried the device-bundle folder. Data sets for the pipeline bench are optional: put
 # half-size copies under device-bundle/data/ (tests/gpu/half_size_dataset.py; the carry limit is 64 MiB).
 #
-# Usage: DEADLINE=SECONDS bash tests/gpu/device_check.sh [tests] [bench] [pipeline] [all]   (default: all, 560 s)
-#   tests     the CUDA test binaries (CUDA vs CPU agreement, gradients), side by side
+# Usage: DEADLINE=SECONDS bash tests/gpu/device_check.sh [tests] [bench] [big] [pipeline] [all]
+#   (default: all, 560 s; steps run in this order)
+#   tests     the CUDA test binaries (CUDA vs CPU agreement, gradients, repeatability), side by side
 #   bench     the raster (512 px, 200K Gaussians), trace (512 px) and compute benchmarks
+#   big       the pipeline bench on CUDA over device-bundle/big/* at the data's own resolution (BIG_CONFIGS,
+#             default full; BIG_SCHEDULE, default medium), then the intrinsic benchmark on its `full` run:
+#             issue 8's 512 px, 100-view glossy-table scene end to end (make it here with `goris synth
+#             --preset glossy-table --res 512 --train 100 --test 20 --spp 32 --no-gt --out
+#             device-bundle/big/glossy_table_512`; carry device-bundle/bundle.tar.xz and device-bundle/big
+#             when data/ and big/ together do not fit the 64 MiB)
 #   pipeline  the pipeline bench on CUDA over device-bundle/data/* (PIPELINE_CONFIGS, default
 #             baseline,full,auto; medium schedule), then the intrinsic benchmark on a `full` run at its
 #             resolution and at 512 px, its parallel_for launch sites (--kernels) and, where ncu exists,
@@ -36,7 +43,7 @@ failed=0
 pack() {  # the small files of the work folder into one archive in $OUT (a returned file has at most 16 MiB):
   # no checkpoints or PLYs, and of the pipeline's run folders only each run's result.json and logs
   (cd "$W" && find . -type f -size -4M ! -name '*.ckpt*' ! -name '*.ply' \
-    \( ! -path './pipeline/runs/*' -o -name result.json -o -name '*.log' \) -print0 |
+    \( ! -path './*/runs/*' -o -name result.json -o -name '*.log' \) -print0 |
     tar -czf "$OUT/device_check.tgz.tmp" --null -T - && mv "$OUT/device_check.tgz.tmp" "$OUT/device_check.tgz")
 }
 left() { echo $((DEADLINE - SECONDS)); }
@@ -100,19 +107,39 @@ if wants bench; then
   step bench_compute 60 "$G" bench compute
 fi
 
+# The time split of one intrinsic iteration on a `full` run under $1 at the run's resolution (step names
+# get $2 appended), and at 512 px (the traced shading frame rate).
+bench_intrinsic_of() {
+  local run
+  run=$(find "$1" -path '*/full/run' -type d 2>/dev/null | sort -r | head -n 1)
+  [ -n "$run" ] || return 0
+  step "bench_intrinsic$2" 30 "$G" bench intrinsic "$run" --device cuda
+  step "bench_intrinsic_512$2" 30 "$G" bench intrinsic "$run" --device cuda --resolution 512
+  LAST_FULL_RUN=$run
+}
+
+if wants big; then
+  big=()
+  for d in "$B"/big/*/; do [ -f "$d/transforms_train.json" ] && big+=("$PWD/${d%/}"); done
+  if [ ${#big[@]} -gt 0 ]; then
+    step big $(($(left) - 60)) "$G" bench pipeline --data "${big[@]}" --configs "${BIG_CONFIGS:-full}" \
+      --schedule "${BIG_SCHEDULE:-medium}" --device cuda --out "$W/big"
+    bench_intrinsic_of "$W/big/runs" _big
+  fi
+fi
+
 if wants pipeline; then
   data=()
   for d in "$B"/data/*/; do [ -f "$d/transforms_train.json" ] && data+=("$PWD/${d%/}"); done
   if [ ${#data[@]} -gt 0 ]; then
     step pipeline $(($(left) - 150)) "$G" bench pipeline --data "${data[@]}" --configs "${PIPELINE_CONFIGS:-baseline,full,auto}" \
       --schedule medium --init-points 30000 --device cuda --out "$W/pipeline"
-    # The time split of one intrinsic iteration on a `full` run (steel_snowman's when there is one), at the
-    # run's resolution and at 512 px (the traced shading frame rate), the time of each parallel_for launch
-    # site (--kernels), and where ncu exists a table of every kernel.
-    run=$(find "$W/pipeline/runs" -path '*medium/full/run' -type d 2>/dev/null | sort -r | head -n 1)
+    # The intrinsic benchmark on a `full` run (steel_snowman's when there is one), the time of each
+    # parallel_for launch site at 512 px (--kernels), and where ncu exists a table of every kernel.
+    LAST_FULL_RUN=
+    bench_intrinsic_of "$W/pipeline/runs" ""
+    run=$LAST_FULL_RUN
     if [ -n "$run" ]; then
-      step bench_intrinsic 30 "$G" bench intrinsic "$run" --device cuda
-      step bench_intrinsic_512 30 "$G" bench intrinsic "$run" --device cuda --resolution 512
       step kernels_512 30 "$G" bench intrinsic "$run" --device cuda --resolution 512 --repeats 2 --kernels
       if command -v ncu >/dev/null; then
         step profile_512 80 ncu --csv --metrics gpu__time_duration.sum --log-file "$W/profile_512.csv" \
