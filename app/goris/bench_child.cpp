@@ -53,6 +53,18 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The child writes its peak CUDA memory beside the log at exit (core/compute/memory.h).
+  fs::path memory_report = log;
+  memory_report.replace_extension(".device_memory.json");
+  std::error_code ec;
+  fs::remove(memory_report, ec);
+  std::vector<std::string> env_vars;
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind("GORIS_DEVICE_MEMORY_REPORT=", 0) != 0) env_vars.emplace_back(*e);
+  env_vars.push_back("GORIS_DEVICE_MEMORY_REPORT=" + memory_report.string());
+  std::vector<char*> envp;
+  for (auto& e : env_vars) envp.push_back(e.data());
+  envp.push_back(nullptr);
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -60,7 +72,7 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
   StepRun r;
   const auto t0 = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&fa);
   if (rc != 0) {
     r.error = step + ": could not start " + exe;
@@ -73,6 +85,12 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
   r.peak_mib = double(ru.ru_maxrss) / 1024.0;  // Linux: KiB
   r.cpu_seconds = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (fs::exists(memory_report)) {
+    try {
+      r.peak_device_mib = json_number(read_json_object(memory_report), "peak_device_memory_bytes") / 1048576.0;
+    } catch (const Error&) {
+    }  // a child killed while writing leaves no usable report: the peak stays unknown
+  }
   if (!r.ok) {
     const std::string how = WIFEXITED(status) ? "exit code " + std::to_string(WEXITSTATUS(status))
                                               : "killed by signal " + std::to_string(WTERMSIG(status));
@@ -80,7 +98,11 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
     r.error = step + " failed (" + how + ")" + (msg.empty() ? "" : ": " + msg) + " [log " + log.string() + "]";
     std::printf("    %-8s FAILED: %s\n", step.c_str(), r.error.c_str());
   } else {
-    std::printf("    %-8s %.1f s, peak %.0f MiB\n", step.c_str(), r.seconds, r.peak_mib);
+    if (r.peak_device_mib > 0)
+      std::printf("    %-8s %.1f s, peak %.0f MiB host, %.0f MiB device\n", step.c_str(), r.seconds, r.peak_mib,
+                  r.peak_device_mib);
+    else
+      std::printf("    %-8s %.1f s, peak %.0f MiB\n", step.c_str(), r.seconds, r.peak_mib);
   }
   std::fflush(stdout);
   return r;

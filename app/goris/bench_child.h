@@ -18,7 +18,8 @@ namespace goris::bench {
 struct StepRun {
   bool ok = false;
   double seconds = 0;
-  double peak_mib = 0;
+  double peak_mib = 0;         // host: the child's largest resident set
+  double peak_device_mib = 0;  // CUDA memory in use at the child's peak (0: no GPU memory, or unknown)
   std::string error;
   double cpu_seconds = 0;
 };

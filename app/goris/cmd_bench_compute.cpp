@@ -57,7 +57,7 @@ void run_compute_bench(std::size_t n, int repeats) {
     else
       std::printf("| %s | %.3f | - | - |\n", r.op.c_str(), r.cpu_ms);
   }
-  std::printf("\npeak host memory: %.1f MiB\n", goris::peak_host_memory_mib());
+  std::printf("\npeak memory: %s\n", goris::peak_memory_text().c_str());
 }
 
 void setup_bench_compute(CLI::App& root) {

@@ -102,6 +102,7 @@ struct Row {
   double gaussians = std::nan(""), psnr = std::nan(""), ssim = std::nan(""), m_psnr = std::nan(""),
          m_ssim = std::nan("");
   double train_s = 0, select_s = 0, remove_s = 0, export_s = 0, eval_s = 0, peak_mib = 0;
+  double peak_device_mib = 0;   // CUDA memory in use at the peak of any step (0 on the CPU)
   double cpu_s = std::nan("");  // CPU seconds of train + select + remove (+ export); NaN in older results
   std::map<std::string, double> remove_steps;
   std::string note;
@@ -121,7 +122,7 @@ json row_json(const Row& r) {
           {"remove_iters", r.remove_iters}, {"gaussians", r.gaussians}, {"psnr", r.psnr},  {"ssim", r.ssim},
           {"m_psnr", r.m_psnr},     {"m_ssim", r.m_ssim},         {"train_s", r.train_s},     {"select_s", r.select_s},
           {"remove_s", r.remove_s}, {"export_s", r.export_s},     {"eval_s", r.eval_s},       {"peak_mib", r.peak_mib},
-          {"cpu_s", r.cpu_s},       {"remove_steps", r.remove_steps}, {"note", r.note}};
+          {"peak_device_mib", r.peak_device_mib}, {"cpu_s", r.cpu_s},       {"remove_steps", r.remove_steps}, {"note", r.note}};
 }
 
 Row row_from_json(const json& j) {
@@ -134,10 +135,22 @@ Row row_from_json(const json& j) {
   r.gaussians = d("gaussians"), r.psnr = d("psnr"), r.ssim = d("ssim"), r.m_psnr = d("m_psnr"), r.m_ssim = d("m_ssim");
   r.train_s = d("train_s"), r.select_s = d("select_s"), r.remove_s = d("remove_s"), r.export_s = d("export_s");
   r.eval_s = d("eval_s"), r.peak_mib = d("peak_mib"), r.cpu_s = d("cpu_s");
+  r.peak_device_mib = j.contains("peak_device_mib") ? d("peak_device_mib") : 0.0;
   if (j.contains("remove_steps") && j["remove_steps"].is_object())
     for (auto it = j["remove_steps"].begin(); it != j["remove_steps"].end(); ++it)
       if (it.value().is_number()) r.remove_steps[it.key()] = it.value().get<double>();
   return r;
+}
+
+// The host and device peaks of a row so far and those of one more step.
+void add_peaks(Row& r, const StepRun& step) {
+  r.peak_mib = std::max(r.peak_mib, step.peak_mib);
+  r.peak_device_mib = std::max(r.peak_device_mib, step.peak_device_mib);
+}
+
+// The device peak as a table cell: `none` when no step used GPU memory.
+std::string device_mib(const Row& r, const std::string& none = "") {
+  return r.peak_device_mib > 0 ? fmt(r.peak_device_mib, "%.0f") : none;
 }
 
 // Stage 1 of a scene under a schedule, trained once per stage-1 kind and shared by the configurations.
@@ -184,7 +197,8 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   if (fs::exists(dir / "stage1.json")) {
     const json j = read_json_object(dir / "stage1.json");
     if (j.value("options", json()) == options && j.value("ok", false)) {
-      st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), "", json_number(j, "cpu_seconds")};
+      st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), j.value("peak_device_mib", 0.0), "",
+                  json_number(j, "cpu_seconds")};
       std::printf("    train    reused %s\n", st.run.string().c_str());
       return stage1_[key] = st;
     }
@@ -197,6 +211,7 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
                                        {"seconds", st.train.seconds},
                                        {"cpu_seconds", st.train.cpu_seconds},
                                        {"peak_mib", st.train.peak_mib},
+                                       {"peak_device_mib", st.train.peak_device_mib},
                                        {"error", st.train.error}}
                                           .dump(2));
   return stage1_[key] = st;
@@ -206,7 +221,7 @@ void Bench::evaluate(Row& r, const fs::path& run_dir, const fs::path& logs) {
   goris::bench::Metrics m;
   const StepRun ev = goris::bench::run_eval(run_dir, o_.device, logs / "eval.log", m);
   r.eval_s = ev.seconds;
-  r.peak_mib = std::max(r.peak_mib, ev.peak_mib);
+  add_peaks(r, ev);
   if (!ev.ok) throw Error(ev.error);
   r.psnr = m.psnr, r.ssim = m.ssim, r.m_psnr = m.m_psnr, r.m_ssim = m.m_ssim, r.gaussians = m.gaussians;
   r.device = m.device.empty() ? o_.device : m.device;
@@ -245,13 +260,14 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       // distilled = full + export: the full configuration's stage 1 and 2 are its own first steps.
       r.train_s = full->train_s, r.select_s = full->select_s, r.remove_s = full->remove_s, r.cpu_s = full->cpu_s;
       r.remove_steps = full->remove_steps, r.remove_iters = full->remove_iters, r.peak_mib = full->peak_mib;
+      r.peak_device_mib = full->peak_device_mib;
       removal = out_ / "runs" / scene / s.name / "full" / "run" / "removal";
       r.note = "stages 1-2 of full (" + removal.parent_path().string() + "); ";
     } else {
       const Stage1 st = stage1(scene, data, s, c);
       r.train_s = st.train.seconds;
       r.cpu_s = st.train.cpu_seconds;
-      r.peak_mib = st.train.peak_mib;
+      r.peak_mib = st.train.peak_mib, r.peak_device_mib = st.train.peak_device_mib;
       if (!st.train.ok) throw Error(st.train.error);
       fs::copy(st.run, run, fs::copy_options::recursive);  // each configuration removes in its own copy
       if (std::string(c.stage1).rfind("auto", 0) == 0)  // what --mode auto decided
@@ -260,7 +276,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
           run_child("select", {"select", run.string(), "--masks", "--device", o_.device}, logs / "select.log");
       r.select_s = sel.seconds;
       r.cpu_s += sel.cpu_seconds;
-      r.peak_mib = std::max(r.peak_mib, sel.peak_mib);
+      add_peaks(r, sel);
       if (!sel.ok) throw Error(sel.error);
       std::vector<std::string> rm = {"remove", run.string(), "--iters", std::to_string(s.remove_iters), "--device",
                                      o_.device};
@@ -268,7 +284,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       const StepRun rem = run_child("remove", rm, logs / "remove.log");
       r.remove_s = rem.seconds;
       r.cpu_s += rem.cpu_seconds;
-      r.peak_mib = std::max(r.peak_mib, rem.peak_mib);
+      add_peaks(r, rem);
       if (!rem.ok) throw Error(rem.error);
       removal = run / "removal";
       const json rep = read_json_object(removal / "report.json");
@@ -289,7 +305,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                                    logs / "export.log");
       r.export_s = ex.seconds;
       r.cpu_s += ex.cpu_seconds;
-      r.peak_mib = std::max(r.peak_mib, ex.peak_mib);
+      add_peaks(r, ex);
       if (!ex.ok) throw Error(ex.error);
       // The baked PLY is a plain 3DGS model: evaluate it as a radiance run whose point cloud it is.
       const fs::path baked_run = dir / "baked_run";
@@ -428,7 +444,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   std::string csv = "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim,"
                     "train_s,select_s,remove_s";
   for (const auto& s : steps) csv += "," + step_column(s);
-  csv += ",export_s,eval_s,total_s,cpu_s,peak_host_mib,reused,error,note\n";
+  csv += ",export_s,eval_s,total_s,cpu_s,peak_host_mib,peak_device_mib,reused,error,note\n";
   for (const Row& r : rows) {
     csv += csv_field(r.scene) + "," + csv_field(r.config) + "," + r.schedule + "," + r.status + "," +
            csv_field(r.device) + "," + std::to_string(r.train_iters) + "," + std::to_string(r.remove_iters) + "," +
@@ -437,7 +453,7 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
            fmt(r.select_s, "%.2f") + "," + fmt(r.remove_s, "%.2f");
     for (const auto& s : steps) csv += "," + (r.remove_steps.count(s) ? fmt(r.remove_steps.at(s), "%.2f") : "");
     csv += "," + fmt(r.export_s, "%.2f") + "," + fmt(r.eval_s, "%.2f") + "," + fmt(r.total_s(), "%.2f") + "," +
-           fmt(r.cpu_s, "%.2f") + "," + fmt(r.peak_mib, "%.0f") + "," + (r.reused ? "yes" : "no") + "," + csv_field(r.error) + "," +
+           fmt(r.cpu_s, "%.2f") + "," + fmt(r.peak_mib, "%.0f") + "," + device_mib(r) + "," + (r.reused ? "yes" : "no") + "," + csv_field(r.error) + "," +
            csv_field(r.note) + "\n";
   }
   write_text(out_ / "results.csv", csv);
@@ -458,15 +474,16 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
         "barely change. The chart and the ratios below use " + std::string(axis.cpu ? "CPU" : "total wall") +
         " time. Stage 1 is trained once per kind and shared (its time is counted in each configuration that "
         "uses it). Metrics: test views against the after-removal ground truth; M-PSNR / M-SSIM inside the "
-        "target's region. Peak memory: the largest resident set of any step's process.\n\n";
+        "target's region. Peak memory: the largest resident set (host) and the most CUDA memory in use (device; - "
+        "on the CPU) of any step's process.\n\n";
   md += "| scene | config | schedule | status | train s | select s | remove s | export s | eval s | total s | CPU s "
-        "| peak MiB | Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | device |\n";
-  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+        "| host MiB | device MiB | Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | device |\n";
+  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
   for (const Row& r : rows)
     md += "| " + md_cell(r.scene) + " | " + r.config + " | " + r.schedule + " | " + r.status + (r.reused ? " (reused)" : "") +
           " | " + fmt(r.train_s, "%.1f") + " | " + fmt(r.select_s, "%.1f") + " | " + fmt(r.remove_s, "%.1f") + " | " +
           fmt(r.export_s, "%.1f") + " | " + fmt(r.eval_s, "%.1f") + " | " + fmt(r.total_s(), "%.1f") + " | " +
-          fmt(r.cpu_s, "%.1f") + " | " + fmt(r.peak_mib, "%.0f") + " | " + fmt(r.gaussians, "%.0f") + " | " + fmt(r.psnr, "%.2f") + " | " +
+          fmt(r.cpu_s, "%.1f") + " | " + fmt(r.peak_mib, "%.0f") + " | " + device_mib(r, "-") + " | " + fmt(r.gaussians, "%.0f") + " | " + fmt(r.psnr, "%.2f") + " | " +
           fmt(r.ssim, "%.4f") + " | " + fmt(r.m_psnr, "%.2f") + " | " + fmt(r.m_ssim, "%.4f") + " | " +
           md_cell(r.device) + " |\n";
   std::string notes;

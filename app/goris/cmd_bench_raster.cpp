@@ -188,7 +188,7 @@ void run_raster_bench(int res, int n, int iters, int extras, int threads, const 
   }
   if (res_all.size() == 2)
     std::printf("\nCPU/CUDA: forward %.1fx, backward %.1fx\n", res_all[0].fwd / res_all[1].fwd, res_all[0].bwd / res_all[1].bwd);
-  std::printf("\npeak host memory: %.1f MiB\n", goris::peak_host_memory_mib());
+  std::printf("\npeak memory: %s\n", goris::peak_memory_text().c_str());
 }
 
 void setup_bench_raster(CLI::App& root) {

@@ -189,7 +189,7 @@ void run_bench(const fs::path& shared, int image, int repeats) {
     }
   }
   std::printf("\nbackward: dL/dcolour random, dL/ddepth = depth; gradients to positions, SH and ray origins\n");
-  std::printf("peak host memory: %.1f MiB\n", goris::peak_host_memory_mib());
+  std::printf("peak memory: %s\n", goris::peak_memory_text().c_str());
 }
 
 void setup_bench_trace(CLI::App& root) {

@@ -163,9 +163,9 @@ void run_train(const Options& o) {
     return;
   }
   write_trained_run(run_dir, trainer, *trainer.renderer());
-  std::printf("done: %d iterations in %s, %zu Gaussians, training PSNR %.2f dB (smoothed), peak memory %.0f MiB\n"
+  std::printf("done: %d iterations in %s, %zu Gaussians, training PSNR %.2f dB (smoothed), peak memory %s\n"
               "model: %s\n",
-              st.iteration, duration_text(st.elapsed_s).c_str(), st.model.count(), st.ema_psnr, peak_host_memory_mib(),
+              st.iteration, duration_text(st.elapsed_s).c_str(), st.model.count(), st.ema_psnr, peak_memory_text().c_str(),
               run_ply_path(run_dir).string().c_str());
   if (const IntrinsicRenderer* ir = as_intrinsic(trainer.renderer().get()); ir && ir->ray_totals().frames > 0) {
     const IntrinsicRayTotals& r = ir->ray_totals();

@@ -4,9 +4,15 @@
 
 namespace goris {
 
+// Null when the device is out of memory (the caller may free cached blocks and retry); throws otherwise.
 void* cuda_alloc(std::size_t bytes) {
   void* p = nullptr;
-  GORIS_CUDA_CHECK(cudaMalloc(&p, bytes));
+  const cudaError_t e = cudaMalloc(&p, bytes);
+  if (e == cudaErrorMemoryAllocation) {
+    (void)cudaGetLastError();  // clear the sticky error state of this call
+    return nullptr;
+  }
+  GORIS_CUDA_CHECK(e);
   return p;
 }
 

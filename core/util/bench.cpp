@@ -1,9 +1,12 @@
 #include "core/util/bench.h"
 
+#include "core/compute/memory.h"
+
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <thread>
 
@@ -44,6 +47,16 @@ double peak_host_memory_mib() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return double(u.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+std::string peak_memory_text() {
+  char buf[96];
+  const double gpu = double(device_memory_stats(Device::CUDA).peak_in_use) / 1048576.0;
+  if (gpu > 0)
+    std::snprintf(buf, sizeof buf, "%.0f MiB host, %.0f MiB GPU", peak_host_memory_mib(), gpu);
+  else
+    std::snprintf(buf, sizeof buf, "%.0f MiB", peak_host_memory_mib());
+  return buf;
 }
 
 }  // namespace goris

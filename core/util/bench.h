@@ -21,5 +21,7 @@ Timing time_repeated(const std::function<void()>& fn, int repeats, int warmup = 
 std::string cpu_description();
 // Peak resident set size of this process in MiB.
 double peak_host_memory_mib();
+// "512 MiB" (host), or "512 MiB host, 300 MiB GPU" once CUDA memory was used (its peak in use).
+std::string peak_memory_text();
 
 }  // namespace goris

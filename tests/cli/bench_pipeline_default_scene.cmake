@@ -25,12 +25,13 @@ if(NOT n EQUAL 3)
 endif()
 list(GET lines 0 header)
 expect_text("${header}" "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim")
-expect_text("${header}" "total_s,cpu_s,peak_host_mib")
+expect_text("${header}" "total_s,cpu_s,peak_host_mib,peak_device_mib")
 list(GET lines 1 baseline)
 list(GET lines 2 full)
 expect_text("${baseline}" "default_scene,baseline,tiny,ok,cpu,30,10,")
 expect_text("${full}" "default_scene,full,tiny,ok,cpu,30,10,")
-# PSNR and the steps' CPU seconds are numbers (not empty) in both rows.
+# PSNR and the steps' CPU seconds are numbers (not empty) in both rows; on the CPU no step used GPU
+# memory, so the device peak is empty.
 string(REPLACE "," ";" header_cells "${header}")
 list(FIND header_cells "cpu_s" cpu_col)
 foreach(row "${baseline}" "${full}")
@@ -40,10 +41,18 @@ foreach(row "${baseline}" "${full}")
   if(NOT psnr MATCHES "^[0-9]+\\.[0-9]+$" OR NOT cpu MATCHES "^[0-9]+\\.[0-9]+$")
     message(FATAL_ERROR "no PSNR or CPU time in row: ${row}")
   endif()
+  if(NOT row MATCHES ",[0-9]+,,(yes|no),")  # peak_host_mib, an empty peak_device_mib, reused
+    message(FATAL_ERROR "a CPU run reported device memory, or no host peak: ${row}")
+  endif()
 endforeach()
+# Every step's child was asked for its device peak (written only by processes that used GPU memory).
+if(NOT OUT MATCHES "peak [0-9]+ MiB")
+  message(FATAL_ERROR "no per-step peak in the output:\n${OUT}")
+endif()
 
 file(READ "${OUTDIR}/results.md" md)
 expect_text("${md}" "| default_scene | baseline | tiny | ok |")
+expect_text("${md}" "| host MiB | device MiB |")
 expect_text("${md}" "| default_scene | full | tiny | ok |")
 expect_text("${md}" "![PSNR against time](chart.png)")
 expect_text("${md}" "The chart and the ratios below use CPU time")  # auto: every step ran on the CPU
