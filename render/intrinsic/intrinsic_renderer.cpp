@@ -1,5 +1,7 @@
 #include "render/intrinsic/intrinsic_renderer.h"
 
+#include "render/intrinsic/intrinsic_glue.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -70,7 +72,7 @@ struct IntrinsicRenderer::Frame {
   SurfaceImages surface;
   ReflectionRays rays;                          // the traced rays (coarse tracing: first pass, then the rest)
   Buffer<float> emit;                           // [N] region weight of each Gaussian (rough ones emit)
-  std::vector<std::uint8_t> region_emits;       // 1 where emit is M (else set_emit_weights(): no gradient to M)
+  Buffer<std::uint8_t> region_emits;            // [N] 1 where emit is M (else set_emit_weights(): no gradient to M)
   Buffer<float> ray_color, ray_depth, ray_alpha;  // per ray
   Buffer<float> L_raw, V_raw;                   // traced_to_images
   Buffer<float> L, V;                           // what shade() read (filtered or raw)
@@ -150,13 +152,10 @@ void IntrinsicRenderer::net_forward(Frame& f, const Buffer<float>& distance) {
   // The net's input: (roughness, traced hit distance, 1 / view depth), distances in scene extents.
   const GBuffer& g = raster_.gbuffer;
   const std::size_t hw = g.pixels();
-  std::vector<float> in(3 * hw);
-  device_copy(in.data(), Device::CPU, g.extras.data() + std::size_t(extra::kRoughness) * hw, device_, hw * sizeof(float));
-  distance.download(in.data() + hw);
-  const std::vector<float> depth = g.depth.to_host(), alpha = g.alpha.to_host();
-  for (std::size_t p = 0; p < hw; ++p)
-    in[2 * hw + p] = depth[p] > 1e-6f && alpha[p] > 1e-4f ? std::min(extent_ * alpha[p] / depth[p], 100.0f) : 0.0f;
-  net_.forward(Buffer<float>(in, device_), g.height, g.width, f.rs);
+  Buffer<float> in(3 * hw, device_);
+  intrinsic_glue::net_input(device_, g.extras.data() + std::size_t(extra::kRoughness) * hw, distance.data(),
+                            g.depth.data(), g.alpha.data(), hw, extent_, in.data());
+  net_.forward(in, g.height, g.width, f.rs);
 }
 
 void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps) {
@@ -181,23 +180,21 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
   // Trace: every Gaussian occludes, rough ones (region weight m) emit. No extras needed on the rays.
   {
     StageTimer t(profile_, device_, times_.trace);
-    const std::vector<float> ex = download(gaussians.extras, std::size_t(gaussians.count) * extra::kCount, device_);
-    std::vector<float> emit(std::size_t(gaussians.count));
+    const std::size_t n = std::size_t(gaussians.count);
     if (!emit_masks_.empty()) {  // recomputed only when the centres changed (the editor redraws one model)
-      std::vector<float> pos = download(gaussians.positions, 3 * emit.size(), device_);
+      std::vector<float> pos = download(gaussians.positions, 3 * n, device_);
       if (pos != emit_positions_) {
         emit_override_ = glossy_mask_emit_weights(pos, emit_masks_);
         emit_positions_ = std::move(pos);
       }
     }
-    const bool overridden = emit_override_.size() == emit.size();
-    f->region_emits.assign(emit.size(), 1);
-    for (std::size_t i = 0; i < emit.size(); ++i) {
-      const float m = ex[i * extra::kCount + extra::kRegion];
-      if (overridden) f->region_emits[i] = emit_or_region_ && m >= emit_override_[i];
-      emit[i] = f->region_emits[i] ? m : emit_override_[i];
-    }
-    f->emit = Buffer<float>(emit, device_);
+    const Buffer<float> override_w =
+        emit_override_.size() == n ? Buffer<float>(emit_override_, device_) : Buffer<float>();
+    f->emit = Buffer<float>(n, device_);
+    f->region_emits = Buffer<std::uint8_t>(n, device_);
+    intrinsic_glue::emit_weights(device_, gaussians.extras, extra::kCount, extra::kRegion, n,
+                                 override_w.empty() ? nullptr : override_w.data(), emit_or_region_, f->emit.data(),
+                                 f->region_emits.data());
     if (n_glossy > 0) {
       GaussianView plain = gaussians;
       plain.extras = nullptr;
@@ -353,10 +350,7 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
     gin.fill_zero();
     net_.backward(grs, &gin);
     // Only the roughness input is a function of the Gaussians that we differentiate (depths are constants).
-    std::vector<float> ge = g_extras.to_host();
-    const std::vector<float> gr = gin.to_host();
-    for (std::size_t p = 0; p < hw; ++p) ge[std::size_t(extra::kRoughness) * hw + p] += gr[p];
-    g_extras.upload(ge.data(), ge.size());
+    intrinsic_glue::add_to(device_, gin.data(), g_extras.data() + std::size_t(extra::kRoughness) * hw, hw);
     dL_raw = Buffer<float>(3 * hw, device_);
     dV_raw = Buffer<float>(hw, device_);
     device_copy(dL_raw.data(), device_, gx.data(), device_, 3 * hw * sizeof(float));
@@ -384,13 +378,10 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
                      demit.data());
     reflection_rays_backward(f.camera, f.surface, shading_settings_, f.rays, dorig.data(), ddir.data(), sg, device_);
     // dL/d(emit) is dL/d(region weight) of each Gaussian (activated space, where grads.extras lives).
-    if (grads.extras) {
-      const std::vector<float> de = demit.to_host();
-      std::vector<float> ge = download(grads.extras, de.size() * extra::kCount, device_);
-      for (std::size_t i = 0; i < de.size(); ++i)
-        if (i >= f.region_emits.size() || f.region_emits[i]) ge[i * extra::kCount + extra::kRegion] += de[i];
-      device_copy(grads.extras, device_, ge.data(), Device::CPU, ge.size() * sizeof(float));
-    }
+    if (grads.extras)
+      intrinsic_glue::add_emit_grads(device_, demit.data(),
+                                     f.region_emits.size() == demit.size() ? f.region_emits.data() : nullptr,
+                                     demit.size(), extra::kCount, extra::kRegion, grads.extras);
   }
   trace_timer.reset();
   StageTimer t(profile_, device_, times_.raster_back);

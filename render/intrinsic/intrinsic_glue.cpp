@@ -1,0 +1,30 @@
+#include "render/intrinsic/intrinsic_glue.h"
+
+#include "render/intrinsic/intrinsic_glue_ops.h"
+
+namespace goris::intrinsic_glue {
+
+void emit_weights(Device d, const float* extras, int stride, int region, std::size_t n, const float* override_w,
+                  bool or_region, float* emit, std::uint8_t* region_emits) {
+  if (d == Device::CUDA) return cuda::emit_weights(extras, stride, region, n, override_w, or_region, emit, region_emits);
+  emit_weights<Device::CPU>(extras, stride, region, n, override_w, or_region, emit, region_emits);
+}
+
+void net_input(Device d, const float* roughness, const float* distance, const float* depth, const float* alpha,
+               std::size_t hw, float extent, float* in) {
+  if (d == Device::CUDA) return cuda::net_input(roughness, distance, depth, alpha, hw, extent, in);
+  net_input<Device::CPU>(roughness, distance, depth, alpha, hw, extent, in);
+}
+
+void add_to(Device d, const float* a, float* acc, std::size_t n) {
+  if (d == Device::CUDA) return cuda::add_to(a, acc, n);
+  add_to<Device::CPU>(a, acc, n);
+}
+
+void add_emit_grads(Device d, const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride,
+                    int region, float* grad_extras) {
+  if (d == Device::CUDA) return cuda::add_emit_grads(demit, region_emits, n, stride, region, grad_extras);
+  add_emit_grads<Device::CPU>(demit, region_emits, n, stride, region, grad_extras);
+}
+
+}  // namespace goris::intrinsic_glue
