@@ -6,14 +6,14 @@
 #
 # Usage: DEADLINE=SECONDS bash tests/gpu/device_check.sh [tests] [bench] [big] [pipeline] [all]
 #   (default: all, 560 s; steps run in this order)
-#   tests     the CUDA test binaries (CUDA vs CPU agreement, gradients, repeatability), side by side
+#   tests     the CUDA tests (CUDA vs CPU agreement, gradients, repeatability), in 8 shards side by side
 #   bench     the raster (512 px, 200K Gaussians), trace (512 px) and compute benchmarks
 #   big       the pipeline bench on CUDA over device-bundle/big/* at the data's own resolution (BIG_CONFIGS,
 #             default full; BIG_SCHEDULE, default medium), then the intrinsic benchmark on its `full` run:
 #             issue 8's 512 px, 100-view glossy-table scene end to end (make it here with `goris synth
 #             --preset glossy-table --res 512 --train 100 --test 20 --spp 32 --no-gt --out
-#             device-bundle/big/glossy_table_512`; carry device-bundle/bundle.tar.xz and device-bundle/big
-#             when data/ and big/ together do not fit the 64 MiB)
+#             device-bundle/big/glossy_table_512`; the bundle, data/ and big/ took 63 MiB of the 64 MiB
+#             carry in session 20: carry bundle.tar.xz with one of them if it grows)
 #   pipeline  the pipeline bench on CUDA over device-bundle/data/* (PIPELINE_CONFIGS, default
 #             baseline,full,auto; medium schedule), then the intrinsic benchmark on a `full` run at its
 #             resolution and at 512 px, its parallel_for launch sites (--kernels) and, where ncu exists,
@@ -28,7 +28,7 @@
 # the next. The device returns at most 8 files from $OUT, so the logs go to a work folder that is packed
 # into $OUT/device_check.tgz after every step (a call cut off still returns what had finished); the step
 # summary is $OUT/summary.txt. The exit status is the number of failed steps.
-# The archive holds gpu.txt, devices.txt, tests/<binary>.{txt,xml}, bench_*.txt and pipeline/ (results,
+# The archive holds gpu.txt, devices.txt, tests/<binary>.<shard>.{txt,xml}, bench_*.txt and pipeline/ (results,
 # charts and each run's result.json).
 set -uo pipefail
 what=" ${*:-all} "
@@ -84,12 +84,17 @@ cp "$W/gpu.txt" "$OUT/gpu.txt"
 step devices 60 "$G" devices
 
 if wants tests; then
-  # Side by side: each binary is mostly CPU reference work, and the device has 16 cores.
+  # Side by side: the tests are mostly CPU reference work and the device has 16 cores, so every test binary
+  # runs as 8 GoogleTest shards at once (the bundle has one binary, test_gpu_all).
   t0=$SECONDS
   limit=$(($(left) - 20 < 200 ? $(left) - 20 : 200))
+  shards=8
   for t in "$B"/bin/test_*; do
-    n=$(basename "$t")
-    (timeout "$limit" "$t" --gtest_output="xml:$W/tests/$n.xml" >"$W/tests/$n.txt" 2>&1; echo $? >"$W/tests/$n.rc") &
+    for i in $(seq 0 $((shards - 1))); do
+      n=$(basename "$t").$i
+      (GTEST_TOTAL_SHARDS=$shards GTEST_SHARD_INDEX=$i timeout "$limit" "$t" --gtest_output="xml:$W/tests/$n.xml" \
+        >"$W/tests/$n.txt" 2>&1; echo $? >"$W/tests/$n.rc") &
+    done
   done
   wait
   for rc in "$W"/tests/*.rc; do
