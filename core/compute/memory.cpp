@@ -38,9 +38,9 @@ BlockCache& cuda_cache() {
   }();
   return *cache;
 }
-#endif
 
 std::string mib(std::size_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
+#endif
 
 }  // namespace
 
