@@ -42,6 +42,19 @@ std::string failure_message(const fs::path& log) {
   return err.empty() ? last : err;
 }
 
+namespace {
+
+// This process's environment with NAME set to value (replacing an inherited NAME).
+std::vector<std::string> environment_with(const std::string& name, const std::string& value) {
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind(name + "=", 0) != 0) env.emplace_back(*e);
+  env.push_back(name + "=" + value);
+  return env;
+}
+
+}  // namespace
+
 StepRun run_child(const std::string& step, std::vector<std::string> args, const fs::path& log) {
   std::printf("    %-8s goris", step.c_str());
   for (const auto& a : args) std::printf(" %s", a.c_str());
@@ -58,10 +71,7 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
   memory_report.replace_extension(".device_memory.json");
   std::error_code ec;
   fs::remove(memory_report, ec);
-  std::vector<std::string> env_vars;
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("GORIS_DEVICE_MEMORY_REPORT=", 0) != 0) env_vars.emplace_back(*e);
-  env_vars.push_back("GORIS_DEVICE_MEMORY_REPORT=" + memory_report.string());
+  std::vector<std::string> env_vars = environment_with("GORIS_DEVICE_MEMORY_REPORT", memory_report.string());
   std::vector<char*> envp;
   for (auto& e : env_vars) envp.push_back(e.data());
   envp.push_back(nullptr);
