@@ -21,6 +21,10 @@ void exclusive_scan(const Buffer<T>& in, Buffer<T>& out);
 template <class T>
 void inclusive_scan(const Buffer<T>& in, Buffer<T>& out);
 
+// acc[i] += a[i] for i < n, pointers on device d. Supported T: float, double.
+template <class T>
+void add_into(Device d, const T* a, T* acc, std::size_t n);
+
 // Sum and maximum of all elements (0 and lowest() for an empty buffer). Same supported T as the scans.
 template <class T>
 T reduce_sum(const Buffer<T>& in);

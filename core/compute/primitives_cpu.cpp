@@ -19,6 +19,7 @@ void cuda_sort_by_key(std::uint64_t* keys, std::uint32_t* values, std::size_t n,
 template <class T> void cuda_scan(const T* in, T* out, std::size_t n, bool inclusive);
 template <class T> T cuda_reduce_sum(const T* in, std::size_t n);
 template <class T> T cuda_reduce_max(const T* in, std::size_t n);
+template <class T> void cuda_add_into(const T* a, T* acc, std::size_t n);
 #define GORIS_ON_CUDA(expr) return expr
 #else
 #define GORIS_ON_CUDA(expr) throw Error("CUDA buffer given to a build without the CUDA backend")
@@ -147,6 +148,17 @@ T reduce_max(const Buffer<T>& in) {
       },
       [](T a, T b) { return std::max(a, b); });
 }
+
+template <class T>
+void add_into(Device d, const T* a, T* acc, std::size_t n) {
+  if (d == Device::CUDA) GORIS_ON_CUDA(cuda_add_into<T>(a, acc, n));
+  kernel_profile::Scope scope(Device::CPU);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [=](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) acc[i] += a[i];
+  });
+}
+template void add_into<float>(Device, const float*, float*, std::size_t);
+template void add_into<double>(Device, const double*, double*, std::size_t);
 
 #define GORIS_INSTANTIATE(T)                                         \
   template void exclusive_scan<T>(const Buffer<T>&, Buffer<T>&);     \

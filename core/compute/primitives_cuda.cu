@@ -8,6 +8,7 @@
 
 #include "core/compute/buffer.h"
 #include "core/compute/cuda_check.h"
+#include "core/compute/parallel_for.h"
 
 namespace goris {
 
@@ -66,6 +67,13 @@ T cuda_reduce_max(const T* in, std::size_t n) {
   });
   return r.to_host()[0];
 }
+
+template <class T>
+void cuda_add_into(const T* a, T* acc, std::size_t n) {
+  parallel_for(Device::CUDA, n, [=] __device__(std::size_t i) { acc[i] += a[i]; });
+}
+template void cuda_add_into<float>(const float*, float*, std::size_t);
+template void cuda_add_into<double>(const double*, double*, std::size_t);
 
 #define GORIS_INSTANTIATE(T)                                                   \
   template void cuda_scan<T>(const T*, T*, std::size_t, bool);                 \

@@ -16,11 +16,6 @@ void net_input(Device d, const float* roughness, const float* distance, const fl
   net_input<Device::CPU>(roughness, distance, depth, alpha, hw, extent, in);
 }
 
-void add_to(Device d, const float* a, float* acc, std::size_t n) {
-  if (d == Device::CUDA) return cuda::add_to(a, acc, n);
-  add_to<Device::CPU>(a, acc, n);
-}
-
 void add_emit_grads(Device d, const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride,
                     int region, float* grad_extras) {
   if (d == Device::CUDA) return cuda::add_emit_grads(demit, region_emits, n, stride, region, grad_extras);

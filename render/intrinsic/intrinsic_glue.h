@@ -12,7 +12,6 @@ void emit_weights(Device d, const float* extras, int stride, int region, std::si
                   bool or_region, float* emit, std::uint8_t* region_emits);
 void net_input(Device d, const float* roughness, const float* distance, const float* depth, const float* alpha,
                std::size_t hw, float extent, float* in);
-void add_to(Device d, const float* a, float* acc, std::size_t n);
 void add_emit_grads(Device d, const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride,
                     int region, float* grad_extras);
 
@@ -21,7 +20,6 @@ void emit_weights(const float* extras, int stride, int region, std::size_t n, co
                   float* emit, std::uint8_t* region_emits);
 void net_input(const float* roughness, const float* distance, const float* depth, const float* alpha, std::size_t hw,
                float extent, float* in);
-void add_to(const float* a, float* acc, std::size_t n);
 void add_emit_grads(const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride, int region,
                     float* grad_extras);
 }  // namespace cuda

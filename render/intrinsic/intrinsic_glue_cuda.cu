@@ -20,10 +20,6 @@ void net_input(const float* roughness, const float* distance, const float* depth
   intrinsic_glue::net_input<Device::CUDA>(roughness, distance, depth, alpha, hw, extent, in);
   check();
 }
-void add_to(const float* a, float* acc, std::size_t n) {
-  intrinsic_glue::add_to<Device::CUDA>(a, acc, n);
-  check();
-}
 void add_emit_grads(const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride, int region,
                     float* grad_extras) {
   intrinsic_glue::add_emit_grads<Device::CUDA>(demit, region_emits, n, stride, region, grad_extras);

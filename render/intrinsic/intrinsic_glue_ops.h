@@ -1,6 +1,6 @@
 #pragma once
-// The per-element steps between the intrinsic renderer's stages - each Gaussian's emit weight, the roughness
-// net's input planes, and their gradients - written once on parallel_for for both backends, so that on
+// The per-element steps between the intrinsic renderer's stages - each Gaussian's emit weight and its
+// gradient, the roughness net's input planes - written once on parallel_for for both backends, so that on
 // CUDA a frame's data stays on the GPU (these steps used to run on the host with a download and an upload
 // each, a cost that grows with the resolution and the Gaussian count). intrinsic_glue.cpp instantiates them
 // on the CPU, intrinsic_glue_cuda.cu on CUDA.
@@ -37,12 +37,6 @@ void net_input(const float* roughness, const float* distance, const float* depth
     const float inv = depth[p] > 1e-6f && alpha[p] > 1e-4f ? extent * alpha[p] / depth[p] : 0.0f;
     in[2 * hw + p] = inv < 100.0f ? inv : 100.0f;
   }, 4096);
-}
-
-// acc[i] += a[i].
-template <Device D>
-void add_to(const float* a, float* acc, std::size_t n) {
-  parallel_for(D, n, [=] GORIS_HD(std::size_t i) { acc[i] += a[i]; }, 8192);
 }
 
 // grad_extras[i * stride + region] += demit[i] where region_emits[i] (null: everywhere): dL/d(emit) is

@@ -1,5 +1,6 @@
 #include "render/intrinsic/intrinsic_renderer.h"
 
+#include "core/compute/primitives.h"
 #include "render/intrinsic/intrinsic_glue.h"
 
 #include <algorithm>
@@ -185,15 +186,17 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
       std::vector<float> pos = download(gaussians.positions, 3 * n, device_);
       if (pos != emit_positions_) {
         emit_override_ = glossy_mask_emit_weights(pos, emit_masks_);
+        emit_override_on_device_ = {};
         emit_positions_ = std::move(pos);
       }
     }
-    const Buffer<float> override_w =
-        emit_override_.size() == n ? Buffer<float>(emit_override_, device_) : Buffer<float>();
+    const bool overridden = emit_override_.size() == n;
+    if (overridden && emit_override_on_device_.size() != n)
+      emit_override_on_device_ = Buffer<float>(emit_override_, device_);
     f->emit = Buffer<float>(n, device_);
     f->region_emits = Buffer<std::uint8_t>(n, device_);
     intrinsic_glue::emit_weights(device_, gaussians.extras, extra::kCount, extra::kRegion, n,
-                                 override_w.empty() ? nullptr : override_w.data(), emit_or_region_, f->emit.data(),
+                                 overridden ? emit_override_on_device_.data() : nullptr, emit_or_region_, f->emit.data(),
                                  f->region_emits.data());
     if (n_glossy > 0) {
       GaussianView plain = gaussians;
@@ -350,7 +353,7 @@ void IntrinsicRenderer::backward(const GaussianView& gaussians, const ImageGradi
     gin.fill_zero();
     net_.backward(grs, &gin);
     // Only the roughness input is a function of the Gaussians that we differentiate (depths are constants).
-    intrinsic_glue::add_to(device_, gin.data(), g_extras.data() + std::size_t(extra::kRoughness) * hw, hw);
+    add_into(device_, gin.data(), g_extras.data() + std::size_t(extra::kRoughness) * hw, hw);
     dL_raw = Buffer<float>(3 * hw, device_);
     dV_raw = Buffer<float>(hw, device_);
     device_copy(dL_raw.data(), device_, gx.data(), device_, 3 * hw * sizeof(float));

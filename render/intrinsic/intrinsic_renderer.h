@@ -88,6 +88,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   void set_shading(bool on) { shading_ = on; }
   void set_emit_weights(std::vector<float> weights, bool or_region) override {
     emit_override_ = std::move(weights);
+    emit_override_on_device_ = {};
     emit_or_region_ = or_region;
   }
   // The same rule for whatever model is rendered next (intrinsic_emit = mask | max on a trained run): the
@@ -138,6 +139,7 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   int shading_from_ = 0;
   bool shading_ = false;
   std::vector<float> emit_override_;  // set_emit_weights(); empty = the region weight M
+  Buffer<float> emit_override_on_device_;  // its copy on the renderer's device, uploaded when first needed
   bool emit_or_region_ = false;       // emit = max(M, override) instead of the override
   std::vector<GlossyMaskView> emit_masks_;  // set_emit_masks(): recompute emit_override_ per forward pass ...
   std::vector<float> emit_positions_;       // ... when the centres differ from these

@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "core/compute/memory.h"
+#include "core/compute/primitives.h"
 #include "render/ssf/conv_passes.h"
 #include "render/ssf/ssf_checks.h"
 #include "render/ssf/ssf_cuda.h"
@@ -54,13 +55,7 @@ struct Layers {
     if (d == Device::CPU) return sigmoid_backward<Device::CPU>(y, g, n);
     if constexpr (std::is_same_v<T, float>) cuda::sigmoid_backward(y, g, n);
   }
-  void add(const T* a, T* acc, std::size_t n) const {
-    if (d == Device::CPU) {
-      parallel_for(Device::CPU, n, [=](std::size_t i) { acc[i] += a[i]; }, 8192);
-      return;
-    }
-    if constexpr (std::is_same_v<T, float>) cuda::add(a, acc, n);
-  }
+  void add(const T* a, T* acc, std::size_t n) const { add_into(d, a, acc, n); }
 };
 
 }  // namespace

@@ -60,9 +60,5 @@ void sigmoid_backward(const float* y, float* g, std::size_t n) {
   ssf::sigmoid_backward<Device::CUDA>(y, g, n);
   sync_and_check();
 }
-void add(const float* a, float* acc, std::size_t n) {
-  parallel_for(Device::CUDA, n, [=] GORIS_HD(std::size_t i) { acc[i] += a[i]; });
-  sync_and_check();
-}
 
 }  // namespace goris::ssf::cuda

@@ -23,6 +23,5 @@ void relu_forward(float* x, std::size_t n);
 void relu_backward(const float* y, float* g, std::size_t n);
 void sigmoid_forward(const float* z, float* y, std::size_t n);
 void sigmoid_backward(const float* y, float* g, std::size_t n);
-void add(const float* a, float* acc, std::size_t n);
 
 }  // namespace goris::ssf::cuda

@@ -22,7 +22,6 @@ void relu_forward(float*, std::size_t) { no_cuda(); }
 void relu_backward(const float*, float*, std::size_t) { no_cuda(); }
 void sigmoid_forward(const float*, float*, std::size_t) { no_cuda(); }
 void sigmoid_backward(const float*, float*, std::size_t) { no_cuda(); }
-void add(const float*, float*, std::size_t) { no_cuda(); }
 
 }  // namespace goris::ssf::cuda
 #endif
