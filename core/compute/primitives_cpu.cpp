@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/compute/kernel_profile.h"
+#include "core/compute/parallel_for.h"
 #include "core/compute/primitives.h"
 #include "core/util/error.h"
 
@@ -152,10 +153,7 @@ T reduce_max(const Buffer<T>& in) {
 template <class T>
 void add_into(Device d, const T* a, T* acc, std::size_t n) {
   if (d == Device::CUDA) GORIS_ON_CUDA(cuda_add_into<T>(a, acc, n));
-  kernel_profile::Scope scope(Device::CPU);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [=](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) acc[i] += a[i];
-  });
+  parallel_for(Device::CPU, n, [=](std::size_t i) { acc[i] += a[i]; }, 8192);
 }
 template void add_into<float>(Device, const float*, float*, std::size_t);
 template void add_into<double>(Device, const double*, double*, std::size_t);
