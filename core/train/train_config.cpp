@@ -47,6 +47,7 @@ void visit_fields(Config& c, F&& f) {
   f("depth_normal_median_ratio", c.depth_normal_median_ratio);
   f("depth_distortion_weight", c.depth_distortion_weight);
   f("depth_distortion_from", c.depth_distortion_from);
+  f("depth_distortion_until", c.depth_distortion_until);
   f("depth_distortion_glossy", c.depth_distortion_glossy);
   f("sh_degree_interval", c.sh_degree_interval);
   f("max_sh_degree", c.max_sh_degree);
@@ -143,6 +144,8 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(depth_distortion_weight >= 0 && std::isfinite(depth_distortion_weight)))
     fail("depth_distortion_weight must be finite and >= 0");
   if (depth_distortion_from < 0) fail("depth_distortion_from must be >= 0");
+  if (depth_distortion_until < 0 || (depth_distortion_until > 0 && depth_distortion_until <= depth_distortion_from))
+    fail("depth_distortion_until must be 0 (to the end) or after depth_distortion_from");
   if (!(depth_distortion_glossy >= 0 && depth_distortion_glossy <= 1)) fail("depth_distortion_glossy must lie in [0, 1]");
   if (!(depth_normal_median_ratio >= 0 && depth_normal_median_ratio <= 1))
     fail("depth_normal_median_ratio must lie in [0, 1]");

@@ -146,6 +146,7 @@ struct TrainConfig {
   // here scaled to the run's length): core/train/depth_distortion.h. 0 = off.
   float depth_distortion_weight = 0.0f;
   int depth_distortion_from = 3000;
+  int depth_distortion_until = 0;  // last iteration with the distortion (of the full schedule, scaled); 0 = to the end
   // The distortion's weight on glossy-mask pixels relative to the rest (1 = the paper). Behind a planar
   // mirror a radiance field needs a second, virtual surface (the mirror world) until the traced term
   // carries the reflection; at 0 the loss leaves those pixels alone (README, "depth distortion").

@@ -495,6 +495,30 @@ TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
   config.depth_distortion_glossy = 1.0f;
   config.depth_distortion_weight = -1.0f;
   EXPECT_THROW(config.validate("test"), Error);
+  config.depth_distortion_weight = 100.0f;
+  config.depth_distortion_until = config.depth_distortion_from;  // must end after it starts
+  EXPECT_THROW(config.validate("test"), Error);
+  config.depth_distortion_until = -1;
+  EXPECT_THROW(config.validate("test"), Error);
+}
+
+TEST(Trainer, DepthDistortionStopsAtItsScaledEnd) {
+  // depth_distortion_until = 15000 of 30K -> 200 of 400: on in (40, 200], 0 after.
+  TrainConfig config = refit_config(400);
+  config.depth_distortion_weight = 100.0f;
+  config.depth_distortion_until = 15000;
+  ASSERT_NO_THROW(config.validate("test"));
+  ASSERT_EQ(config.scaled_iteration(config.depth_distortion_until), 200);
+  Scene s = make_scene(config, 32);
+  Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(10)));
+  double during = 0;
+  for (int i = 0; i < 240; ++i) {
+    const StepStats st = t.step();
+    const int it = t.state().iteration;
+    if (it <= 40 || it > 200) ASSERT_EQ(st.distortion, 0.0) << it;
+    else during += st.distortion;
+  }
+  EXPECT_GT(during, 0.0);
 }
 
 TEST(Trainer, DensificationScheduleFitsShortRuns) {
