@@ -226,6 +226,11 @@ int TrainConfig::shading_from() const {
   return std::max(scaled_iteration(intrinsic.warmup), std::min(intrinsic.warmup, floor));
 }
 
+bool TrainConfig::depth_distortion_at(int it) const {
+  return depth_distortion_weight > 0 && it > scaled_iteration(depth_distortion_from) &&
+         (depth_distortion_until == 0 || it <= scaled_iteration(depth_distortion_until));
+}
+
 int TrainConfig::shading_phase_iteration(int full) const {
   const int from = shading_from();
   if (full <= intrinsic.warmup) return from;

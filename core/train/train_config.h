@@ -186,6 +186,9 @@ struct TrainConfig {
   int scaled_iteration(int full_schedule_iteration) const;
   // The last radiance-only iteration of intrinsic mode: max(scaled warm-up, min(warm-up, min_fraction x run)).
   int shading_from() const;
+  // Whether iteration `it` (1-based) trains with the depth distortion: after its scaled start, up to its scaled
+  // end (depth_distortion_until; 0 = to the end) and only with a positive weight.
+  bool depth_distortion_at(int it) const;
   // A full-schedule iteration of the shading phase (>= the warm-up) mapped onto this run's shading phase,
   // [shading_from(), iterations]; earlier ones map to shading_from().
   int shading_phase_iteration(int full_schedule_iteration) const;

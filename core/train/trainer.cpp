@@ -256,9 +256,7 @@ StepStats Trainer::step() {
   upload(g_detached, dg_detached, go.extras_detached);
   upload(g_base, dg_base, go.base_color);
   renderer_->backward(gv, go, gg);
-  const bool distortion_on = it > config_.scaled_iteration(config_.depth_distortion_from) &&
-                            (config_.depth_distortion_until == 0 || it <= config_.scaled_iteration(config_.depth_distortion_until));
-  if (config_.depth_distortion_weight > 0 && distortion_on) {
+  if (config_.depth_distortion_at(it)) {
     out.distortion = renderer_->depth_distortion(gv, cam, DistortionDepthRange::for_extent(extent_),
                                                  config_.depth_distortion_weight, distortion_pixel_weights(view), gg);
     out.loss += config_.depth_distortion_weight * out.distortion;
