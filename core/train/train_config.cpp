@@ -91,6 +91,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
   f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);
+  f("intrinsic_prune_mirror_world_repeat", c.intrinsic.prune_mirror_world_repeat);
   f("intrinsic_coarse_tracing", c.intrinsic.coarse_tracing);
   f("intrinsic_coarse_max_level", c.intrinsic.coarse_max_level);
   f("intrinsic_normal_prior", c.intrinsic.normal_prior);
@@ -224,6 +225,12 @@ int TrainConfig::scaled_iteration(int full) const {
 int TrainConfig::shading_from() const {
   const int floor = int(std::lround(double(intrinsic.warmup_min_fraction) * double(iterations)));
   return std::max(scaled_iteration(intrinsic.warmup), std::min(intrinsic.warmup, floor));
+}
+
+bool TrainConfig::prunes_mirror_world_after(int it, bool densified) const {
+  if (mode != "intrinsic" || !(intrinsic.prune_mirror_world > 0)) return false;
+  const int from = shading_from();
+  return it == from || (intrinsic.prune_mirror_world_repeat && densified && it > from);
 }
 
 bool TrainConfig::depth_distortion_at(int it) const {

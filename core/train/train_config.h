@@ -62,6 +62,9 @@ struct IntrinsicSettings {
   // 0.05: 17-29 % fewer Gaussians, the same stage-1 PSNR, but -0.77 dB after removal on steel_snowman
   // (docs/bench/NOTES.md, session 11), hence off.
   float prune_mirror_world = 0.0f;
+  // With prune_mirror_world on: prune again after every densification of the shading phase, so the mirror
+  // world cannot grow back while the glossy term learns to carry the reflections.
+  bool prune_mirror_world_repeat = false;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;
@@ -186,6 +189,10 @@ struct TrainConfig {
   int scaled_iteration(int full_schedule_iteration) const;
   // The last radiance-only iteration of intrinsic mode: max(scaled warm-up, min(warm-up, min_fraction x run)).
   int shading_from() const;
+  // Whether the mirror world is pruned after iteration `it` (1-based; `densified`: that iteration ran a
+  // densification step): at the last warm-up iteration, and with prune_mirror_world_repeat after every
+  // densification of the shading phase. Never with intrinsic.prune_mirror_world = 0.
+  bool prunes_mirror_world_after(int it, bool densified) const;
   // Whether iteration `it` (1-based) trains with the depth distortion: after its scaled start, up to its scaled
   // end (depth_distortion_until; 0 = to the end) and only with a positive weight.
   bool depth_distortion_at(int it) const;

@@ -321,13 +321,14 @@ StepStats Trainer::step() {
     compute_filter3d(m, cameras());
   }
 
-  if (intrinsic() && it == config_.shading_from() && config_.intrinsic.prune_mirror_world > 0) {
+  if (config_.prunes_mirror_world_after(it, out.densify.after > 0)) {
     const size_t before = m.count();
     const size_t removed = prune_mirror_world(m, views_, *renderer_, config_.intrinsic.prune_mirror_world);
     state_.stats.reset(m.count(), device_);
     if (config_.filter_3d) compute_filter3d(m, cameras());
     out.densify_note += (out.densify_note.empty() ? "" : "; ") + std::string("mirror world: pruned ") +
-                        std::to_string(removed) + " of " + std::to_string(before) + " Gaussians before shading starts";
+                        std::to_string(removed) + " of " + std::to_string(before) +
+                        (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying");
   }
 
   // Smoothed over about the last 20 iterations (views differ a lot in difficulty).

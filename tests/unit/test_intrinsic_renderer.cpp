@@ -496,19 +496,13 @@ TEST(IntrinsicRenderer, RelativeFresnelKeepsTheLightingMaskWhenF0AndLightTradeOf
   expect_error([&] { r.reflected_label(m.view(true), cam, 0.0f); }, "Fresnel reference");
 }
 
-TEST(IntrinsicRenderer, MirrorWorldIsPrunedWhenShadingStarts) {
-  // The start model plus a mirror image of the blob below the glossy floor (what a radiance warm-up grows):
-  // with intrinsic_prune_mirror_world the copy goes at the last warm-up iteration, the floor and blob stay.
-  TrainConfig cfg = intrinsic_config(6);
-  cfg.intrinsic.warmup = 4;  // half the run (3 iterations) is shorter: shading starts after iteration 3
-  cfg.intrinsic.prune_mirror_world = 0.05f;
-  cfg.densify.from_iter = 1 << 30;
-  cfg.densify.until_iter = 0;
-  cfg.densify.opacity_reset_interval = 1 << 30;
-  ASSERT_EQ(cfg.shading_from(), 3);
-  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+namespace {
+
+// The start model plus a mirror image of its last `blob` Gaussians (the blob) below the glossy floor: what a
+// radiance warm-up grows.
+GaussianModel start_with_mirror_twin(size_t blob) {
   const GaussianModel base = perturbed_start();
-  const size_t n0 = base.count(), blob = 12;
+  const size_t n0 = base.count();
   GaussianModel start(Device::CPU);
   start.allocate(n0 + blob);
   for (Param p : {Param::Position, Param::LogScale, Param::Rotation, Param::OpacityLogit, Param::Sh, Param::ExtraLogit}) {
@@ -518,6 +512,37 @@ TEST(IntrinsicRenderer, MirrorWorldIsPrunedWhenShadingStarts) {
   }
   for (size_t i = n0; i < n0 + blob; ++i) start.values(Param::Position)[3 * i + 2] *= -1.0f;  // below the floor
   start.sh_degree = start.max_sh_degree = 0;
+  return start;
+}
+
+size_t count_below_floor(const GaussianModel& m) {
+  const float* pos = m.values(Param::Position);
+  size_t below = 0;
+  for (size_t i = 0; i < m.count(); ++i) below += pos[3 * i + 2] <= -0.1f;
+  return below;
+}
+
+// intrinsic_config(6) shading after iteration 3, no density control unless a test turns it on.
+TrainConfig mirror_prune_config() {
+  TrainConfig cfg = intrinsic_config(6);
+  cfg.intrinsic.warmup = 4;  // half the run (3 iterations) is shorter: shading starts after iteration 3
+  cfg.intrinsic.prune_mirror_world = 0.05f;
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  return cfg;
+}
+
+}  // namespace
+
+TEST(IntrinsicRenderer, MirrorWorldIsPrunedWhenShadingStarts) {
+  // With intrinsic_prune_mirror_world the twin goes at the last warm-up iteration, the floor and blob stay.
+  const TrainConfig cfg = mirror_prune_config();
+  ASSERT_EQ(cfg.shading_from(), 3);
+  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  const size_t blob = 12;
+  GaussianModel start = start_with_mirror_twin(blob);
+  const size_t n0 = start.count() - blob;
   auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
   Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, std::move(start)));
   StepStats s;
@@ -530,10 +555,38 @@ TEST(IntrinsicRenderer, MirrorWorldIsPrunedWhenShadingStarts) {
   EXPECT_LE(removed, blob);
   EXPECT_NE(s.densify_note.find("mirror world: pruned " + std::to_string(removed) + " of "), std::string::npos)
       << s.densify_note;
-  const float* pos = t.model().values(Param::Position);
-  size_t above = 0;
-  for (size_t i = 0; i < t.model().count(); ++i) above += pos[3 * i + 2] > -0.1f;
-  EXPECT_EQ(above, n0) << "the floor and the blob are kept";
-  while (!t.finished()) s = t.step();
+  EXPECT_EQ(t.model().count() - count_below_floor(t.model()), n0) << "the floor and the blob are kept";
+  while (!t.finished()) {
+    s = t.step();
+    EXPECT_EQ(s.densify_note.find("mirror world"), std::string::npos) << "once only without _repeat";
+  }
+  EXPECT_TRUE(std::isfinite(s.loss));
+}
+
+TEST(IntrinsicRenderer, MirrorWorldIsPrunedAgainAfterEachShadingDensification) {
+  // intrinsic_prune_mirror_world_repeat with density control at iterations 4 and 5 (shading from 3): each
+  // of those steps prunes again and the mirror twin does not come back below the floor.
+  TrainConfig cfg = mirror_prune_config();
+  cfg.intrinsic.prune_mirror_world_repeat = true;
+  cfg.densify.from_iter = 4;
+  cfg.densify.interval = 1;
+  cfg.densify.until_iter = 5;
+  cfg.densify_until_fraction = 1.0f;
+  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
+  Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, start_with_mirror_twin(12)));
+  StepStats s;
+  for (int it = 1; it <= 3; ++it) s = t.step();
+  ASSERT_NE(s.densify_note.find("before shading starts"), std::string::npos) << s.densify_note;
+  const size_t below = count_below_floor(t.model());
+  EXPECT_LE(below, 2u);
+  for (int it = 4; it <= 5; ++it) {
+    s = t.step();
+    ASSERT_GT(s.densify.after, 0u) << "iteration " << it << " densifies";
+    EXPECT_NE(s.densify_note.find("Gaussians after densifying"), std::string::npos) << it << ": " << s.densify_note;
+    EXPECT_LE(count_below_floor(t.model()), below) << it;
+  }
+  s = t.step();
+  EXPECT_EQ(s.densify_note.find("mirror world"), std::string::npos) << "iteration 6 does not densify";
   EXPECT_TRUE(std::isfinite(s.loss));
 }

@@ -545,3 +545,26 @@ TEST(Trainer, DensificationScheduleFitsShortRuns) {
   }
   EXPECT_EQ(densified, (std::vector<int>{10, 20, 30, 40, 50}));
 }
+
+TEST(TrainConfig, MirrorWorldPruneSchedule) {
+  // A 4K intrinsic run shades from 2000: the prune runs there, and with _repeat after each later
+  // densification, never in radiance mode or with the tolerance at 0.
+  TrainConfig c;
+  c.iterations = 4000;
+  c.mode = "intrinsic";
+  const int from = c.shading_from();
+  ASSERT_EQ(from, 2000);
+  EXPECT_FALSE(c.prunes_mirror_world_after(from, false)) << "off by default";
+  c.intrinsic.prune_mirror_world = 0.05f;
+  EXPECT_TRUE(c.prunes_mirror_world_after(from, false));
+  EXPECT_TRUE(c.prunes_mirror_world_after(from, true));
+  EXPECT_FALSE(c.prunes_mirror_world_after(from - 1, false));
+  EXPECT_FALSE(c.prunes_mirror_world_after(from + 500, true)) << "once only without _repeat";
+  c.intrinsic.prune_mirror_world_repeat = true;
+  EXPECT_TRUE(c.prunes_mirror_world_after(from + 500, true));
+  EXPECT_FALSE(c.prunes_mirror_world_after(from + 501, false)) << "only after a densification";
+  EXPECT_FALSE(c.prunes_mirror_world_after(from - 500, true)) << "not during the warm-up";
+  c.mode = "radiance";
+  EXPECT_FALSE(c.prunes_mirror_world_after(from, false));
+  EXPECT_FALSE(c.prunes_mirror_world_after(from + 500, true));
+}
