@@ -25,10 +25,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A tiny intrinsic run of the embedded scene, trained once per test program.
+// A tiny intrinsic run of the embedded scene, trained once per test program, in a folder of the first test
+// that asks: ctest runs each test as its own process, two at a time, and a shared folder raced (one
+// process's scratch_dir emptied it while the other trained into it).
 const fs::path& tiny_intrinsic_run() {
   static const fs::path run = [] {
-    const fs::path r = test::scratch_dir("studio_export_run") / "run";
+    const std::string test_name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    const fs::path r = test::scratch_dir("studio_export_run_" + test_name) / "run";
     TrainerSession t;
     TrainRequest rq;
     rq.data = test::resource_dir() / "default_scene";
