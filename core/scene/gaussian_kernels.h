@@ -35,4 +35,17 @@ GORIS_HDI void extras_backward(const T* activated, T* activated_grad, T* logit_g
   activated_grad[i] = T(0);
 }
 
+// The diffuse channel as the view-independent part of D (the SH colour): colour = C0 x DC + 1/2, clamped
+// inside (0, 1) so that its logit stays finite. Gaussian i of `sh` ([N][sh_width], DC first) writes columns
+// first..first+2 of `extra_logits` ([N][extras_width]).
+template <class T>
+GORIS_HDI void diffuse_from_sh_dc(const T* sh, int sh_width, T* extra_logits, int extras_width, int first, size_t i) {
+  constexpr T kC0 = T(0.28209479177387814), kEps = T(1e-3);
+  for (int c = 0; c < 3; ++c) {
+    T col = kC0 * sh[i * size_t(sh_width) + size_t(c)] + T(0.5);
+    col = col < kEps ? kEps : (col > T(1) - kEps ? T(1) - kEps : col);
+    extra_logits[i * size_t(extras_width) + size_t(first + c)] = logit(col);
+  }
+}
+
 }  // namespace goris::kernels

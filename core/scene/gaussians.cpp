@@ -91,6 +91,16 @@ GaussianView GaussianModel::view(bool with_extras) {
   return v;
 }
 
+void GaussianModel::derive_diffuse_from_sh() {
+  const float* sh = values(Param::Sh);
+  float* logits = values(Param::ExtraLogit);
+  const int sw = param_width(Param::Sh), ew = extra::kCount, first = extra::kDiffuse;
+  if (device_ == Device::CPU)
+    parallel_for(Device::CPU, count_, [=](size_t i) { kernels::diffuse_from_sh_dc(sh, sw, logits, ew, first, i); });
+  else
+    GORIS_ON_CUDA(detail::diffuse_from_sh_dc_cuda(sh, sw, logits, ew, first, count_));
+}
+
 GaussianGradView GaussianModel::grad_view(bool with_extras) {
   GaussianGradView g;
   g.positions = grads(Param::Position);

@@ -82,6 +82,10 @@ class GaussianModel {
   void backprop_extras();
   // Zeroes every parameter gradient (and the activated-extras scratch).
   void zero_grad();
+  // Sets the diffuse channel to the SH colour's view-independent part (C0 x DC + 1/2 per Gaussian). The
+  // shading uses D = the SH colour (C = D + (1 - M) G), so this keeps the channel that maps, the editor,
+  // the PLY and the removal's material maps show in step with it instead of at its initial grey.
+  void derive_diffuse_from_sh();
 
   // Builds the model from a PLY (standard 3DGS layout plus optional extras by name: diffuse_0..2,
   // fresnel_0..2, roughness, region, label, all before activation); missing extras take `init`.

@@ -14,4 +14,10 @@ void extras_backward_cuda(const float* activated, float* activated_grad, float* 
                [=] __device__(size_t i) { kernels::extras_backward(activated, activated_grad, logit_grad, i); });
 }
 
+void diffuse_from_sh_dc_cuda(const float* sh, int sh_width, float* extra_logits, int extras_width, int first, size_t n) {
+  parallel_for(Device::CUDA, n, [=] __device__(size_t i) {
+    kernels::diffuse_from_sh_dc(sh, sh_width, extra_logits, extras_width, first, i);
+  });
+}
+
 }  // namespace goris::detail

@@ -57,6 +57,11 @@ TEST(TrainCuda, ExtrasAdamStatsAndFiniteCheckMatchTheCpu) {
   gpu.backprop_extras();
   expect_close(gpu.tensor(Param::ExtraLogit).grad.to_host(), cpu.tensor(Param::ExtraLogit).grad.to_host(), "extras grad");
 
+  cpu.derive_diffuse_from_sh();
+  gpu.derive_diffuse_from_sh();
+  expect_close(gpu.tensor(Param::ExtraLogit).value.to_host(), cpu.tensor(Param::ExtraLogit).value.to_host(),
+               "diffuse from SH");
+
   GaussianAdam ac, ag;
   for (int k = 0; k < 3; ++k)
     for (int g = 0; g < kGroupCount; ++g) {

@@ -88,6 +88,32 @@ TEST(ExtrasActivation, ModelViewAndBackprop) {
   EXPECT_EQ(m.grad_view(false).extras, nullptr);
 }
 
+TEST(ExtrasActivation, DiffuseFollowsTheShColoursViewIndependentPart) {
+  // diffuse = C0 x DC + 1/2 per channel (clamped inside (0, 1)); the other extras and the SH stay as they were.
+  GaussianModel m = random_model(40, 5);
+  float* sh = m.values(Param::Sh);
+  const int sw = param_width(Param::Sh);
+  sh[0] = 10.0f;   // colour 3.3: clamped to 1 - 1e-3
+  sh[1] = -10.0f;  // -2.3: clamped to 1e-3
+  const std::vector<float> sh_before = m.tensor(Param::Sh).value.to_host();
+  const std::vector<float> extras_before = m.tensor(Param::ExtraLogit).value.to_host();
+  m.derive_diffuse_from_sh();
+  const GaussianView v = m.view(true);
+  for (size_t i = 0; i < 40; ++i)
+    for (int k = 0; k < extra::kCount; ++k) {
+      const size_t e = i * extra::kCount + size_t(k);
+      if (k >= extra::kDiffuse && k < extra::kDiffuse + 3) {
+        const double col = 0.28209479177387814 * sh[i * size_t(sw) + size_t(k - extra::kDiffuse)] + 0.5;
+        EXPECT_NEAR(v.extras[e], std::clamp(col, 1e-3, 1 - 1e-3), 1e-5) << i << " " << k;
+      } else {
+        EXPECT_EQ(m.values(Param::ExtraLogit)[e], extras_before[e]) << i << " " << k;
+      }
+    }
+  EXPECT_NEAR(v.extras[extra::kDiffuse], 1 - 1e-3, 1e-6);
+  EXPECT_NEAR(v.extras[extra::kDiffuse + 1], 1e-3, 1e-6);
+  EXPECT_EQ(m.tensor(Param::Sh).value.to_host(), sh_before);
+}
+
 TEST(KnnMeanDistance, MatchesBruteForce) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<float> u(-1, 1);
