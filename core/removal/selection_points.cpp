@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
 
@@ -25,7 +26,7 @@ SelectionPoints selection_points(const GaussianModel& model) {
                 ex_width != extra::kCount || ex.size() != std::size_t(ex_width) * n))
     throw Error("selection", "the Gaussian model's arrays do not match its count of " + std::to_string(n));
 
-  constexpr float kC0 = 0.28209479177387814f;  // SH band-0 basis (render/math/sh.h)
+  constexpr float kC0 = kernels::kShC0;
   SelectionPoints p;
   p.position.resize(n);
   p.scale.resize(n);

@@ -109,7 +109,7 @@ GaussianModel init_from_points(const std::vector<glm::vec3>& points, const std::
   if (colors.size() != points.size()) throw Error("initial points: colour count differs from point count");
   const size_t n = points.size();
   const std::vector<float> dist = knn_mean_distance(points, 3);
-  constexpr float kShC0 = 0.28209479177387814f;
+  using kernels::kShC0;
   const float min_dist = std::sqrt(1e-7f);
 
   GaussianModel m(Device::CPU);

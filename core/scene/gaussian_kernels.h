@@ -21,6 +21,15 @@ template <class T>
 GORIS_HDI T logit(T p) {
   return log_t(p / (T(1) - p));
 }
+// The logit of p clamped to [1e-3, 1 - 1e-3], so that colours and materials at 0 or 1 stay finite.
+template <class T>
+GORIS_HDI T logit_clamped(T p) {
+  constexpr T kEps = T(1e-3);
+  return logit(p < kEps ? kEps : (p > T(1) - kEps ? T(1) - kEps : p));
+}
+
+// Band-0 SH basis: colour = kShC0 x DC + 1/2 (render/math/sh.h holds the full basis for the renderers).
+constexpr float kShC0 = 0.28209479177387814f;
 
 // Activated extras and the chain rule back to the logits: d sigmoid / dx = s (1 - s). The activated-space
 // gradient is consumed (zeroed) so the scratch is ready for the next backward pass.
@@ -35,17 +44,14 @@ GORIS_HDI void extras_backward(const T* activated, T* activated_grad, T* logit_g
   activated_grad[i] = T(0);
 }
 
-// The diffuse channel as the view-independent part of D (the SH colour): colour = C0 x DC + 1/2, clamped
-// inside (0, 1) so that its logit stays finite. Gaussian i of `sh` ([N][sh_width], DC first) writes columns
+// The diffuse channel as the view-independent part of D (the SH colour): colour = C0 x DC + 1/2, its logit
+// clamped as above. Gaussian i of `sh` ([N][sh_width], DC first) writes columns
 // first..first+2 of `extra_logits` ([N][extras_width]).
 template <class T>
 GORIS_HDI void diffuse_from_sh_dc(const T* sh, int sh_width, T* extra_logits, int extras_width, int first, size_t i) {
-  constexpr T kC0 = T(0.28209479177387814), kEps = T(1e-3);
-  for (int c = 0; c < 3; ++c) {
-    T col = kC0 * sh[i * size_t(sh_width) + size_t(c)] + T(0.5);
-    col = col < kEps ? kEps : (col > T(1) - kEps ? T(1) - kEps : col);
-    extra_logits[i * size_t(extras_width) + size_t(first + c)] = logit(col);
-  }
+  for (int c = 0; c < 3; ++c)
+    extra_logits[i * size_t(extras_width) + size_t(first + c)] =
+        logit_clamped(T(kShC0) * sh[i * size_t(sh_width) + size_t(c)] + T(0.5));
 }
 
 }  // namespace goris::kernels

@@ -9,6 +9,7 @@
 
 #include "core/compute/memory.h"
 #include "core/removal/select_kdtree.h"
+#include "core/scene/gaussian_kernels.h"
 #include "core/util/error.h"
 #include "render/removal/inpaint_mask.h"
 
@@ -16,13 +17,9 @@ namespace goris {
 
 namespace {
 
-constexpr float kShC0 = 0.28209479177387814f;
+using kernels::kShC0;
+using kernels::logit_clamped;
 constexpr int kAutoSamples = 512;
-
-float logit_clamped(float v) {
-  const float p = std::clamp(v, 1e-3f, 1.0f - 1e-3f);
-  return std::log(p / (1.0f - p));
-}
 
 // The existing Gaussians as the lift reads them: centres in a k-d tree, in-plane sizes, shapes.
 struct Neighbours {
