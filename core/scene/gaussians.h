@@ -88,7 +88,8 @@ class GaussianModel {
   void derive_diffuse_from_sh();
 
   // Builds the model from a PLY (standard 3DGS layout plus optional extras by name: diffuse_0..2,
-  // fresnel_0..2, roughness, region, label, all before activation); missing extras take `init`.
+  // fresnel_0..2, roughness, region, label, all before activation); missing extras take `init`, except a
+  // missing diffuse (a standard 3DGS PLY), which is derived from the SH colour (derive_diffuse_from_sh).
   static GaussianModel from_ply(const GaussianPly& ply, Device device, const GaussianInit& init = {});
   // The standard layout at max_sh_degree, extras as named properties (logits), normals zero.
   // bake_3d_filter folds the Mip-Splatting 3D filter into the scales and opacities (scale^2 + var, opacity

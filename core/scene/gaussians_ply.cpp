@@ -30,6 +30,8 @@ GaussianModel GaussianModel::from_ply(const GaussianPly& ply, Device device, con
     const float fallback = kernels::logit(defaults[c]);
     for (size_t i = 0; i < n; ++i) ex[i * extra::kCount + c] = col ? (*col)[i] : fallback;
   }
+  // A standard 3DGS PLY has no diffuse channel: show its view-independent colour rather than flat grey.
+  if (!ply.extra(extra::kPlyNames[extra::kDiffuse])) m.derive_diffuse_from_sh();
   return device == Device::CPU ? std::move(m) : m.copy_to(device);
 }
 

@@ -331,8 +331,9 @@ StepStats Trainer::step() {
                         (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying");
   }
 
-  // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY).
-  if (intrinsic()) m.derive_diffuse_from_sh();
+  // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY), in both
+  // modes, so that a radiance run's PLY opens with colours in the editor's diffuse viewport too.
+  m.derive_diffuse_from_sh();
 
   // Smoothed over about the last 20 iterations (views differ a lot in difficulty).
   state_.ema_loss = state_.iteration == 0 ? out.loss : 0.05 * out.loss + 0.95 * state_.ema_loss;

@@ -13,6 +13,7 @@
 #include "core/scene/gaussians.h"
 #include "core/train/train_setup.h"
 #include "core/util/error.h"
+#include "tests/support/model_values.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
 
@@ -245,4 +246,7 @@ TEST(GaussianPlyConversion, MissingExtrasTakeInitialValues) {
   EXPECT_NEAR(kernels::sigmoid(back.values(Param::ExtraLogit)[extra::kRegion]), 0.9f, 1e-6f);
   EXPECT_EQ(back.values(Param::Sh)[5], 0.0f);
   EXPECT_EQ(back.values(Param::Sh)[1], m.values(Param::Sh)[1]);
+  // A standard 3DGS PLY has no diffuse channel: it shows the SH colour's view-independent part, not grey.
+  EXPECT_LT(test::diffuse_vs_sh_colour(back).max_error, 1e-5);
+  EXPECT_NEAR(kernels::sigmoid(back.values(Param::ExtraLogit)[extra::kFresnel]), 0.5f, 1e-6f);
 }

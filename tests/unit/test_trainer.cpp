@@ -131,6 +131,10 @@ TEST(Trainer, RefitsAPerturbedSceneTo35Db) {
               t.model().count(), config.iterations, secs, before, after);
   EXPECT_LT(before, 25.0) << "the perturbation should be visible";
   EXPECT_GE(after, 35.0);
+  // Radiance runs keep the diffuse channel on the SH colour too (the editor's diffuse viewport, the PLY).
+  const test::DiffuseVsSh d = test::diffuse_vs_sh_colour(t.model());
+  EXPECT_LT(d.max_error, 1e-5);
+  EXPECT_GT(d.mean_from_grey, 0.02);
 }
 
 TEST(Trainer, ResumeFromCheckpointIsBitExact) {
