@@ -184,7 +184,8 @@ void random_points(const Box& box, size_t n, std::uint64_t seed, std::vector<glm
   colors.resize(n);
   for (size_t i = 0; i < n; ++i) {
     for (int a = 0; a < 3; ++a) points[i][a] = box.lo[a] + (box.hi[a] - box.lo[a]) * u(rng);
-    for (int c = 0; c < 3; ++c) colors[i][c] = u(rng) / 255.0f;
+    // 3DGS draws the SH DC coefficients in [0, 1/255], so its colours start at mid grey (C0 x DC + 1/2).
+    for (int c = 0; c < 3; ++c) colors[i][c] = 0.5f + kernels::kShC0 * u(rng) / 255.0f;
   }
 }
 

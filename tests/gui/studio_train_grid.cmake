@@ -1,8 +1,6 @@
 # The scripted editor opens the embedded scene, trains 30 iterations through the Training panel's session,
 # shows a different channel in every viewport and screenshots the window: every tile must be non-blank
-# and differ from the others. Tile 3 shows F0, an extra channel still at its initial value: the diffuse
-# channel follows the SH colour, which the random start makes near-black for the first hundreds of
-# iterations (core/scene/gaussian_init.cpp), so it would be blank here. Also a click (picked depth reported) and the photo slider. Screenshots stay
+# and differ from the others. Also a click (picked depth reported) and the photo slider. Screenshots stay
 # in WORK as artefacts.
 include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 if(GUI_SKIP)
@@ -21,7 +19,7 @@ channel main final
 channel 0 normal
 channel 1 depth
 channel 2 alpha
-channel 3 f0
+channel 3 diffuse
 compare off
 snap 2
 wait_frames 2

@@ -174,7 +174,8 @@ TEST(GaussianInit, RandomBoxFromCameras) {
   EXPECT_EQ(p1, p2);
   for (const auto& p : p1)
     for (int a = 0; a < 3; ++a) EXPECT_TRUE(p[a] >= box.lo[a] && p[a] <= box.hi[a]);
-  for (const auto& col : c1) EXPECT_LE(col.r, 1.0f / 255.0f);
+  for (const auto& col : c1)  // 3DGS: SH DC in [0, 1/255], so mid grey
+    for (int c = 0; c < 3; ++c) EXPECT_TRUE(col[c] >= 0.5f && col[c] <= 0.5f + kernels::kShC0 / 255.0f) << col[c];
 }
 
 // intrinsic_env_distance puts the environment on a sphere around what the cameras look at, once: the
