@@ -26,7 +26,6 @@ SelectionPoints selection_points(const GaussianModel& model) {
                 ex_width != extra::kCount || ex.size() != std::size_t(ex_width) * n))
     throw Error("selection", "the Gaussian model's arrays do not match its count of " + std::to_string(n));
 
-  using kernels::kShC0;
   SelectionPoints p;
   p.position.resize(n);
   p.scale.resize(n);
@@ -39,7 +38,7 @@ SelectionPoints selection_points(const GaussianModel& model) {
         !std::isfinite(p.scale[i]))
       throw Error("selection", "Gaussian " + std::to_string(i) + " has a non-finite centre or scale");
     const float* dc = &sh[std::size_t(sh_width) * i];
-    p.color[i] = glm::max(glm::vec3(0.5f) + kShC0 * glm::vec3(dc[0], dc[1], dc[2]), glm::vec3(0.0f));
+    p.color[i] = glm::max(kernels::colour_from_sh_dc(glm::vec3(dc[0], dc[1], dc[2])), glm::vec3(0.0f));
     p.label[i] = 1.0f / (1.0f + std::exp(-ex[std::size_t(ex_width) * i + extra::kLabel]));
   }
   return p;

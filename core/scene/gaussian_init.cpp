@@ -109,7 +109,6 @@ GaussianModel init_from_points(const std::vector<glm::vec3>& points, const std::
   if (colors.size() != points.size()) throw Error("initial points: colour count differs from point count");
   const size_t n = points.size();
   const std::vector<float> dist = knn_mean_distance(points, 3);
-  using kernels::kShC0;
   const float min_dist = std::sqrt(1e-7f);
 
   GaussianModel m(Device::CPU);
@@ -136,7 +135,7 @@ GaussianModel init_from_points(const std::vector<glm::vec3>& points, const std::
     op[i] = op_logit;
     float* s = sh + i * kMaxShCoeffs * 3;
     std::fill(s, s + kMaxShCoeffs * 3, 0.0f);
-    for (int c = 0; c < 3; ++c) s[c] = (colors[i][c] - 0.5f) / kShC0;
+    for (int c = 0; c < 3; ++c) s[c] = kernels::sh_dc_from_colour(colors[i][c]);
     for (int c = 0; c < extra::kCount; ++c) ex[i * extra::kCount + c] = kernels::logit(ex_init[c]);
   }
   return device == Device::CPU ? std::move(m) : m.copy_to(device);
@@ -185,6 +184,7 @@ void random_points(const Box& box, size_t n, std::uint64_t seed, std::vector<glm
   for (size_t i = 0; i < n; ++i) {
     for (int a = 0; a < 3; ++a) points[i][a] = box.lo[a] + (box.hi[a] - box.lo[a]) * u(rng);
     // 3DGS draws the SH DC coefficients in [0, 1/255], so its colours start at mid grey (C0 x DC + 1/2).
+    // Written out: colour_from_sh_dc(U / 255) rounds differently and would change every measured run.
     for (int c = 0; c < 3; ++c) colors[i][c] = 0.5f + kernels::kShC0 * u(rng) / 255.0f;
   }
 }

@@ -30,6 +30,15 @@ GORIS_HDI T logit_clamped(T p) {
 
 // Band-0 SH basis: colour = kShC0 x DC + 1/2 (render/math/sh.h holds the full basis for the renderers).
 constexpr float kShC0 = 0.28209479177387814f;
+// The one place that maps between a DC coefficient and the colour it shows (T: a scalar or a glm vector).
+template <class T>
+GORIS_HDI T colour_from_sh_dc(T dc) {
+  return T(kShC0) * dc + T(0.5f);
+}
+template <class T>
+GORIS_HDI T sh_dc_from_colour(T colour) {
+  return (colour - T(0.5f)) / T(kShC0);
+}
 
 // Activated extras and the chain rule back to the logits: d sigmoid / dx = s (1 - s). The activated-space
 // gradient is consumed (zeroed) so the scratch is ready for the next backward pass.
@@ -51,7 +60,7 @@ template <class T>
 GORIS_HDI void diffuse_from_sh_dc(const T* sh, int sh_width, T* extra_logits, int extras_width, int first, size_t i) {
   for (int c = 0; c < 3; ++c)
     extra_logits[i * size_t(extras_width) + size_t(first + c)] =
-        logit_clamped(T(kShC0) * sh[i * size_t(sh_width) + size_t(c)] + T(0.5));
+        logit_clamped(colour_from_sh_dc(sh[i * size_t(sh_width) + size_t(c)]));
 }
 
 }  // namespace goris::kernels

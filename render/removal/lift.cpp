@@ -17,7 +17,6 @@ namespace goris {
 
 namespace {
 
-using kernels::kShC0;
 using kernels::logit_clamped;
 constexpr int kAutoSamples = 512;
 
@@ -263,7 +262,7 @@ LiftResult lift_reference_views(GaussianModel& model, const std::vector<LiftView
       const float* c = pixel_of(maps.rgb, p);
       const std::size_t sh0 = rows.sh.size();
       rows.sh.resize(sh0 + std::size_t(kMaxShCoeffs) * 3, 0.0f);
-      for (int ch = 0; ch < 3; ++ch) rows.sh[sh0 + ch] = (c[ch] - 0.5f) / kShC0;
+      for (int ch = 0; ch < 3; ++ch) rows.sh[sh0 + ch] = kernels::sh_dc_from_colour(c[ch]);
       glm::vec3 diffuse, fresnel;
       float rough, region;
       material(p, diffuse, fresnel, rough, region);

@@ -16,7 +16,7 @@
 //  - scale and rotation: copied from the nearest existing Gaussian when its centre lies within
 //    neighbour_distance x the sample spacing (k z / f); otherwise isotropic with scale = the sample
 //    spacing and identity rotation.
-//  - colour: SH DC = (rgb - 0.5) / 0.28209479 from the inpainted rgb, higher SH zero.
+//  - colour: SH DC = kernels::sh_dc_from_colour(rgb) from the inpainted rgb, higher SH zero.
 //  - materials (logits of values clamped to [1e-3, 1 - 1e-3]): diffuse, F0, roughness, region from the
 //    inpainted maps; settings' defaults (0.5, as the paper) for absent maps; label = settings.label.
 //  - opacity: logit(settings.opacity) (0.1); gradients and Adam moments zero; when the model has a 3D

@@ -115,6 +115,19 @@ TEST(ExtrasActivation, DiffuseFollowsTheShColoursViewIndependentPart) {
   EXPECT_EQ(m.tensor(Param::Sh).value.to_host(), sh_before);
 }
 
+TEST(ShDcColour, HelperPairIsTheBandZeroBasisAndRoundTrips) {
+  // colour = C0 x DC + 1/2 with C0 = 1 / (2 sqrt(pi)), written here independently of the helpers.
+  const double c0 = 0.5 / std::sqrt(3.14159265358979323846);
+  for (double dc : {-1.77, 0.0, 0.3, 2.5}) {
+    EXPECT_NEAR(kernels::colour_from_sh_dc(dc), c0 * dc + 0.5, 1e-7);  // C0 is a float
+    EXPECT_NEAR(kernels::sh_dc_from_colour(kernels::colour_from_sh_dc(dc)), dc, 1e-6);
+  }
+  const glm::vec3 rgb(0.1f, 0.5f, 0.9f);
+  const glm::vec3 back = kernels::colour_from_sh_dc(kernels::sh_dc_from_colour(rgb));
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(back[c], rgb[c], 1e-6f);
+  EXPECT_EQ(kernels::sh_dc_from_colour(0.5f), 0.0f);
+}
+
 TEST(KnnMeanDistance, MatchesBruteForce) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<float> u(-1, 1);
