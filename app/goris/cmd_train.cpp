@@ -64,6 +64,9 @@ void reject_changes_on_resume(const Options& o) {
 }
 
 void run_train(const Options& o) {
+  // Ctrl-C from the start: one pressed while the data loads stops the run at its first step with a checkpoint
+  // (resumable), instead of killing it between writing config.json and its first checkpoint.
+  const cli::CtrlC ctrl_c;
   const fs::path run_dir = fs::absolute(o.out);
   const fs::path data = fs::weakly_canonical(fs::absolute(o.data));
   std::optional<ResumePoint> resumed;
@@ -143,15 +146,12 @@ void run_train(const Options& o) {
     std::fflush(stderr);
   };
   Trainer::RunResult result;
-  {
-    const cli::CtrlC ctrl_c;
-    ro.stop = ctrl_c.flag();
-    try {
-      result = trainer.run(ro);
-    } catch (...) {
-      if (tty) std::fprintf(stderr, "\n");
-      throw;
-    }
+  ro.stop = ctrl_c.flag();
+  try {
+    result = trainer.run(ro);
+  } catch (...) {
+    if (tty) std::fprintf(stderr, "\n");
+    throw;
   }
   if (tty) std::fprintf(stderr, "\n");
 

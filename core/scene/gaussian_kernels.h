@@ -30,7 +30,8 @@ GORIS_HDI T logit_clamped(T p) {
 
 // Band-0 SH basis: colour = kShC0 x DC + 1/2 (render/math/sh.h holds the full basis for the renderers).
 constexpr float kShC0 = 0.28209479177387814f;
-// The one place that maps between a DC coefficient and the colour it shows (T: a scalar or a glm vector).
+// Between a DC coefficient and the colour it shows (T: a scalar or a glm vector); random_points alone
+// writes it out, to keep its rounding.
 template <class T>
 GORIS_HDI T colour_from_sh_dc(T dc) {
   return T(kShC0) * dc + T(0.5f);
