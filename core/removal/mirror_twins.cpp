@@ -18,15 +18,29 @@ double diagonal(const std::vector<glm::dvec3>& p) {
   return glm::length(hi - lo);
 }
 
-std::size_t count_inliers(const std::vector<glm::dvec3>& p, const glm::dvec3& n, double d, double tol) {
+// Points within `tol` of the plane n . x = d; with normals, only those whose normal is within acos(min_cos)
+// of n (either sign).
+bool is_inlier(const std::vector<glm::dvec3>& p, const std::vector<glm::vec3>& normals, std::size_t i,
+               const glm::dvec3& n, double d, double tol, double min_cos) {
+  if (std::abs(glm::dot(n, p[i]) - d) > tol) return false;
+  return normals.empty() || std::abs(glm::dot(glm::dvec3(normals[i]), n)) >= min_cos;
+}
+
+std::size_t count_inliers(const std::vector<glm::dvec3>& p, const std::vector<glm::vec3>& normals,
+                          const glm::dvec3& n, double d, double tol, double min_cos) {
   std::size_t c = 0;
-  for (const auto& q : p) c += std::abs(glm::dot(n, q) - d) <= tol;
+  for (std::size_t i = 0; i < p.size(); ++i) c += is_inlier(p, normals, i, n, d, tol, min_cos);
   return c;
 }
 
 }  // namespace
 
-MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const MirrorSettings& s) {
+MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const MirrorSettings& s,
+                             const std::vector<glm::vec3>& normals) {
+  if (!normals.empty() && normals.size() != centres.size())
+    throw Error("mirror plane", std::to_string(centres.size()) + " centres but " + std::to_string(normals.size()) +
+                                    " normals");
+  const double min_cos = std::cos(s.normal_tolerance_deg * 3.14159265358979323846 / 180.0);
   MirrorPlane plane;
   plane.glossy = centres.size();
   if (centres.size() < std::max<std::size_t>(s.min_glossy, 3)) return plane;
@@ -48,15 +62,15 @@ MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const Mirror
     const glm::dvec3 n = cr / len;
     const double d = glm::dot(n, a);
     if (s.accept && !s.accept(n, d)) continue;
-    const std::size_t k = count_inliers(p, n, d, plane.tolerance);
+    const std::size_t k = count_inliers(p, normals, n, d, plane.tolerance, min_cos);
     if (k > best) best = k, best_n = n, best_d = d;
   }
   if (best < 3) return plane;
 
   // Least-squares refit of the inliers: the normal is the covariance's weakest direction.
   std::vector<glm::dvec3> in;
-  for (const auto& q : p)
-    if (std::abs(glm::dot(best_n, q) - best_d) <= plane.tolerance) in.push_back(q);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (is_inlier(p, normals, i, best_n, best_d, plane.tolerance, min_cos)) in.push_back(p[i]);
   glm::dvec3 mean(0.0);
   for (const auto& q : in) mean += q;
   mean /= double(in.size());
@@ -69,22 +83,28 @@ MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const Mirror
   if (glm::dot(n, best_n) < 0) n = -n;
   plane.normal = n;
   plane.offset = glm::dot(n, mean);
-  plane.inliers = count_inliers(p, n, plane.offset, plane.tolerance);
+  plane.inliers = count_inliers(p, normals, n, plane.offset, plane.tolerance, min_cos);
   plane.found = double(plane.inliers) >= s.min_inlier_fraction * double(p.size());
   return plane;
 }
 
 MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std::vector<std::uint8_t>& glossy,
-                                const SelectionMask& target, const MirrorSettings& s) {
-  if (glossy.size() != centres.size() || target.size() != centres.size())
+                                const SelectionMask& target, const MirrorSettings& s,
+                                const std::vector<glm::vec3>& normals) {
+  if (glossy.size() != centres.size() || target.size() != centres.size() ||
+      (!normals.empty() && normals.size() != centres.size()))
     throw Error("mirror twins", std::to_string(centres.size()) + " Gaussians, " + std::to_string(glossy.size()) +
-                                    " glossy flags and " + std::to_string(target.size()) + " selection entries");
+                                    " glossy flags, " + std::to_string(target.size()) + " selection entries and " +
+                                    std::to_string(normals.size()) + " normals");
   MirrorTwins out;
   out.twins.assign(centres.size(), 0);
-  std::vector<glm::vec3> g;
+  std::vector<glm::vec3> g, gn;
   for (std::size_t i = 0; i < centres.size(); ++i)
-    if (glossy[i] && !target[i]) g.push_back(centres[i]);
-  out.plane = fit_mirror_plane(g, s);
+    if (glossy[i] && !target[i]) {
+      g.push_back(centres[i]);
+      if (!normals.empty()) gn.push_back(normals[i]);
+    }
+  out.plane = fit_mirror_plane(g, s, gn);
   MirrorPlane& pl = out.plane;
   if (!pl.found) return out;
 

@@ -47,6 +47,11 @@ struct MirrorSettings {
   // reflector) are the surface's own underside or noise; removing them cost 0.19 dB there (3 seeds), so
   // fewer than this share of the target's Gaussians above the plane selects nothing.
   double min_twin_share = 0.25;
+  // With per-point normals (fit_mirror_plane's `normals`): a point is an inlier only when its normal is
+  // within this angle of the plane's, and points with a zero normal never are. A glossy surface is made of
+  // flat Gaussians lying in it; without this, on steel_snowman from the grey start (where the region channel
+  // calls nearly every Gaussian glossy) RANSAC took a tilted plane through the table and the objects' feet.
+  double normal_tolerance_deg = 25.0;
   // Optional: RANSAC only counts candidate planes (unit normal n, n . x = offset) this accepts.
   std::function<bool(const glm::dvec3& normal, double offset)> accept;
 };
@@ -59,12 +64,15 @@ struct MirrorTwins {
   std::size_t target_above = 0;  // the target's Gaussians above the plane (what the twin would mirror)
 };
 
-// The plane most glossy centres lie on; found = false when fewer than min_inlier_fraction do.
-MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& glossy_centres, const MirrorSettings& settings = {});
+// The plane most glossy centres lie on; found = false when fewer than min_inlier_fraction do. normals: empty,
+// or one per centre (SelectionPoints::flat_normal; see MirrorSettings::normal_tolerance_deg).
+MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& glossy_centres, const MirrorSettings& settings = {},
+                             const std::vector<glm::vec3>& normals = {});
 
 // centres: every Gaussian's centre; glossy: 1 where a Gaussian belongs to the glossy region; target: the
-// selection. Throws goris::Error when the sizes differ.
+// selection; normals: empty or per Gaussian (fit_mirror_plane). Throws goris::Error when the sizes differ.
 MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std::vector<std::uint8_t>& glossy,
-                                const SelectionMask& target, const MirrorSettings& settings = {});
+                                const SelectionMask& target, const MirrorSettings& settings = {},
+                                const std::vector<glm::vec3>& normals = {});
 
 }  // namespace goris
