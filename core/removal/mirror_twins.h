@@ -6,7 +6,7 @@
 // 128 px) the whole lower snowman stood on the table after removal.
 //
 // select_mirror_twins() finds the plane the glossy Gaussians lie on (RANSAC, then a least-squares refit of
-// the inliers), mirrors the target's centres on its own side through it, and selects the Gaussians on the
+// the inliers; with normals, only flat Gaussians lying in the plane count), mirrors the target's centres on its own side through it, and selects the Gaussians on the
 // far side that lie inside the (slightly grown) hull of the mirrored centres. No plane (a curved or
 // scattered glossy set, fewer than min_glossy points) selects nothing, and neither does a hull holding
 // fewer than min_twin_share of the target's Gaussians (no mirror world there). Known limit: real geometry
