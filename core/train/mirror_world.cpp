@@ -4,22 +4,16 @@
 
 #include "core/compute/host_device_image.h"
 #include "core/compute/parallel_for.h"
-#include "core/removal/selection_points.h"
 #include "core/train/densify.h"
 #include "core/util/error.h"
 
 namespace goris {
 
 std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const std::vector<TrainView>& views,
-                                            const DepthAlphaRender& render, float tolerance, int min_views,
-                                            const MirrorPlane* plane) {
+                                            const DepthAlphaRender& render, float tolerance, int min_views) {
   if (!(tolerance >= 0) || !std::isfinite(tolerance)) throw Error("mirror world: the tolerance must be finite and >= 0");
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
   const std::size_t n = model.count();
-  std::vector<std::uint8_t> far_side(n, 0);  // beyond the plane, seen from the cameras
-  if (plane && plane->found)
-    for (std::size_t i = 0; i < n; ++i)
-      far_side[i] = plane->signed_distance(glm::dvec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2])) < -plane->tolerance;
   std::vector<std::uint32_t> behind(n, 0), seen(n, 0);
   std::vector<float> depth, alpha;
   for (const TrainView& v : views) {
@@ -33,12 +27,9 @@ std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const st
       const long long pixel = c.pixel_of(p);
       if (pixel < 0) return;
       const std::size_t q = std::size_t(pixel);
-      const bool glossy = v.glossy_mask[q] > 0.5f;
-      if (glossy && far_side[i])
-        ++behind[i];
-      else if (!(alpha[q] > 0.5f) || p.z <= depth[q] * (1.0f + tolerance))
+      if (!(alpha[q] > 0.5f) || p.z <= depth[q] * (1.0f + tolerance))
         ++seen[i];
-      else if (glossy)
+      else if (v.glossy_mask[q] > 0.5f)
         ++behind[i];
     }, 1024);
   }
@@ -47,38 +38,8 @@ std::vector<std::uint8_t> find_mirror_world(const GaussianModel& model, const st
   return mirror;
 }
 
-MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views) {
-  const SelectionPoints points = selection_points(model);
-  const std::size_t n = points.size();
-  std::vector<std::uint32_t> on_glossy(n, 0), in_frame(n, 0);
-  std::vector<glm::dvec3> cameras;
-  for (const TrainView& v : views) {
-    const Camera& c = v.camera;
-    if (v.glossy_mask.size() != std::size_t(c.width) * std::size_t(c.height)) continue;
-    cameras.push_back(glm::dvec3(c.center()));
-    parallel_for(Device::CPU, n, [&](std::size_t i) {
-      const long long pixel = c.pixel_of(c.to_camera(points.position[i]));
-      if (pixel < 0) return;
-      ++in_frame[i];
-      if (v.glossy_mask[std::size_t(pixel)] > 0.5f) ++on_glossy[i];
-    }, 1024);
-  }
-  std::vector<glm::vec3> centres, normals;
-  for (std::size_t i = 0; i < n; ++i)
-    if (2 * on_glossy[i] > in_frame[i]) centres.push_back(points.position[i]), normals.push_back(points.flat_normal[i]);
-  MirrorPlane plane = fit_mirror_plane(centres, {}, normals);
-  if (!plane.found) return plane;
-  std::size_t above = 0;
-  for (const glm::dvec3& c : cameras) above += plane.signed_distance(c) > 0;
-  if (2 * above < cameras.size()) plane.normal = -plane.normal, plane.offset = -plane.offset;
-  return plane;
-}
-
 size_t prune_mirror_world(GaussianModel& model, const std::vector<TrainView>& views, DifferentiableRenderer& renderer,
-                          float tolerance, bool with_plane, MirrorPlane* plane_out) {
-  MirrorPlane plane;
-  if (with_plane) plane = glossy_surface_plane(model, views);
-  if (plane_out) *plane_out = plane;
+                          float tolerance) {
   const GaussianView view = model.view(renderer.wants_extras());
   const Device d = renderer.device();
   const std::vector<std::uint8_t> mirror = find_mirror_world(
@@ -89,7 +50,7 @@ size_t prune_mirror_world(GaussianModel& model, const std::vector<TrainView>& vi
         const HostView z(r.median_depth, n, d), a(r.alpha, n, d);
         depth.assign(z.data(), z.data() + n), alpha.assign(a.data(), a.data() + n);
       },
-      tolerance, 2, &plane);
+      tolerance);
   std::vector<std::uint8_t> keep(mirror.size());
   for (size_t i = 0; i < keep.size(); ++i) keep[i] = !mirror[i];
   return prune_gaussians(model, keep);

@@ -65,9 +65,6 @@ struct IntrinsicSettings {
   // With prune_mirror_world on: prune again after every densification of the shading phase, so the mirror
   // world cannot grow back while the glossy term learns to carry the reflections.
   bool prune_mirror_world_repeat = false;
-  // With prune_mirror_world on: also count centres beyond the glossy surface's plane as behind it
-  // (core/train/mirror_world.h; for planar glossy surfaces, where the warm-up leaves them half transparent).
-  bool prune_mirror_world_plane = false;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;

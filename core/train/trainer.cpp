@@ -76,15 +76,6 @@ std::string format_iteration_problem(int it, const std::string& what) {
   return "iteration " + std::to_string(it) + ": " + what;
 }
 
-// For the mirror-world note: the glossy plane it pruned beyond, or that none was found.
-std::string plane_text(const MirrorPlane& p) {
-  if (!p.found) return " (no glossy plane found: by depth only)";
-  char buf[160];
-  std::snprintf(buf, sizeof buf, " (beyond the glossy plane n = (%.3f, %.3f, %.3f), n.x = %.3f; %zu of %zu centres)",
-                p.normal.x, p.normal.y, p.normal.z, p.offset, p.inliers, p.glossy);
-  return buf;
-}
-
 }  // namespace
 
 Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
@@ -332,16 +323,12 @@ StepStats Trainer::step() {
 
   if (config_.prunes_mirror_world_after(it, out.densify.after > 0)) {
     const size_t before = m.count();
-    const bool with_plane = config_.intrinsic.prune_mirror_world_plane;
-    MirrorPlane plane;
-    const size_t removed =
-        prune_mirror_world(m, views_, *renderer_, config_.intrinsic.prune_mirror_world, with_plane, &plane);
+    const size_t removed = prune_mirror_world(m, views_, *renderer_, config_.intrinsic.prune_mirror_world);
     state_.stats.reset(m.count(), device_);
     if (config_.filter_3d) compute_filter3d(m, cameras());
     out.densify_note += (out.densify_note.empty() ? "" : "; ") + std::string("mirror world: pruned ") +
                         std::to_string(removed) + " of " + std::to_string(before) +
-                        (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying") +
-                        (!with_plane ? std::string() : plane_text(plane));
+                        (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying");
   }
 
   // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY), in both

@@ -3,7 +3,6 @@
 // and one that another view sees against the background are kept. Views without a glossy mask do not vote.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <vector>
 
 #include "core/train/mirror_world.h"
@@ -91,68 +90,6 @@ TEST(MirrorWorld, OnlyGaussiansSeenBehindGlossySurfacesAlone) {
   EXPECT_EQ(mirror[0], 0);
   call = 0;
   EXPECT_THROW(find_mirror_world(model, tv, plain, -1.0f, 2), Error);
-}
-
-TEST(MirrorWorld, APlaneCatchesTheMirrorWorldWhereTheSurfaceIsHalfTransparent) {
-  // The rendered depth lies beyond the mirror world (a half-transparent table: the median depth falls
-  // through it), so by depth alone every Gaussian looks seen. With the plane y = -1 (the cameras on its
-  // y < -1 side), the one behind it at glossy pixels is mirror world; the one in front, and the one behind
-  // the rough half, are not.
-  std::vector<FakeView> views = {fake_view({0.0f, -5.0f, 0.0f}, 9.0f), fake_view({0.3f, -5.0f, 0.0f}, 9.0f),
-                                 fake_view({-0.3f, -5.0f, 0.0f}, 9.0f)};
-  std::vector<test::TestGaussian> gs(3);
-  gs[0].pos = {-1.0f, 1.0f, 0.0f};   // beyond the plane, glossy half
-  gs[1].pos = {-1.0f, -2.0f, 0.0f};  // camera side of the plane
-  gs[2].pos = {1.0f, 1.0f, 0.0f};    // beyond the plane, rough half
-  const GaussianModel model = test::make_model(gs);
-  std::vector<TrainView> tv;
-  for (const FakeView& f : views) tv.push_back(f.view);
-  const DepthAlphaRender render = [&](const Camera& c, std::vector<float>& depth, std::vector<float>& alpha) {
-    depth.assign(size_t(c.width) * size_t(c.height), 9.0f);
-    alpha.assign(depth.size(), 1.0f);
-  };
-  EXPECT_EQ(find_mirror_world(model, tv, render, 0.05f, 2), (std::vector<std::uint8_t>{0, 0, 0}));
-  MirrorPlane plane;
-  plane.found = true;
-  plane.normal = {0.0, -1.0, 0.0};  // towards the cameras
-  plane.offset = 1.0;               // -y = 1
-  plane.tolerance = 0.01;
-  EXPECT_EQ(find_mirror_world(model, tv, render, 0.05f, 2, &plane), (std::vector<std::uint8_t>{1, 0, 0}));
-  plane.found = false;
-  EXPECT_EQ(find_mirror_world(model, tv, render, 0.05f, 2, &plane), (std::vector<std::uint8_t>{0, 0, 0}))
-      << "a plane not found is no plane";
-}
-
-TEST(MirrorWorld, GlossySurfacePlaneIsTheFlatFloorFacingTheCameras) {
-  // A floor of flat Gaussians at z = 0.2 (normals up) under cameras above it, with a denser mirror world of
-  // round Gaussians below it in a slab (z in [-0.6, -0.1]) and a few flat ones at z = -0.3 facing sideways;
-  // every pixel is glossy. The plane is the floor's, its normal points up, to the cameras.
-  std::vector<test::TestGaussian> gs = test::grid({0.0f, 0.0f, 0.2f}, 20, 20, 1, 0.05f, {});
-  const std::size_t floor = gs.size();
-  for (const test::TestGaussian& g : test::grid({0.0f, 0.0f, -0.35f}, 12, 12, 6, 0.1f, {})) gs.push_back(g);
-  GaussianModel m = test::make_model(gs);
-  float* ls = m.values(Param::LogScale);
-  float* rot = m.values(Param::Rotation);
-  for (std::size_t i = 0; i < floor; ++i) ls[3 * i + 2] = std::log(0.002f);  // flat, normal z
-  for (std::size_t i = floor; i < floor + 100; ++i) {  // flat mirror-world pieces, normal x
-    ls[3 * i] = std::log(0.002f);
-    rot[4 * i] = 1.0f, rot[4 * i + 1] = rot[4 * i + 2] = rot[4 * i + 3] = 0.0f;
-  }
-  std::vector<TrainView> views;
-  for (glm::vec3 eye : {glm::vec3(0.1f, -0.2f, 3.0f), glm::vec3(-0.3f, 0.1f, 3.2f), glm::vec3(0.2f, 0.3f, 2.8f)}) {
-    TrainView v;
-    v.camera = test::look_at(eye, {0.0f, 0.0f, 0.0f}, kSize, kSize, 60.0f);
-    v.glossy_mask.assign(std::size_t(kSize) * kSize, 1.0f);
-    views.push_back(v);
-  }
-  const MirrorPlane p = glossy_surface_plane(m, views);
-  ASSERT_TRUE(p.found);
-  EXPECT_NEAR(p.normal.z, 1.0, 1e-4) << "up: the side the cameras are on";
-  EXPECT_NEAR(p.offset, 0.2, 1e-3);
-  EXPECT_EQ(p.inliers, floor);
-  // Without glossy masks there is nothing to fit.
-  for (TrainView& v : views) v.glossy_mask.clear();
-  EXPECT_FALSE(glossy_surface_plane(m, views).found);
 }
 
 }  // namespace
