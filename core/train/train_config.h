@@ -42,8 +42,10 @@ struct IntrinsicSettings {
   // Where the environment lies (render/envmap/env_proxy_math.h). env_distance > 0: on a sphere around the
   // point the training cameras look at, of radius env_distance x their mean distance to it; the trainer
   // resolves it into env_center / env_radius (world units), which the run's config keeps, so every later
-  // render reads the same sphere. 0 (the paper): at infinity.
-  float env_distance = 0.0f;
+  // render reads the same sphere. 0 (the paper): at infinity. Default 1, for bounded captures (an object on a
+  // table in a room): with emit = mask and the repeated prune it is the stage-1 setting that beats radiance by
+  // over 1 dB on both data sets (session 25); set 0 for an outdoor capture whose light is at infinity.
+  float env_distance = 1.0f;
   glm::vec3 env_center{0.0f};
   float env_radius = 0.0f;
   float init_roughness = 0.5f;     // every Gaussian's roughness and F0 at the start (DESIGN.md §4: 0.5)
@@ -58,13 +60,14 @@ struct IntrinsicSettings {
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
   // > 0: at the last warm-up iteration remove the Gaussians seen only behind glossy surfaces (the warm-up's
-  // mirror world, core/train/mirror_world.h); the value is the depth tolerance (x the rendered depth). At
-  // 0.05: 17-29 % fewer Gaussians, the same stage-1 PSNR, but -0.77 dB after removal on steel_snowman
-  // (docs/bench/NOTES.md, session 11), hence off.
-  float prune_mirror_world = 0.0f;
+  // mirror world, core/train/mirror_world.h); the value is the depth tolerance (x the rendered depth). Part
+  // of the default stage-1 setting since session 26 (emit = mask, this, repeat, env_distance 1: README
+  // "Status"); it was off after costing steel_snowman's removal 0.77 dB in session 11 (black start), which
+  // the removal's twin plane from flat normals (session 26) answers.
+  float prune_mirror_world = 0.05f;
   // With prune_mirror_world on: prune again after every densification of the shading phase, so the mirror
   // world cannot grow back while the glossy term learns to carry the reflections.
-  bool prune_mirror_world_repeat = false;
+  bool prune_mirror_world_repeat = true;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;
@@ -83,7 +86,8 @@ struct IntrinsicSettings {
   // every 25 iterations; needs glossy masks) or "max" (the larger of the two; M keeps its tracer gradient
   // where it is the larger). Renders of a trained run recompute "mask" weights from the same masks
   // (load_run_renderer); before session 12 they fell back to M, so eval scored another model than trained.
-  std::string emit = "region";
+  // Default "mask" since session 26 (with the prune and the sphere above).
+  std::string emit = "mask";
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction
   // of their pixels are glossy. Without: glossy regions detected by multi-view photo-consistency

@@ -202,6 +202,8 @@ TEST(GaussianInit, EnvironmentSphereAroundWhatTheCamerasLookAt) {
     ds.train.push_back(v);
   }
   TrainConfig config;
+  EXPECT_EQ(config.intrinsic.env_distance, 1.0f) << "on a sphere by default (session 26)";
+  config.intrinsic.env_distance = 0.0f;
   resolve_environment_sphere(ds, config);
   EXPECT_EQ(config.intrinsic.env_radius, 0.0f);
   config.intrinsic.env_distance = 1.5f;

@@ -558,8 +558,12 @@ TEST(TrainConfig, MirrorWorldPruneSchedule) {
   c.mode = "intrinsic";
   const int from = c.shading_from();
   ASSERT_EQ(from, 2000);
-  EXPECT_FALSE(c.prunes_mirror_world_after(from, false)) << "off by default";
+  EXPECT_TRUE(c.prunes_mirror_world_after(from, false)) << "on by default (session 26)";
+  EXPECT_TRUE(c.intrinsic.prune_mirror_world_repeat);
+  c.intrinsic.prune_mirror_world = 0;
+  EXPECT_FALSE(c.prunes_mirror_world_after(from, false)) << "0 = off";
   c.intrinsic.prune_mirror_world = 0.05f;
+  c.intrinsic.prune_mirror_world_repeat = false;
   EXPECT_TRUE(c.prunes_mirror_world_after(from, false));
   EXPECT_TRUE(c.prunes_mirror_world_after(from, true));
   EXPECT_FALSE(c.prunes_mirror_world_after(from - 1, false));
