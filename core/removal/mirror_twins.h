@@ -6,13 +6,14 @@
 // 128 px) the whole lower snowman stood on the table after removal.
 //
 // select_mirror_twins() finds the plane the glossy Gaussians lie on (RANSAC, then a least-squares refit of
-// the inliers; with normals, only flat Gaussians lying in the plane count), mirrors the target's centres on its own side through it, and selects the Gaussians on the
-// far side that lie inside the (slightly grown) hull of the mirrored centres. No plane (a curved or
-// scattered glossy set, fewer than min_glossy points) selects nothing, and neither does a hull holding
-// fewer than min_twin_share of the target's Gaussians (no mirror world there). Known limit: real geometry
-// below the surface inside that hull (a table's leg right under the target) goes too. A sight-line test (seen only
-// THROUGH the surface from the training cameras) was considered and left out: twins near the surface's
-// edge are seen past the edge from some cameras, so the test needs occlusion, not just geometry.
+// the inliers; with normals, only flat Gaussians lying in the plane count), mirrors the target's centres on
+// its own side through it, and selects the Gaussians on the far side that lie inside the (slightly grown)
+// hull of the mirrored centres. No plane (a curved or scattered glossy set, fewer than min_glossy points)
+// selects nothing, and neither does a hull holding fewer than min_twin_share of the target's Gaussians (no
+// mirror world there). Known limit: real geometry below the surface inside that hull (a table's leg right
+// under the target) goes too. A sight-line test (seen only THROUGH the surface from the training cameras)
+// was considered and left out: twins near the surface's edge are seen past the edge from some cameras, so
+// the test needs occlusion, not just geometry.
 #include <cstddef>
 #include <cstdint>
 #include <functional>

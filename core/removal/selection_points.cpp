@@ -25,8 +25,9 @@ SelectionPoints selection_points(const GaussianModel& model) {
   const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
   const int sh_width = param_width(Param::Sh);
   const int ex_width = model.tensor(Param::ExtraLogit).width;
-  if (n > 0 && (pos.size() != 3 * n || ls.size() != 3 * n || rot.size() != 4 * n || sh.size() != std::size_t(sh_width) * n ||
-                ex_width != extra::kCount || ex.size() != std::size_t(ex_width) * n))
+  if (n > 0 && (pos.size() != 3 * n || ls.size() != 3 * n || rot.size() != 4 * n ||
+                sh.size() != std::size_t(sh_width) * n || ex_width != extra::kCount ||
+                ex.size() != std::size_t(ex_width) * n))
     throw Error("selection", "the Gaussian model's arrays do not match its count of " + std::to_string(n));
 
   SelectionPoints p;
