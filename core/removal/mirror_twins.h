@@ -66,7 +66,7 @@ struct MirrorTwins {
 };
 
 // The plane most glossy centres lie on; found = false when fewer than min_inlier_fraction do. normals: empty,
-// or one per centre (SelectionPoints::flat_normal; see MirrorSettings::normal_tolerance_deg).
+// or one per centre (flat_normals() in selection_points.h; see MirrorSettings::normal_tolerance_deg).
 MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& glossy_centres, const MirrorSettings& settings = {},
                              const std::vector<glm::vec3>& normals = {});
 

@@ -22,10 +22,6 @@ struct SelectionPoints {
   std::vector<float> scale;         // largest axis scale exp(max log_scale), world units
   std::vector<glm::vec3> color;     // SH DC colour: 0.5 + C0 * dc, clamped at 0 (view-independent part)
   std::vector<float> label;         // sigmoid(label logit), the learned object label
-  // The unit axis of the smallest scale where a Gaussian is flat (smallest < kFlatRatio x middle scale), else
-  // zero: a surface element's normal (sign arbitrary). Planes are fitted to these (mirror_twins.h).
-  std::vector<glm::vec3> flat_normal;
-  static constexpr float kFlatRatio = 0.3f;
   std::size_t size() const { return position.size(); }
 };
 
@@ -33,5 +29,11 @@ struct SelectionPoints {
 // Throws goris::Error when a centre or scale is not finite (a broken checkpoint would otherwise poison
 // every neighbour query).
 SelectionPoints selection_points(const GaussianModel& model);
+
+// Per Gaussian, the unit axis of its smallest scale where it is flat (smallest < kFlatRatio x middle scale),
+// else zero: a surface element's normal (sign arbitrary). The mirror twins' plane is fitted to these
+// (mirror_twins.h); kept apart from selection_points so that selection does not download the rotations.
+constexpr float kFlatRatio = 0.3f;
+std::vector<glm::vec3> flat_normals(const GaussianModel& model);
 
 }  // namespace goris

@@ -130,8 +130,7 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   std::vector<std::uint8_t> glossy(model.count(), 0);
   if (model.tensor(Param::ExtraLogit).width == extra::kCount)
     for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
-  const SelectionPoints points = selection_points(model);
-  return select_mirror_twins(points.position, glossy, target, {}, points.flat_normal);
+  return select_mirror_twins(selection_points(model).position, glossy, target, {}, flat_normals(model));
 }
 
 // E_obj of the lighting-aware mask (in [0, 1]) as a grey image, for a person to see what tau cut.

@@ -143,13 +143,13 @@ TEST(SelectionPoints, FlatNormalIsTheRotatedSmallestAxisOfFlatGaussiansOnly) {
   rot[4] = 2.0f * h, rot[5] = 0.0f, rot[6] = 0.0f, rot[7] = 2.0f * h;  // unnormalised (w, x, y, z)
   set_scales(2, 0.05f, 0.06f, 0.04f);  // round: no normal
   set_scales(3, 0.1f, 0.1f, 0.031f);   // smallest just over 0.3 x middle: not flat
-  const SelectionPoints p = selection_points(m);
-  ASSERT_EQ(p.flat_normal.size(), 4u);
-  EXPECT_NEAR(std::abs(p.flat_normal[0].z), 1.0f, 1e-6f);
-  EXPECT_NEAR(std::abs(p.flat_normal[1].y), 1.0f, 1e-6f);
-  EXPECT_NEAR(glm::length(p.flat_normal[1]), 1.0f, 1e-6f);
-  EXPECT_EQ(p.flat_normal[2], glm::vec3(0.0f));
-  EXPECT_EQ(p.flat_normal[3], glm::vec3(0.0f));
+  const std::vector<glm::vec3> flat_normal = flat_normals(m);
+  ASSERT_EQ(flat_normal.size(), 4u);
+  EXPECT_NEAR(std::abs(flat_normal[0].z), 1.0f, 1e-6f);
+  EXPECT_NEAR(std::abs(flat_normal[1].y), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(flat_normal[1]), 1.0f, 1e-6f);
+  EXPECT_EQ(flat_normal[2], glm::vec3(0.0f));
+  EXPECT_EQ(flat_normal[3], glm::vec3(0.0f));
 }
 
 TEST(MirrorTwins, SurfaceNormalsPickTheTableOverATiltedPlaneThroughMoreCentres) {
