@@ -98,6 +98,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_normal_prior_final", c.intrinsic.normal_prior_final);
   f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
   f("intrinsic_region_rough", c.intrinsic.region_rough);
+  f("intrinsic_material_losses_in_warmup", c.intrinsic.material_losses_in_warmup);
   f("intrinsic_emit", c.intrinsic.emit);
   f("intrinsic_smoothness", c.intrinsic.smoothness);
   f("intrinsic_region", c.intrinsic.region);

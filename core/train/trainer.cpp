@@ -436,7 +436,8 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   // material loss must not be lowered by making the surface transparent); normal losses train geometry.
   if (g_detached.empty()) g_detached.assign(size_t(extra::kCount) * hw, 0.0f);
   auto dplane = [&](int c) { return g_detached.data() + size_t(c) * hw; };
-  if (glossy && in.region > 0) {
+  const bool materials = in.material_losses_in_warmup || it > config_.shading_from();
+  if (glossy && materials && in.region > 0) {
     out.region = region_loss<float>(plane(extra::kRegion), gmask, w, h, dplane(extra::kRegion), in.region);
     total += in.region * out.region;
   }
@@ -447,7 +448,7 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
     out.region += r;
     total += in.region_rough * r;
   }
-  if (glossy && in.smoothness > 0) {
+  if (glossy && materials && in.smoothness > 0) {
     const float s = in.smoothness;
     out.smoothness =
         edge_aware_smoothness<float>(plane(extra::kFresnel), 3, view.image.data(), gmask, w, h,
