@@ -9,7 +9,9 @@
 //
 // Runs with material channels on a data set with true normals (`goris synth`: train/gt/normal_XXX.exr) also
 // get "intrinsic_ground_truth": normal angular error, roughness and F0 on the training views' glossy
-// surface (render/train/intrinsic_accuracy.h).
+// surface (render/train/intrinsic_accuracy.h). Intrinsic runs on a data set with glossy masks get
+// "materials": roughness, F0 and M on the glossy surface against the rest, and how well roughness alone
+// separates the two (render/train/material_separation.h).
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -37,6 +39,7 @@
 #include "core/compute/memory.h"
 #include "core/train/normal_prior.h"
 #include "render/train/intrinsic_accuracy.h"
+#include "render/train/material_separation.h"
 #include "render/train/run_renderer.h"
 #include "render/train/raster_renderer.h"
 
@@ -94,10 +97,8 @@ nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 
 // Normals for every run (a radiance run's geometry has normals too); materials only where they were learned.
 // Adds j["intrinsic_ground_truth"] when the data set has true normals (train/gt/normal_*.exr).
-std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& config, const Dataset& ds,
-                                                        GaussianModel& model, Device device, nlohmann::json& j) {
-  const auto gt_dir = ground_truth_normal_dir(config.data);
-  if (!gt_dir) return std::nullopt;
+// The training views that have a glossy mask, with it loaded.
+std::vector<TrainView> glossy_train_views(const Dataset& ds) {
   std::vector<TrainView> tv;
   for (const View& v : ds.train) {
     if (!v.glossy_mask) continue;
@@ -107,6 +108,14 @@ std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& confi
     t.glossy_mask = load_view_glossy_mask(v).pixels.to_host();
     tv.push_back(std::move(t));
   }
+  return tv;
+}
+
+std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& config, const Dataset& ds,
+                                                        GaussianModel& model, Device device, nlohmann::json& j) {
+  const auto gt_dir = ground_truth_normal_dir(config.data);
+  if (!gt_dir) return std::nullopt;
+  std::vector<TrainView> tv = glossy_train_views(ds);
   if (tv.empty()) return std::nullopt;
   load_normal_priors(*gt_dir, tv);
   const IntrinsicAccuracy acc =
@@ -129,6 +138,29 @@ std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& confi
   }
   j["intrinsic_ground_truth"] = ja;
   return acc;
+}
+
+nlohmann::json material_stats_json(const MaterialStats& m) {
+  return {{"pixels", m.pixels},          {"roughness_median", m.roughness_median}, {"roughness_mean", m.roughness_mean},
+          {"f0_median", m.f0_median},    {"f0_mean", m.f0_mean},                   {"region_median", m.region_median},
+          {"region_mean", m.region_mean}};
+}
+
+// Intrinsic runs on a data set with glossy masks: the materials on the glossy surface against the rest
+// (render/train/material_separation.h); j["materials"].
+std::optional<MaterialSeparation> material_separation(const TrainConfig& config, const Dataset& ds,
+                                                      GaussianModel& model, Device device, nlohmann::json& j) {
+  if (config.mode != "intrinsic") return std::nullopt;
+  const std::vector<TrainView> tv = glossy_train_views(ds);
+  if (tv.empty()) return std::nullopt;
+  const MaterialSeparation s =
+      measure_material_separation(model.view(true), tv, RasterRenderer::settings_for(config), device);
+  j["materials"] = {{"views", s.views},
+                    {"where", "training views, alpha >= 0.5; glossy: glossy mask >= 0.5, rest: < 0.5"},
+                    {"glossy", material_stats_json(s.glossy)},
+                    {"rest", material_stats_json(s.rest)},
+                    {"roughness_auc", s.roughness_auc}};
+  return s;
 }
 
 void run_eval(const Options& o) {
@@ -230,6 +262,7 @@ void run_eval(const Options& o) {
   j["stage_seconds"] = stages;
   const std::optional<IntrinsicAccuracy> acc = intrinsic_ground_truth(config, ds, model, device, j);
   const bool materials = config.mode == "intrinsic";
+  const std::optional<MaterialSeparation> sep = material_separation(config, ds, model, device, j);
   j["per_view"] = per_view;
 
   const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
@@ -248,6 +281,11 @@ void run_eval(const Options& o) {
                   double(acc->reference->f0.z));
     std::printf("\n");
   }
+  if (sep)
+    std::printf("materials (%zu training views, median): glossy surface roughness %.3f F0 %.3f M %.2f; rest roughness "
+                "%.3f F0 %.3f M %.2f; roughness separates them with AUC %.2f\n",
+                sep->views, sep->glossy.roughness_median, sep->glossy.f0_median, sep->glossy.region_median,
+                sep->rest.roughness_median, sep->rest.f0_median, sep->rest.region_median, sep->roughness_auc);
   std::printf("metrics: %s\n", out.string().c_str());
 }
 

@@ -77,7 +77,7 @@ struct IntrinsicSettings {
   float normal_prior_final = 0.001f;
   int normal_prior_until = 10000;
   float smoothness = 0.05f;        // edge-aware smoothness of F0, roughness and the normal on the glossy mask
-  // Whether the region loss and the smoothness also run in the radiance warm-up (the paper applies every
+  // Whether the region losses and the smoothness also run in the radiance warm-up (the paper applies every
   // loss from iteration 1). On the half-transparent warm-up geometry they drive F0 and roughness to ~0
   // before any shading can say otherwise (README, "material losses in the warm-up").
   bool material_losses_in_warmup = true;

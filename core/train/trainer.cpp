@@ -441,7 +441,7 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
     out.region = region_loss<float>(plane(extra::kRegion), gmask, w, h, dplane(extra::kRegion), in.region);
     total += in.region * out.region;
   }
-  if (glossy && in.region_rough > 0) {
+  if (glossy && materials && in.region_rough > 0) {
     const HostView alpha(fwd.alpha, hw, device_);
     const double r = rough_region_loss<float>(plane(extra::kRegion), alpha.data(), gmask_rough, w, h,
                                               dplane(extra::kRegion), in.region_rough);

@@ -9,6 +9,7 @@
 
 #include "core/util/error.h"
 #include "render/train/intrinsic_accuracy.h"
+#include "render/train/material_separation.h"
 #include "render/train/raster_renderer.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
@@ -104,4 +105,52 @@ TEST(IntrinsicAccuracy, GlossyReferenceFromASynthScene) {
   EXPECT_FALSE(glossy_reference_from_scene(dir / "missing.json").has_value());
   std::ofstream(dir / "bad.json") << "{ not json";
   EXPECT_THROW(glossy_reference_from_scene(dir / "bad.json"), Error);
+}
+
+TEST(MaterialSeparation, ProbabilityGreaterCountsPairsAndTiesHalf) {
+  EXPECT_DOUBLE_EQ(probability_greater({0.5f, 0.6f}, {0.1f, 0.2f}), 1.0);
+  EXPECT_DOUBLE_EQ(probability_greater({0.1f, 0.2f}, {0.5f, 0.6f}), 0.0);
+  EXPECT_DOUBLE_EQ(probability_greater({0.3f}, {0.3f}), 0.5);
+  // 0.25 beats {0.1, 0.2}, ties nothing, loses to 0.3: 2 of 3; 0.1 ties 0.1: 0.5 of 3.
+  EXPECT_NEAR(probability_greater({0.25f, 0.1f}, {0.1f, 0.2f, 0.3f}), (2.0 + 0.5) / 6.0, 1e-12);
+  EXPECT_THROW(probability_greater({}, {0.1f}), Error);
+}
+
+TEST(MaterialSeparation, GlossyFloorAgainstARoughBlock) {
+  // The floor (roughness 0.3, F0 0.5 mean) is glossy in the mask's left half only; the right half counts
+  // as "rest". Then the right half's Gaussians get roughness 0.8: roughness alone separates the halves.
+  GaussianModel m = floor_model();
+  const RasterSettings raster = RasterRenderer::settings_for(TrainConfig{});
+  TrainView v = view_with_truth(0.0f);
+  v.normal_prior.clear();
+  const int w = v.camera.width, h = v.camera.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) v.glossy_mask[std::size_t(y) * w + x] = x < w / 2 ? 1.0f : 0.0f;
+  const MaterialSeparation same = measure_material_separation(m.view(true), {v}, raster, Device::CPU);
+  EXPECT_EQ(same.views, 1u);
+  EXPECT_GT(same.glossy.pixels, 200u);
+  EXPECT_GT(same.rest.pixels, 200u);
+  EXPECT_NEAR(same.glossy.roughness_median, 0.3, 0.01);
+  EXPECT_NEAR(same.rest.roughness_median, 0.3, 0.01);
+  EXPECT_NEAR(same.glossy.f0_median, 0.5, 0.01);
+  EXPECT_GT(same.roughness_auc, 0.2);
+  EXPECT_LT(same.roughness_auc, 0.8);
+
+  // Which Gaussians land in the right half: project the centres with the view's camera.
+  for (std::size_t i = 0; i < m.count(); ++i) {
+    const glm::vec3 c(m.values(Param::Position)[3 * i], m.values(Param::Position)[3 * i + 1],
+                      m.values(Param::Position)[3 * i + 2]);
+    const glm::vec3 cam = v.camera.to_camera(c);
+    if (cam.z > 0 && v.camera.project_camera(cam).x >= float(w / 2))
+      m.values(Param::ExtraLogit)[extra::kCount * i + extra::kRoughness] = test::logit_of(0.8f);
+  }
+  const MaterialSeparation split = measure_material_separation(m.view(true), {v}, raster, Device::CPU);
+  EXPECT_NEAR(split.glossy.roughness_median, 0.3, 0.02);
+  EXPECT_NEAR(split.rest.roughness_median, 0.8, 0.02);
+  EXPECT_GT(split.roughness_auc, 0.9);
+
+  // No glossy pixel: an error, not a number.
+  TrainView none = v;
+  none.glossy_mask.assign(none.glossy_mask.size(), 0.0f);
+  EXPECT_THROW(measure_material_separation(m.view(true), {none}, raster, Device::CPU), Error);
 }
