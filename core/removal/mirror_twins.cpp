@@ -48,18 +48,37 @@ MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const Mirror
   plane.tolerance = s.tolerance_ratio * diagonal(p);
   if (!(plane.tolerance > 0)) return plane;
 
-  // RANSAC: the plane through three random centres with the most centres within the tolerance.
+  // With normals only flat points can be inliers, so the fraction is of them: the glossy set also holds the
+  // objects and the mirror world (nearly every Gaussian on steel_snowman), whose share varies from run to run.
+  std::vector<std::size_t> flat;
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    if (glm::length(normals[i]) > 0.5f) flat.push_back(i);
+  const std::size_t candidates = normals.empty() ? p.size() : flat.size();
+  if (candidates < 3) return plane;
+
+  // RANSAC: the plane with the most centres within the tolerance. Hypotheses: three random candidates, and
+  // with normals every other draw one flat centre along its own normal (three-point draws from the table
+  // are rare when it holds a tenth of the candidates; one normal is noisy, which the refit below corrects).
   std::mt19937_64 rng(s.seed);
-  std::uniform_int_distribution<std::size_t> pick(0, p.size() - 1);
+  std::uniform_int_distribution<std::size_t> pick(0, candidates - 1);
+  auto point = [&](std::size_t k) { return normals.empty() ? k : flat[k]; };
   glm::dvec3 best_n(0.0);
   double best_d = 0;
   std::size_t best = 0;
   for (int it = 0; it < s.ransac_iterations; ++it) {
-    const glm::dvec3 a = p[pick(rng)], b = p[pick(rng)], c = p[pick(rng)];
-    const glm::dvec3 cr = glm::cross(b - a, c - a);
-    const double len = glm::length(cr);
-    if (len < 1e-12) continue;
-    const glm::dvec3 n = cr / len;
+    glm::dvec3 n, a;
+    if (!normals.empty() && it % 2 == 0) {
+      const std::size_t i = point(pick(rng));
+      a = p[i];
+      n = glm::normalize(glm::dvec3(normals[i]));
+    } else {
+      a = p[point(pick(rng))];
+      const glm::dvec3 b = p[point(pick(rng))], c = p[point(pick(rng))];
+      const glm::dvec3 cr = glm::cross(b - a, c - a);
+      const double len = glm::length(cr);
+      if (len < 1e-12) continue;
+      n = cr / len;
+    }
     const double d = glm::dot(n, a);
     if (s.accept && !s.accept(n, d)) continue;
     const std::size_t k = count_inliers(p, normals, n, d, plane.tolerance, min_cos);
@@ -67,24 +86,31 @@ MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& centres, const Mirror
   }
   if (best < 3) return plane;
 
-  // Least-squares refit of the inliers: the normal is the covariance's weakest direction.
-  std::vector<glm::dvec3> in;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (is_inlier(p, normals, i, best_n, best_d, plane.tolerance, min_cos)) in.push_back(p[i]);
-  glm::dvec3 mean(0.0);
-  for (const auto& q : in) mean += q;
-  mean /= double(in.size());
-  glm::dmat3 cov(0.0);
-  for (const auto& q : in) cov += glm::outerProduct(q - mean, q - mean);
-  glm::dvec3 values;
-  glm::dmat3 vectors;
-  symmetric_eigen(cov / double(in.size()), values, vectors);
-  glm::dvec3 n = glm::normalize(vectors[2]);
-  if (glm::dot(n, best_n) < 0) n = -n;
-  plane.normal = n;
-  plane.offset = glm::dot(n, mean);
-  plane.inliers = count_inliers(p, normals, n, plane.offset, plane.tolerance, min_cos);
-  plane.found = double(plane.inliers) >= s.min_inlier_fraction * double(p.size());
+  // Least-squares refits of the inliers (the normal is the covariance's weakest direction), repeated while
+  // the refitted plane gathers more inliers.
+  for (int round = 0; round < 8; ++round) {
+    std::vector<glm::dvec3> in;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (is_inlier(p, normals, i, best_n, best_d, plane.tolerance, min_cos)) in.push_back(p[i]);
+    glm::dvec3 mean(0.0);
+    for (const auto& q : in) mean += q;
+    mean /= double(in.size());
+    glm::dmat3 cov(0.0);
+    for (const auto& q : in) cov += glm::outerProduct(q - mean, q - mean);
+    glm::dvec3 values;
+    glm::dmat3 vectors;
+    symmetric_eigen(cov / double(in.size()), values, vectors);
+    glm::dvec3 n = glm::normalize(vectors[2]);
+    if (glm::dot(n, best_n) < 0) n = -n;
+    const double d = glm::dot(n, mean);
+    const std::size_t k = count_inliers(p, normals, n, d, plane.tolerance, min_cos);
+    const bool better = k > best;
+    if (round == 0 || better) plane.normal = n, plane.offset = d, plane.inliers = k;
+    if (!better) break;
+    best = k, best_n = n, best_d = d;
+  }
+  plane.candidates = candidates;
+  plane.found = double(plane.inliers) >= s.min_inlier_fraction * double(candidates);
   return plane;
 }
 

@@ -30,14 +30,16 @@ struct MirrorPlane {
   glm::dvec3 normal{0.0, 0.0, 1.0};  // unit; the target's side is n . x > offset
   double offset = 0.0;
   std::size_t inliers = 0, glossy = 0;  // glossy points within `tolerance` of the plane, of all glossy points
+  std::size_t candidates = 0;           // the points that could be inliers: all, or those with a normal
   double tolerance = 0.0;               // inlier distance, world units
   double signed_distance(const glm::dvec3& p) const { return glm::dot(normal, p) - offset; }
 };
 
 struct MirrorSettings {
   double tolerance_ratio = 0.01;      // inlier distance as a fraction of the glossy set's bounding-box diagonal
-  // Of the glossy points, for the plane to count as a mirror. Low on purpose: the mirror world is glossy too
-  // and can outnumber the surface (steel_snowman at 4K iterations: 21 % of the glossy centres on the table).
+  // Of the glossy points (with normals: of those with a normal), for the plane to count as a mirror. Low on
+  // purpose: the mirror world is glossy too and can outnumber the surface (steel_snowman at 4K iterations:
+  // 21 % of the glossy centres on the table; 8-15 % of all glossy centres but 14-25 % of the flat ones at 8K).
   double min_inlier_fraction = 0.1;
   std::size_t min_glossy = 50;
   int ransac_iterations = 256;
@@ -65,8 +67,9 @@ struct MirrorTwins {
   std::size_t target_above = 0;  // the target's Gaussians above the plane (what the twin would mirror)
 };
 
-// The plane most glossy centres lie on; found = false when fewer than min_inlier_fraction do. normals: empty,
-// or one per centre (flat_normals() in selection_points.h; see MirrorSettings::normal_tolerance_deg).
+// The plane most glossy centres lie on; found = false when fewer than min_inlier_fraction of the candidates
+// (every centre, or with normals those with a nonzero normal) do. normals: empty, or one per centre
+// (flat_normals() in selection_points.h; see MirrorSettings::normal_tolerance_deg).
 MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& glossy_centres, const MirrorSettings& settings = {},
                              const std::vector<glm::vec3>& normals = {});
 

@@ -249,6 +249,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       else if (t.plane.found && t.candidates > 0)
         twin_note = "; no mirror twin (" + std::to_string(t.candidates) + " Gaussians mirror " +
                     std::to_string(t.target_above) + " of the target's: not a mirror world)";
+      else if (!t.plane.found && t.plane.candidates > 0)
+        twin_note = "; no mirror twin (no glossy plane: at most " + std::to_string(t.plane.inliers) + " of " +
+                    std::to_string(t.plane.candidates) + " flat glossy Gaussians lie in one)";
     }
     record.model_fingerprint = model_fingerprint(model);
     write_selection(out / "selection.json", record, selected);
