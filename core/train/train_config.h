@@ -84,6 +84,8 @@ struct IntrinsicSettings {
   float region = 1.0f;             // mean(M_gt M)
   float region_rough = 0.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition,
                                    // off: it did not help on steel_snowman, see README)
+  float roughness_rough = 0.0f;    // mean((1 - M_gt)(alpha - R)): the same for the roughness R (our addition,
+                                   // off; README "roughness off the glossy mask")
   float label = 1.0f;              // BCE of the rendered label against the object masks
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed

@@ -448,6 +448,14 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
     out.region += r;
     total += in.region_rough * r;
   }
+  if (glossy && materials && in.roughness_rough > 0) {
+    // The same loss on the roughness: off the glossy mask the material is rough, whatever M says.
+    const HostView alpha(fwd.alpha, hw, device_);
+    const double r = rough_region_loss<float>(plane(extra::kRoughness), alpha.data(), gmask_rough, w, h,
+                                              dplane(extra::kRoughness), in.roughness_rough);
+    out.region += r;
+    total += in.roughness_rough * r;
+  }
   if (glossy && materials && in.smoothness > 0) {
     const float s = in.smoothness;
     out.smoothness =

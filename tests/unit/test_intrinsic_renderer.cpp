@@ -373,6 +373,35 @@ TEST(IntrinsicRenderer, MaterialLossesCanWaitForTheShadingPhase) {
   EXPECT_LT(waiting[0].loss, always[0].loss);
 }
 
+TEST(IntrinsicRenderer, RoughnessRoughLossRaisesRoughnessOffTheGlossyMask) {
+  // intrinsic_roughness_rough: mean((1 - M_gt)(alpha - R)) adds to the region term and, over a few steps,
+  // raises the roughness of the Gaussians the non-glossy pixels see more than training without it does.
+  TrainConfig cfg = intrinsic_config(6);
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  auto run = [&](float weight, double* mean_roughness) {
+    TrainConfig c = cfg;
+    c.intrinsic.roughness_rough = weight;
+    auto renderer = std::make_shared<IntrinsicRenderer>(c, 3.0f, Device::CPU);
+    Trainer t(c, views, 3.0f, renderer, Trainer::initial_state(c, perturbed_start()));
+    const StepStats first = t.step();
+    while (!t.finished()) t.step();
+    const GaussianModel& m = t.model();
+    const std::vector<float> ex = m.tensor(Param::ExtraLogit).value.to_host();
+    double sum = 0;
+    for (std::size_t i = 0; i < m.count(); ++i) sum += 1.0 / (1.0 + std::exp(-ex[i * extra::kCount + extra::kRoughness]));
+    *mean_roughness = sum / double(m.count());
+    return first;
+  };
+  double r_off = 0, r_on = 0;
+  const StepStats off = run(0.0f, &r_off), on = run(1.0f, &r_on);
+  EXPECT_GT(on.region, off.region);
+  EXPECT_DOUBLE_EQ(on.l1, off.l1);
+  EXPECT_GT(r_on, r_off + 1e-4);
+}
+
 TEST(IntrinsicRenderer, CpuTrainingRepeatsBitForBit) {
   // Two trainings from the same start, densification included, end identical (model, Adam moments,
   // environment map and net): the tracer's and the environment map's gradient sums have a fixed order.
