@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <optional>
+#include <utility>
 
 #include "core/compute/memory.h"
 #include "core/io/file_bytes.h"
@@ -441,20 +442,15 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
     out.region = region_loss<float>(plane(extra::kRegion), gmask, w, h, dplane(extra::kRegion), in.region);
     total += in.region * out.region;
   }
-  if (glossy && materials && in.region_rough > 0) {
+  // Off the glossy mask the region is rough (M -> 1), and with roughness_rough so is the material (R -> 1).
+  const std::pair<int, float> rough_sides[] = {{extra::kRegion, in.region_rough},
+                                               {extra::kRoughness, in.roughness_rough}};
+  for (const auto& [channel, weight] : rough_sides) {
+    if (!glossy || !materials || !(weight > 0)) continue;
     const HostView alpha(fwd.alpha, hw, device_);
-    const double r = rough_region_loss<float>(plane(extra::kRegion), alpha.data(), gmask_rough, w, h,
-                                              dplane(extra::kRegion), in.region_rough);
+    const double r = rough_region_loss<float>(plane(channel), alpha.data(), gmask_rough, w, h, dplane(channel), weight);
     out.region += r;
-    total += in.region_rough * r;
-  }
-  if (glossy && materials && in.roughness_rough > 0) {
-    // The same loss on the roughness: off the glossy mask the material is rough, whatever M says.
-    const HostView alpha(fwd.alpha, hw, device_);
-    const double r = rough_region_loss<float>(plane(extra::kRoughness), alpha.data(), gmask_rough, w, h,
-                                              dplane(extra::kRoughness), in.roughness_rough);
-    out.region += r;
-    total += in.roughness_rough * r;
+    total += weight * r;
   }
   if (glossy && materials && in.smoothness > 0) {
     const float s = in.smoothness;
