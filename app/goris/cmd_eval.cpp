@@ -153,8 +153,14 @@ std::optional<MaterialSeparation> material_separation(const TrainConfig& config,
   if (config.mode != "intrinsic") return std::nullopt;
   const std::vector<TrainView> tv = glossy_train_views(ds);
   if (tv.empty()) return std::nullopt;
-  const MaterialSeparation s =
-      measure_material_separation(model.view(true), tv, RasterRenderer::settings_for(config), device);
+  MaterialSeparation s;
+  try {
+    s = measure_material_separation(model.view(true), tv, RasterRenderer::settings_for(config), device);
+  } catch (const Error& e) {  // e.g. a run that never became opaque on the glossy surface: no report, no failure
+    j["materials"] = {{"not_measured", e.what()}};
+    std::printf("materials: not measured (%s)\n", e.what());
+    return std::nullopt;
+  }
   j["materials"] = {{"views", s.views},
                     {"where", "training views, alpha >= 0.5; glossy: glossy mask >= 0.5, rest: < 0.5"},
                     {"glossy", material_stats_json(s.glossy)},

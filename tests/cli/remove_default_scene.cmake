@@ -78,6 +78,11 @@ string(JSON mem GET "${metrics}" removal_peak_host_memory_mib)
 if(NOT t1 GREATER 0 OR NOT t2 GREATER 0 OR NOT mem GREATER 0)
   message(FATAL_ERROR "metrics.json lacks the time per stage or the peak memory:\n${metrics}")
 endif()
+# An intrinsic run on a data set with glossy masks: the materials on the glossy surface against the rest.
+string(JSON auc ERROR_VARIABLE auc_err GET "${metrics}" materials roughness_auc)
+if(auc_err OR auc LESS 0 OR auc GREATER 1 OR NOT OUT MATCHES "roughness separates them with AUC")
+  message(FATAL_ERROR "eval reported no materials (${auc_err}):\n${OUT}\n${metrics}")
+endif()
 goris_ok(render "${R}" --split test --out "${WORK}/renders" --maps --device cpu)
 expect_count("${WORK}/renders/r_000_glossy.png" 1)
 
