@@ -79,13 +79,14 @@ struct IntrinsicSettings {
   float smoothness = 0.05f;        // edge-aware smoothness of F0, roughness and the normal on the glossy mask
   // Whether the region losses and the smoothness also run in the radiance warm-up (the paper applies every
   // loss from iteration 1). On the half-transparent warm-up geometry they drive F0 and roughness to ~0
-  // before any shading can say otherwise (README, "material losses in the warm-up").
+  // before any shading can say otherwise; starting them with the shading did not gain on the mean (README,
+  // "Emission from the glossy masks"; docs/bench/NOTES.md, session 27).
   bool material_losses_in_warmup = true;
   float region = 1.0f;             // mean(M_gt M)
   float region_rough = 0.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition,
                                    // off: it did not help on steel_snowman, see README)
   float roughness_rough = 0.0f;    // mean((1 - M_gt)(alpha - R)): the same for the roughness R (our addition,
-                                   // off; README "roughness off the glossy mask")
+                                   // off: it cost steel 2 dB, README "Optional two-sided region loss")
   float label = 1.0f;              // BCE of the rendered label against the object masks
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed
