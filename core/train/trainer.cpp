@@ -445,10 +445,11 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   // Off the glossy mask the region is rough (M -> 1), and with roughness_rough so is the material (R -> 1).
   const std::pair<int, float> rough_sides[] = {{extra::kRegion, in.region_rough},
                                                {extra::kRoughness, in.roughness_rough}};
+  std::optional<HostView> alpha;  // downloaded once, only when a rough-side loss is on
   for (const auto& [channel, weight] : rough_sides) {
     if (!glossy || !materials || !(weight > 0)) continue;
-    const HostView alpha(fwd.alpha, hw, device_);
-    const double r = rough_region_loss<float>(plane(channel), alpha.data(), gmask_rough, w, h, dplane(channel), weight);
+    if (!alpha) alpha.emplace(fwd.alpha, hw, device_);
+    const double r = rough_region_loss<float>(plane(channel), alpha->data(), gmask_rough, w, h, dplane(channel), weight);
     out.region += r;
     total += weight * r;
   }
