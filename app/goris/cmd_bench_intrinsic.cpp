@@ -30,14 +30,10 @@
 #include "core/util/error.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/train/run_renderer.h"
+#include "core/util/median.h"
 
 namespace {
 using namespace goris;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
@@ -95,10 +91,10 @@ double psnr(const std::vector<float>& a, const std::vector<float>& b) {
 
 // The shaded frame (the forward stages) and the backward, each the sum of its stages' medians.
 double forward_ms(const Measured& m) {
-  return median(m.raster) + median(m.rays) + median(m.trace) + median(m.filter) + median(m.shade);
+  return median_of(m.raster) + median_of(m.rays) + median_of(m.trace) + median_of(m.filter) + median_of(m.shade);
 }
 double backward_ms(const Measured& m) {
-  return median(m.raster_b) + median(m.trace_b) + median(m.filter_b) + median(m.shade_b);
+  return median_of(m.raster_b) + median_of(m.trace_b) + median_of(m.filter_b) + median_of(m.shade_b);
 }
 
 double saved_percent(const Measured& m) { return m.glossy ? 100.0 * (1.0 - double(m.traced) / double(m.glossy)) : 0.0; }
@@ -107,14 +103,14 @@ void print_stages(const char* name, const Measured& m) {
   std::printf("coarse tracing %s: %zu of %zu glossy pixels traced (%.1f %% saved)\n\n", name, m.traced, m.glossy,
               saved_percent(m));
   std::printf("| stage | forward ms | backward ms |\n|---|---|---|\n");
-  std::printf("| rasterize (G-buffer) | %.2f | %.2f |\n", median(m.raster), median(m.raster_b));
-  std::printf("| reflection rays (+ coarse selection) | %.2f | (in trace) |\n", median(m.rays));
-  std::printf("| trace | %.2f | %.2f |\n", median(m.trace), median(m.trace_b));
-  std::printf("| filter + net | %.2f | %.2f |\n", median(m.filter), median(m.filter_b));
-  std::printf("| shading | %.2f | %.2f |\n", median(m.shade), median(m.shade_b));
-  const double tr = median(m.trace);
+  std::printf("| rasterize (G-buffer) | %.2f | %.2f |\n", median_of(m.raster), median_of(m.raster_b));
+  std::printf("| reflection rays (+ coarse selection) | %.2f | (in trace) |\n", median_of(m.rays));
+  std::printf("| trace | %.2f | %.2f |\n", median_of(m.trace), median_of(m.trace_b));
+  std::printf("| filter + net | %.2f | %.2f |\n", median_of(m.filter), median_of(m.filter_b));
+  std::printf("| shading | %.2f | %.2f |\n", median_of(m.shade), median_of(m.shade_b));
+  const double tr = median_of(m.trace);
   std::printf("\niteration (renderer only, wall): median %.1f ms; process CPU %.1f ms; trace %.3f Mrays/s forward\n\n",
-              median(m.total), median(m.cpu), tr > 0 ? double(m.traced) / tr * 1e-3 : 0.0);
+              median_of(m.total), median_of(m.cpu), tr > 0 ? double(m.traced) / tr * 1e-3 : 0.0);
 }
 
 void run_bench_intrinsic(const std::string& run, int view_index, int repeats, int threads, const std::string& dev,
@@ -164,7 +160,7 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
   for (size_t i = 0; i < modes.size(); ++i) {
     const Measured& m = results[i];
     std::printf("| %s | %zu / %zu | %.1f %% | %.1f | %.1f | %.1f | %.2f |\n", modes[i].first.c_str(), m.traced, m.glossy,
-                saved_percent(m), forward_ms(m), backward_ms(m), median(m.total), psnr(m.color, v.image));
+                saved_percent(m), forward_ms(m), backward_ms(m), median_of(m.total), psnr(m.color, v.image));
   }
   // The shaded frame alone (the forward stages, each timed between device synchronisations).
   for (size_t i = 0; i < modes.size(); ++i) {

@@ -17,6 +17,7 @@
 #include "core/util/bench.h"
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
+#include "core/util/median.h"
 
 namespace {
 
@@ -128,15 +129,11 @@ Result run(Device dev, const HostScene& hs, int res, int iters) {
         bblend.push_back(out->state.times.backward_blend), bgauss.push_back(out->state.times.backward_gaussians);
       },
       iters, 1, sync);
-  auto median = [](std::vector<double> x) {
-    std::sort(x.begin(), x.end());
-    return x.empty() ? 0.0 : x[x.size() / 2];
-  };
   r.fwd = tf.median_ms, r.bwd = tb.median_ms;
   // Drop the warm-up call's CPU time (time_repeated runs one untimed call first).
   fwd_cpu.erase(fwd_cpu.begin()), bwd_cpu.erase(bwd_cpu.begin());
-  r.fwd_cpu = median(fwd_cpu), r.bwd_cpu = median(bwd_cpu);
-  r.pre = median(pre), r.bin = median(bin), r.blend = median(blend), r.bblend = median(bblend), r.bgauss = median(bgauss);
+  r.fwd_cpu = goris::median_of(fwd_cpu), r.bwd_cpu = goris::median_of(bwd_cpu);
+  r.pre = goris::median_of(pre), r.bin = goris::median_of(bin), r.blend = goris::median_of(blend), r.bblend = goris::median_of(bblend), r.bgauss = goris::median_of(bgauss);
   r.instances = out->state.n_instances;
   // The rasterizer's own buffers at the peak of the backward pass: forward state and G-buffer, the sort's
   // keys and values (twice: radix sort ping-pong) and the per-instance gradient slots.

@@ -10,6 +10,7 @@
 
 #include "core/removal/select_kdtree.h"
 #include "core/util/error.h"
+#include "core/util/median.h"
 
 namespace goris {
 
@@ -120,13 +121,8 @@ Reference reference_of(const SelectionPoints& pts, const SelectionGraph& graph, 
     take(i);
     for (std::uint32_t e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e) take(graph.neighbors[e]);
   }
-  auto median = [](std::vector<float>& v) {
-    auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    return *mid;
-  };
-  ref.colour = glm::vec3(median(cr), median(cg), median(cb));
-  ref.label = median(lab);
+  ref.colour = glm::vec3(median_of(std::move(cr)), median_of(std::move(cg)), median_of(std::move(cb)));
+  ref.label = median_of(std::move(lab));
   return ref;
 }
 

@@ -12,6 +12,7 @@
 #include "core/scene/gaussian_kernels.h"
 #include "core/util/error.h"
 #include "render/removal/inpaint_mask.h"
+#include "core/util/median.h"
 
 namespace goris {
 
@@ -62,12 +63,6 @@ void check_map(const Image& map, const Camera& cam, int channels, const char* na
                 std::to_string(map.width) + "x" + std::to_string(map.height) + "x" + std::to_string(map.channels) +
                 ", expected " + std::to_string(cam.width) + "x" + std::to_string(cam.height) + "x" +
                 std::to_string(channels));
-}
-
-float median_of(std::vector<float>& v) {
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(mid), v.end());
-  return v[mid];
 }
 
 // Rule of lift.h: k = clamp(round(median neighbour size / median pixel footprint), 1, max_stride).

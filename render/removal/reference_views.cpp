@@ -8,6 +8,7 @@
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
+#include "core/util/median.h"
 
 namespace goris {
 
@@ -15,12 +16,6 @@ namespace {
 
 float angle_deg(const glm::vec3& a, const glm::vec3& b) {
   return std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)) * 180.0f / 3.14159265358979f;
-}
-
-float median_of(std::vector<float>& v) {
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(mid), v.end());
-  return v[mid];
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
+#include "core/util/median.h"
 
 namespace goris {
 
@@ -13,12 +14,6 @@ namespace {
 struct Samples {
   std::vector<float> roughness, f0, region;
 };
-
-double median_of(std::vector<float> v) {
-  const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return double(*mid);
-}
 
 double mean_of(const std::vector<float>& v) {
   double s = 0;
