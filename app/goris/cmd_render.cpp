@@ -73,6 +73,10 @@ void run_render(const Options& o) {
       save_png(out / (v.name + "_env_light.png"), from_planar(im.env.data(), 3, w, h));
       if (!im.screen_roughness.empty())
         save_png(out / (v.name + "_screen_roughness.png"), from_planar(im.screen_roughness.data(), 1, w, h));
+      if (!im.indirect_traced.empty()) {
+        save_png(out / (v.name + "_indirect_traced.png"), from_planar(im.indirect_traced.data(), 3, w, h));
+        save_png(out / (v.name + "_visibility_traced.png"), from_planar(im.visibility_traced.data(), 1, w, h));
+      }
     } else {
       const RenderedImages r = renderer->forward(gv, cam);
       device_copy(color.data(), Device::CPU, r.color, device, color.size() * sizeof(float));
@@ -112,7 +116,8 @@ void setup_render(CLI::App& root) {
   c->add_flag("--maps", o->maps,
               "Also write every G-buffer channel: alpha, depth and median depth (TURBO on inverse depth), "
               "normal and depth-normal (n*0.5+0.5), diffuse, fresnel, roughness, region, label; intrinsic runs add "
-              "sh_color (D), glossy (G), indirect (L_ind'), visibility (V'), env_light (L_dir'), screen_roughness");
+              "sh_color (D), glossy (G), indirect (L_ind'), visibility (V'), env_light (L_dir'), screen_roughness, "
+              "indirect_traced and visibility_traced (L_ind and V as traced, before the screen-space filter)");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_render(*o); });
 }

@@ -449,7 +449,11 @@ IntrinsicMaps IntrinsicRenderer::render_maps(const GaussianView& gaussians, cons
   m.env = f.shaded.env_radiance.to_host();
   m.indirect = f.L.to_host();
   m.visibility = f.V.to_host();
-  if (f.use_filter) m.screen_roughness = f.rs.to_host();
+  if (f.use_filter) {
+    m.screen_roughness = f.rs.to_host();
+    m.indirect_traced = f.L_raw.to_host();
+    m.visibility_traced = f.V_raw.to_host();
+  }
   m.rays = f.rays.count;
   m.glossy_pixels = f.glossy;
   return m;

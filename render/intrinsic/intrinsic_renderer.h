@@ -45,6 +45,10 @@ struct IntrinsicMaps {
   std::vector<float> visibility;  // V' [H][W]
   std::vector<float> env;         // L_dir' [3][H][W]
   std::vector<float> screen_roughness;  // R_s [H][W] (empty without the filter)
+  // The traced L_ind [3][H][W] and V [H][W] before the screen-space filter (empty without the filter, where
+  // indirect and visibility are these): what the reflection rays brought back, before R_s blurs it. With
+  // coarse tracing, the pixels whose block shares one ray are 0 here.
+  std::vector<float> indirect_traced, visibility_traced;
   std::size_t rays = 0;           // traced rays
   std::size_t glossy_pixels = 0;  // pixels with a reflection ray (= rays unless coarse tracing saved some)
 };

@@ -85,6 +85,7 @@ if(auc_err OR auc LESS 0 OR auc GREATER 1 OR NOT OUT MATCHES "roughness separate
 endif()
 goris_ok(render "${R}" --split test --out "${WORK}/renders" --maps --device cpu)
 expect_count("${WORK}/renders/r_000_glossy.png" 1)
+expect_count("${WORK}/renders/r_000_indirect_traced.png" 1)  # L_ind before the screen-space filter
 
 # Again: the inpainted maps are reused and the fine-tune is already complete.
 goris_ok(remove "${RUN}" --iters 20 --device cpu)
