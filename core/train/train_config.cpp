@@ -99,6 +99,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
   f("intrinsic_region_rough", c.intrinsic.region_rough);
   f("intrinsic_roughness_rough", c.intrinsic.roughness_rough);
+  f("intrinsic_roughness_follows_region", c.intrinsic.roughness_follows_region);
   f("intrinsic_material_losses_in_warmup", c.intrinsic.material_losses_in_warmup);
   f("intrinsic_emit", c.intrinsic.emit);
   f("intrinsic_smoothness", c.intrinsic.smoothness);
@@ -212,7 +213,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.emit != "region" && in.emit != "mask" && in.emit != "max")
     fail("intrinsic_emit must be region, mask or max");
   for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
-                  in.region, in.region_rough, in.roughness_rough, in.label})
+                  in.region, in.region_rough, in.roughness_rough, in.roughness_follows_region, in.label})
     if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");
   for (float lr : {lr.position_init, lr.position_final, lr.sh_dc, lr.sh_rest, lr.opacity, lr.scale, lr.rotation,
                    lr.materials, lr.region, lr.label})

@@ -87,6 +87,11 @@ struct IntrinsicSettings {
                                    // off: it did not help on steel_snowman, see README)
   float roughness_rough = 0.0f;    // mean((1 - M_gt)(alpha - R)): the same for the roughness R (our addition,
                                    // off: it cost steel 2 dB, README "Optional two-sided region loss")
+  // mean(M (alpha - R)), M the rendered region weight held constant: where the model itself shades a
+  // surface as rough (no glossy term), its roughness goes to 1. Nothing in the image sets the roughness
+  // there, so without it the objects keep whatever the start and the glossy pixels' gradients left them.
+  // Needs no glossy mask (our addition, off; README "Roughness that follows the region").
+  float roughness_follows_region = 0.0f;
   float label = 1.0f;              // BCE of the rendered label against the object masks
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed

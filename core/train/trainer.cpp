@@ -453,6 +453,20 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
     out.region += r;
     total += weight * r;
   }
+  if (materials && in.roughness_follows_region > 0) {
+    // rough_region_loss weighs each pixel by 1 - its third argument: pass 1 - M (times the photo weight in
+    // stage 2), so the weight is the rendered region M, a constant here.
+    if (!alpha) alpha.emplace(fwd.alpha, hw, device_);
+    std::vector<float> not_rough(hw);
+    const float* region = plane(extra::kRegion);
+    for (size_t p = 0; p < hw; ++p)
+      not_rough[p] = 1 - region[p] * (view.loss_weight.empty() ? 1.0f : view.loss_weight[p]);
+    const float weight = in.roughness_follows_region;
+    const double r = rough_region_loss<float>(plane(extra::kRoughness), alpha->data(), not_rough.data(), w, h,
+                                              dplane(extra::kRoughness), weight);
+    out.region += r;
+    total += weight * r;
+  }
   if (glossy && materials && in.smoothness > 0) {
     const float s = in.smoothness;
     out.smoothness =

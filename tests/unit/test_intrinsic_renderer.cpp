@@ -402,6 +402,45 @@ TEST(IntrinsicRenderer, RoughnessRoughLossRaisesRoughnessOffTheGlossyMask) {
   EXPECT_GT(r_on, r_off + 1e-4);
 }
 
+TEST(IntrinsicRenderer, RoughnessFollowsTheRenderedRegionWithoutGlossyMasks) {
+  // intrinsic_roughness_follows_region: mean(M (alpha - R)) with the rendered region M held constant. It
+  // needs no glossy mask (the views here have none), raises the roughness of the Gaussians the model
+  // shades as rough (M > 0.5) and leaves the photo loss of the first step alone.
+  TrainConfig cfg = intrinsic_config(6);
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
+  for (TrainView& v : views) v.glossy_mask.clear();
+  auto run = [&](float weight, double* rough_roughness) {
+    TrainConfig c = cfg;
+    c.intrinsic.roughness_follows_region = weight;
+    auto renderer = std::make_shared<IntrinsicRenderer>(c, 3.0f, Device::CPU);
+    Trainer t(c, views, 3.0f, renderer, Trainer::initial_state(c, perturbed_start()));
+    const StepStats first = t.step();
+    while (!t.finished()) t.step();
+    const GaussianModel& m = t.model();
+    const std::vector<float> ex = m.tensor(Param::ExtraLogit).value.to_host();
+    auto sigmoid = [](float x) { return 1.0 / (1.0 + std::exp(-double(x))); };
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < m.count(); ++i) {
+      if (sigmoid(ex[i * extra::kCount + extra::kRegion]) <= 0.5) continue;
+      sum += sigmoid(ex[i * extra::kCount + extra::kRoughness]);
+      ++count;
+    }
+    EXPECT_GT(count, 0u) << "the start should hold rough Gaussians";
+    *rough_roughness = sum / double(std::max<std::size_t>(count, 1));
+    return first;
+  };
+  double r_off = 0, r_on = 0;
+  const StepStats off = run(0.0f, &r_off), on = run(1.0f, &r_on);
+  EXPECT_EQ(off.region, 0.0);  // no glossy mask: no other region term
+  EXPECT_GT(on.region, 0.0);
+  EXPECT_DOUBLE_EQ(on.l1, off.l1);
+  EXPECT_GT(r_on, r_off + 1e-3);
+}
+
 TEST(IntrinsicRenderer, CpuTrainingRepeatsBitForBit) {
   // Two trainings from the same start, densification included, end identical (model, Adam moments,
   // environment map and net): the tracer's and the environment map's gradient sums have a fixed order.
