@@ -46,6 +46,10 @@ Source source_of(Channel c, const FrameTextures& t) {
       return {&t.light, 1, 0};
     case Channel::ScreenRoughness:
       return {&t.light, 1, 1};
+    case Channel::TracedIndirect:
+      return {&t.traced, 0, 0};
+    case Channel::TracedVisibility:
+      return {&t.traced, 1, 3};
     case Channel::LightingMask:
       return {&t.lighting_mask, 1, 0};
     case Channel::InpaintMask:
@@ -93,7 +97,9 @@ void ChannelRenderer::draw(const Framebuffer& target, const FrameTextures& t, co
   program_.set("u_selection_tint", glm::vec3(1.0f, 0.1f, 0.7f));
   program_.set("u_map", src.map);
   program_.set("u_component", src.component);
-  program_.set("u_gain", o.channel == Channel::IndirectLight ? t.indirect_gain : 1.0f);
+  // Both L_ind channels share one exposure, so the traced and the filtered light compare as they are.
+  const bool indirect = o.channel == Channel::IndirectLight || o.channel == Channel::TracedIndirect;
+  program_.set("u_gain", indirect ? t.indirect_gain : 1.0f);
   program_.set("u_inv_near", t.inv_depth_near);
   program_.set("u_inv_far", t.inv_depth_far);
   program_.set("u_overlay_on", o.label_overlay ? 1 : 0);

@@ -7,7 +7,7 @@ namespace goris::ui {
 namespace {
 using N = ChannelNeeds;
 
-constexpr std::array<ChannelInfo, 16> kChannels{{
+constexpr std::array<ChannelInfo, 18> kChannels{{
     {Channel::Final, "final", "Final colour", ColorMap::Rgb, N::Model},
     {Channel::Diffuse, "diffuse", "Diffuse / albedo", ColorMap::Rgb, N::Model},
     {Channel::Fresnel, "f0", "Fresnel F0", ColorMap::Rgb, N::Model},
@@ -22,6 +22,8 @@ constexpr std::array<ChannelInfo, 16> kChannels{{
     {Channel::Visibility, "visibility", "Visibility V", ColorMap::Grey, N::Intrinsic},
     {Channel::EnvLight, "env", "Environment light L_dir", ColorMap::Rgb, N::Intrinsic},
     {Channel::ScreenRoughness, "screen_roughness", "Screen roughness R_s", ColorMap::Grey, N::ScreenFilter},
+    {Channel::TracedIndirect, "lind_traced", "Traced L_ind (before the filter)", ColorMap::Rgb, N::ScreenFilter},
+    {Channel::TracedVisibility, "visibility_traced", "Traced V (before the filter)", ColorMap::Grey, N::ScreenFilter},
     {Channel::LightingMask, "lighting_mask", "Lighting-aware mask", ColorMap::Grey, N::RemovalMasks},
     {Channel::InpaintMask, "inpaint_mask", "Inpainting mask", ColorMap::Grey, N::RemovalMasks},
 }};

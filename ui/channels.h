@@ -26,6 +26,8 @@ enum class Channel {
   Visibility,       // V' (traced, filtered)
   EnvLight,         // L_dir' from the environment map
   ScreenRoughness,  // R_s, the roughness net's blur level (screen-space filter on)
+  TracedIndirect,   // L_ind as the reflection rays brought it back, before the filter (filter on)
+  TracedVisibility, // V as traced, before the filter (filter on)
   LightingMask,     // lighting-aware mask of the target's reflections (RUN/removal/lighting_masks) and its
                     // shadow (RUN/removal/shadow, grey: the share of the light it took)
   InpaintMask,      // pixels no view saw behind the target (RUN/removal/inpaint_masks)

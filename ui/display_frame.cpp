@@ -144,6 +144,12 @@ void add_intrinsic_maps(DisplayFrame& f, const IntrinsicMaps& m) {
   interleave(m.visibility, 0, 1, hw, f.light, 2, 0);
   f.screen_roughness = m.screen_roughness.size() == hw;
   if (f.screen_roughness) interleave(m.screen_roughness, 0, 1, hw, f.light, 2, 1);
+  f.traced.clear();
+  if (f.screen_roughness && m.indirect_traced.size() == 3 * hw && m.visibility_traced.size() == hw) {
+    f.traced.assign(hw * 4, 0.0f);
+    interleave(m.indirect_traced, 0, 3, hw, f.traced, 4, 0);
+    interleave(m.visibility_traced, 0, 1, hw, f.traced, 4, 3);
+  }
 }
 
 void add_selection_coverage(DisplayFrame& f, const std::vector<float>& coverage) {

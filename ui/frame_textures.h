@@ -29,6 +29,7 @@ UploadPath upload_path(Device image_device, bool interop_compiled, bool interop_
 struct FrameTextures {
   GlTexture color, normal, diffuse, fresnel, misc, depth;  // see DisplayFrame for the layouts
   GlTexture glossy, indirect, env, light;  // intrinsic frames only (has_intrinsic)
+  GlTexture traced;                        // with the screen-space filter only (has_screen_roughness)
   GlTexture selection;                     // coverage of the selection (has_selection)
   GlTexture photo;  // the input photo of the nearest training camera (RGB, top row first)
   GlTexture lighting_mask, inpaint_mask;  // RUN/removal/*_masks/VIEW.png of `masks_view` (one channel)

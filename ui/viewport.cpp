@@ -55,7 +55,7 @@ void Viewport::draw(const Rect& rect, ViewportContext& ctx, bool photo_half) {
   } else if (ctx.textures.has_frame()) {
     image_ = fit_aspect(area, float(ctx.textures.width) / float(ctx.textures.height));
     draw_image(ctx, image_, channel);
-    if (channel == Channel::IndirectLight && ctx.textures.indirect_gain > 1.01f) {
+    if ((channel == Channel::IndirectLight || channel == Channel::TracedIndirect) && ctx.textures.indirect_gain > 1.01f) {
       char gain[48];
       std::snprintf(gain, sizeof gain, "auto exposure x%.1f", double(ctx.textures.indirect_gain));
       ImGui::GetWindowDrawList()->AddText(ImVec2(image_.x + 6, image_.y + image_.h - 20), IM_COL32(255, 255, 255, 200),

@@ -109,6 +109,13 @@ TEST(StudioDisplay, RendersIntrinsicMapsAndSelection) {
   }
   EXPECT_FLOAT_EQ(f.light[p * 2], maps.visibility[p]);
   EXPECT_EQ(f.screen_roughness, !maps.screen_roughness.empty());
+  // With the filter, the traced light before it: L_ind rgb and V per pixel.
+  ASSERT_TRUE(f.screen_roughness) << "the test's config has the screen-space filter on";
+  ASSERT_EQ(f.traced.size(), 4 * hw);
+  {
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(f.traced[p * 4 + c], maps.indirect_traced[c * hw + p]);
+    EXPECT_FLOAT_EQ(f.traced[p * 4 + 3], maps.visibility_traced[p]);
+  }
 
   // A later snapshot with a brighter environment: the display reloads it and L_dir follows.
   IntrinsicRenderer brighter(cfg, extent, Device::CPU);

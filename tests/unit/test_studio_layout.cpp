@@ -91,7 +91,7 @@ TEST(StudioChannels, TableIsComplete) {
                     Channel::Depth, Channel::Region, Channel::Label, Channel::Alpha})
     EXPECT_EQ(channel_unavailable(c, radiance), nullptr) << channel_info(c).id;
   for (Channel c : {Channel::Glossy, Channel::IndirectLight, Channel::Visibility, Channel::EnvLight,
-                    Channel::ScreenRoughness})
+                    Channel::ScreenRoughness, Channel::TracedIndirect, Channel::TracedVisibility})
     EXPECT_NE(std::string(channel_unavailable(c, radiance)).find("needs an intrinsic run"), std::string::npos);
   EXPECT_NE(std::string(channel_unavailable(Channel::LightingMask, radiance)).find("needs removal"), std::string::npos);
   EXPECT_NE(std::string(channel_unavailable(Channel::InpaintMask, radiance)).find("needs removal"), std::string::npos);
@@ -100,10 +100,11 @@ TEST(StudioChannels, TableIsComplete) {
   intrinsic.intrinsic = true;
   for (Channel c : {Channel::Glossy, Channel::IndirectLight, Channel::Visibility, Channel::EnvLight})
     EXPECT_EQ(channel_unavailable(c, intrinsic), nullptr) << channel_info(c).id;
-  EXPECT_NE(std::string(channel_unavailable(Channel::ScreenRoughness, intrinsic)).find("screen-space filter"),
-            std::string::npos);
+  for (Channel c : {Channel::ScreenRoughness, Channel::TracedIndirect, Channel::TracedVisibility})
+    EXPECT_NE(std::string(channel_unavailable(c, intrinsic)).find("screen-space filter"), std::string::npos);
   intrinsic.screen_filter = true;
-  EXPECT_EQ(channel_unavailable(Channel::ScreenRoughness, intrinsic), nullptr);
+  for (Channel c : {Channel::ScreenRoughness, Channel::TracedIndirect, Channel::TracedVisibility})
+    EXPECT_EQ(channel_unavailable(c, intrinsic), nullptr) << channel_info(c).id;
   // After removal the masks show for training cameras only.
   intrinsic.removal_masks = true;
   EXPECT_NE(std::string(channel_unavailable(Channel::LightingMask, intrinsic)).find("training cameras"),
