@@ -28,9 +28,9 @@
 #include "core/train/train_setup.h"
 #include "core/util/bench.h"
 #include "core/util/error.h"
+#include "core/util/median.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/train/run_renderer.h"
-#include "core/util/median.h"
 
 namespace {
 using namespace goris;

@@ -16,8 +16,8 @@
 #include "core/compute/memory.h"
 #include "core/util/bench.h"
 #include "core/util/error.h"
-#include "render/raster/rasterizer.h"
 #include "core/util/median.h"
+#include "render/raster/rasterizer.h"
 
 namespace {
 
@@ -133,7 +133,8 @@ Result run(Device dev, const HostScene& hs, int res, int iters) {
   // Drop the warm-up call's CPU time (time_repeated runs one untimed call first).
   fwd_cpu.erase(fwd_cpu.begin()), bwd_cpu.erase(bwd_cpu.begin());
   r.fwd_cpu = goris::median_of(fwd_cpu), r.bwd_cpu = goris::median_of(bwd_cpu);
-  r.pre = goris::median_of(pre), r.bin = goris::median_of(bin), r.blend = goris::median_of(blend), r.bblend = goris::median_of(bblend), r.bgauss = goris::median_of(bgauss);
+  r.pre = goris::median_of(pre), r.bin = goris::median_of(bin), r.blend = goris::median_of(blend);
+  r.bblend = goris::median_of(bblend), r.bgauss = goris::median_of(bgauss);
   r.instances = out->state.n_instances;
   // The rasterizer's own buffers at the peak of the backward pass: forward state and G-buffer, the sort's
   // keys and values (twice: radix sort ping-pong) and the per-instance gradient slots.

@@ -11,8 +11,8 @@
 #include "core/removal/select_kdtree.h"
 #include "core/scene/gaussian_kernels.h"
 #include "core/util/error.h"
-#include "render/removal/inpaint_mask.h"
 #include "core/util/median.h"
+#include "render/removal/inpaint_mask.h"
 
 namespace goris {
 

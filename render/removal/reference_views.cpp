@@ -7,8 +7,8 @@
 
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
-#include "render/raster/rasterizer.h"
 #include "core/util/median.h"
+#include "render/raster/rasterizer.h"
 
 namespace goris {
 

@@ -4,8 +4,8 @@
 #include <string>
 
 #include "core/util/error.h"
-#include "render/raster/rasterizer.h"
 #include "core/util/median.h"
+#include "render/raster/rasterizer.h"
 
 namespace goris {
 
