@@ -145,7 +145,9 @@ void add_intrinsic_maps(DisplayFrame& f, const IntrinsicMaps& m) {
   f.screen_roughness = m.screen_roughness.size() == hw;
   if (f.screen_roughness) interleave(m.screen_roughness, 0, 1, hw, f.light, 2, 1);
   f.traced.clear();
-  if (f.screen_roughness && m.indirect_traced.size() == 3 * hw && m.visibility_traced.size() == hw) {
+  if (f.screen_roughness) {  // the filter's maps come with the traced light it filtered
+    if (m.indirect_traced.size() != 3 * hw || m.visibility_traced.size() != hw)
+      throw Error("display", "the traced L_ind / V maps do not match the frame");
     f.traced.assign(hw * 4, 0.0f);
     interleave(m.indirect_traced, 0, 3, hw, f.traced, 4, 0);
     interleave(m.visibility_traced, 0, 1, hw, f.traced, 4, 3);

@@ -47,8 +47,8 @@ struct DisplayFrame {
   std::vector<float> env;       // [H][W][3] L_dir'
   std::vector<float> light;     // [H][W][2] V', R_s (0 without the screen-space filter)
   bool screen_roughness = false;
-  // [H][W][4] L_ind rgb and V as traced, before the screen-space filter (with the filter only, as
-  // screen_roughness; empty otherwise).
+  // [H][W][4] L_ind rgb and V as traced, before the screen-space filter (filled exactly when
+  // screen_roughness is true; empty otherwise).
   std::vector<float> traced;
   // L_ind' is shown with automatic exposure: indirect light is usually far dimmer than the rest, so its
   // 99th percentile (over the pixels that have any) is mapped to white; never darker than as is.

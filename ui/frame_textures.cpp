@@ -80,7 +80,6 @@ void FrameTextures::upload(const DisplayFrame& f) {
     env.upload(f.width, f.height, 3, f.env.data());
     light.upload(f.width, f.height, 2, f.light.data());
   }
-  has_screen_roughness = has_screen_roughness && f.traced.size() == f.pixels() * 4;
   if (has_screen_roughness) traced.upload(f.width, f.height, 4, f.traced.data());
   has_selection = f.has_selection();
   if (has_selection) put(selection, f.width, f.height, 1, f.selection, f.gpu.selection);

@@ -173,6 +173,21 @@ ColorLossParts color_loss(const T* pred, const T* target, int channels, int widt
   return p;
 }
 
+ColorLossParts weighted_color_loss(const float* pred, const float* target, const float* weight, int w, int h,
+                                   float* grad, float lambda_ssim, float scale) {
+  const size_t hw = size_t(w) * size_t(h);
+  std::vector<float> mixed(3 * hw), g(3 * hw, 0.0f);
+  for (int c = 0; c < 3; ++c)
+    for (size_t p = 0; p < hw; ++p) {
+      const size_t i = c * hw + p;
+      mixed[i] = weight[p] * pred[i] + (1 - weight[p]) * target[i];
+    }
+  const ColorLossParts parts = color_loss<float>(mixed.data(), target, 3, w, h, g.data(), lambda_ssim);
+  for (int c = 0; c < 3; ++c)
+    for (size_t p = 0; p < hw; ++p) grad[c * hw + p] += scale * weight[p] * g[c * hw + p];
+  return parts;
+}
+
 #define GORIS_INSTANTIATE(T)                                                                               \
   template T l1_loss<T>(const T*, const T*, size_t, T*, T);                                                \
   template T mse<T>(const T*, const T*, size_t);                                                           \

@@ -33,4 +33,10 @@ template <class T>
 ColorLossParts color_loss(const T* pred, const T* target, int channels, int width, int height, T* grad = nullptr,
                           T lambda_ssim = T(0.2), T weight = T(1));
 
+// The colour loss on the pixels a weight image ([H][W] in [0, 1]) selects: L(w pred + (1 - w) target, target),
+// so pixels of weight 0 contribute neither loss nor gradient and SSIM windows see the target there;
+// dL/dpred = w dL/dpred' (exact chain rule), scaled by `scale` and accumulated into grad. 3 channels.
+ColorLossParts weighted_color_loss(const float* pred, const float* target, const float* weight, int w, int h,
+                                   float* grad, float lambda_ssim, float scale);
+
 }  // namespace goris
