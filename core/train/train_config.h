@@ -68,6 +68,9 @@ struct IntrinsicSettings {
   // With prune_mirror_world on: prune again after every densification of the shading phase, so the mirror
   // world cannot grow back while the glossy term learns to carry the reflections.
   bool prune_mirror_world_repeat = true;
+  // From the last warm-up iteration on, keep the Gaussians over glossy pixels on the cameras' side of the
+  // glossy plane (core/train/glossy_plane.h). For planar glossy surfaces; off until measured.
+  bool glossy_plane = false;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;

@@ -313,6 +313,18 @@ StepStats Trainer::step() {
                         std::to_string(removed) + " of " + std::to_string(before) +
                         (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying");
   }
+  if (config_.mode == "intrinsic" && config_.intrinsic.glossy_plane && it >= config_.shading_from()) {
+    if (!glossy_plane_.started()) {
+      const std::string note = glossy_plane_.start(m, views_);
+      if (glossy_plane_.pruned() > 0) {
+        state_.stats.reset(m.count(), device_);
+        if (config_.filter_3d) compute_filter3d(m, cameras());
+      }
+      out.densify_note += (out.densify_note.empty() ? "" : "; ") + note;
+    } else {
+      glossy_plane_.apply(m, views_, it);
+    }
+  }
 
   // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY), in both
   // modes, so that a radiance run's PLY opens with colours in the editor's diffuse viewport too.

@@ -18,6 +18,7 @@
 #include "core/train/densify.h"
 #include "core/train/densify_stop.h"
 #include "core/train/differentiable_renderer.h"
+#include "core/train/glossy_plane.h"
 #include "core/train/param_groups.h"
 #include "core/train/train_config.h"
 
@@ -162,6 +163,7 @@ class Trainer {
   // `out` skipped, lowers the learning rates and completes the iteration without an update.
   void skip_step(int it, const std::string& problem, StepStats& out);
   int consecutive_skips_ = 0;
+  GlossyPlaneConstraint glossy_plane_;  // intrinsic.glossy_plane; fitted again after a resume
   std::vector<ParamGroup> active_groups() const;
   // Intrinsic-mode losses on the host images; adds their gradients. Returns the weighted sum.
   double intrinsic_losses(const TrainView& view, const RenderedImages& fwd, int it, std::vector<float>& g_normal,

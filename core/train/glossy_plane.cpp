@@ -1,0 +1,98 @@
+#include "core/train/glossy_plane.h"
+
+#include <cstdio>
+
+#include "core/compute/parallel_for.h"
+#include "core/removal/selection_points.h"
+#include "core/train/densify.h"
+#include "core/train/trainer.h"
+
+namespace goris {
+
+std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const std::vector<TrainView>& views) {
+  const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
+  const std::size_t n = model.count();
+  std::vector<std::uint32_t> on_glossy(n, 0), in_frame(n, 0);
+  for (const TrainView& v : views) {
+    const Camera& c = v.camera;
+    if (v.glossy_mask.size() != std::size_t(c.width) * std::size_t(c.height)) continue;
+    parallel_for(Device::CPU, n, [&](std::size_t i) {
+      const long long pixel = c.pixel_of(c.to_camera(glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2])));
+      if (pixel < 0) return;
+      ++in_frame[i];
+      if (v.glossy_mask[std::size_t(pixel)] > 0.5f) ++on_glossy[i];
+    }, 1024);
+  }
+  std::vector<std::uint8_t> over(n, 0);
+  for (std::size_t i = 0; i < n; ++i) over[i] = 2 * on_glossy[i] > in_frame[i];
+  return over;
+}
+
+MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
+                                 const std::vector<std::uint8_t>& over_glossy) {
+  const SelectionPoints points = selection_points(model);
+  const std::vector<glm::vec3> flat = flat_normals(model);
+  std::vector<glm::vec3> centres, normals;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (over_glossy[i]) centres.push_back(points.position[i]), normals.push_back(flat[i]);
+  MirrorPlane plane = fit_mirror_plane(centres, {}, normals);
+  if (!plane.found) return plane;
+  std::size_t above = 0, cameras = 0;
+  for (const TrainView& v : views) above += plane.signed_distance(glm::dvec3(v.camera.center())) > 0, ++cameras;
+  if (2 * above < cameras) plane.normal = -plane.normal, plane.offset = -plane.offset;
+  return plane;
+}
+
+namespace {
+
+// The flagged centres more than the plane's tolerance beyond it.
+template <typename F>
+void for_each_beyond(const std::vector<float>& pos, const MirrorPlane& plane, const std::vector<std::uint8_t>& flags,
+                     F&& f) {
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    if (!flags[i]) continue;
+    const glm::dvec3 p(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    const double d = plane.signed_distance(p);
+    if (d < -plane.tolerance) f(i, p, d);
+  }
+}
+
+}  // namespace
+
+std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector<TrainView>& views) {
+  started_ = true;
+  over_glossy_ = over_glossy_pixels(model, views);
+  plane_ = glossy_surface_plane(model, views, over_glossy_);
+  if (!plane_.found) return "glossy plane: none found, not constrained";
+  const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
+  std::vector<std::uint8_t> keep(model.count(), 1);
+  for_each_beyond(pos, plane_, over_glossy_, [&](std::size_t i, const glm::dvec3&, double) { keep[i] = 0; });
+  const std::size_t before = model.count();
+  pruned_ = prune_gaussians(model, keep);
+  over_glossy_.clear();  // refreshed at the first apply()
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "glossy plane n = (%.3f, %.3f, %.3f), n.x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
+                plane_.normal.x, plane_.normal.y, plane_.normal.z, plane_.offset, plane_.inliers, plane_.glossy, pruned_,
+                before);
+  return buf;
+}
+
+std::size_t GlossyPlaneConstraint::apply(GaussianModel& model, const std::vector<TrainView>& views, int it) {
+  if (!plane_.found) return 0;
+  if (over_glossy_.size() != model.count() || it - refreshed_at_ >= kRefreshInterval) {
+    over_glossy_ = over_glossy_pixels(model, views);
+    refreshed_at_ = it;
+  }
+  ParamTensor& t = model.tensor(Param::Position);
+  std::vector<float> pos = t.value.to_host();
+  std::size_t moved = 0;
+  for_each_beyond(pos, plane_, over_glossy_, [&](std::size_t i, const glm::dvec3& p, double d) {
+    const glm::dvec3 q = p - (d + 0.5 * plane_.tolerance) * plane_.normal;  // inside the band, float-safe
+    pos[3 * i] = float(q.x), pos[3 * i + 1] = float(q.y), pos[3 * i + 2] = float(q.z);
+    ++moved;
+  });
+  if (moved) t.value.upload(pos.data(), pos.size());
+  return moved;
+}
+
+}  // namespace goris

@@ -1,0 +1,59 @@
+#pragma once
+// A planar glossy surface (a table top, a polished floor) kept opaque to the mirror world while the shading
+// learns. The radiance warm-up explains a mirror's reflections by virtual geometry behind it, seen through
+// it (core/train/mirror_world.h). Pruning it once at the end of the warm-up is not enough: on steel_snowman
+// the optimiser moved Gaussians back under the table top after the shading started and rebuilt the mirror
+// snowman there (z -0.18 to -0.22, opacity 0.94, tilted 50-81 degrees: docs/bench/NOTES.md, session 28), and
+// the reflected rays then hit the table's own tilted Gaussians.
+//
+// `intrinsic_glossy_plane` (off by default) fits the plane the centres on glossy pixels lie on at the last
+// warm-up iteration (RANSAC over flat Gaussians' normals, core/removal/mirror_twins.h), removes the Gaussians
+// beyond it that lie over glossy pixels, and from then on projects every such centre back onto the cameras'
+// side after each update (a projected gradient step). Which Gaussians lie over glossy pixels is refreshed
+// every `kRefreshInterval` iterations and whenever the count changes. Real geometry under the surface that
+// the cameras see directly (a table's legs) lies over non-glossy pixels and is left alone.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/removal/mirror_twins.h"
+#include "core/scene/gaussians.h"
+
+namespace goris {
+
+struct TrainView;  // core/train/trainer.h, which holds a GlossyPlaneConstraint
+
+// Per Gaussian: 1 when its centre falls on a glossy pixel in more than half of the views with glossy masks
+// whose frame it is in.
+std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const std::vector<TrainView>& views);
+
+// The plane the centres over glossy pixels lie on (fit_mirror_plane with the flat Gaussians' normals), its
+// normal turned to the side most camera centres are on. found = false when no plane holds enough of them.
+MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
+                                 const std::vector<std::uint8_t>& over_glossy);
+
+class GlossyPlaneConstraint {
+ public:
+  static constexpr int kRefreshInterval = 100;
+
+  // Fits the plane and prunes beyond it; returns a note for the log. The caller resets what is sized by the
+  // count (when pruned() > 0).
+  std::string start(GaussianModel& model, const std::vector<TrainView>& views);
+  // After an update at iteration `it`: refreshes the flags when due, then moves the flagged centres beyond
+  // the plane back into the inlier band (at -tolerance / 2). Returns how many moved. Does nothing without a plane.
+  std::size_t apply(GaussianModel& model, const std::vector<TrainView>& views, int it);
+
+  bool started() const { return started_; }
+  const MirrorPlane& plane() const { return plane_; }
+  std::size_t pruned() const { return pruned_; }
+
+ private:
+  bool started_ = false;
+  MirrorPlane plane_;
+  std::size_t pruned_ = 0;
+  std::vector<std::uint8_t> over_glossy_;
+  int refreshed_at_ = -1;
+};
+
+}  // namespace goris

@@ -1,0 +1,107 @@
+// The glossy plane constraint (core/train/glossy_plane.h): on a table of flat Gaussians seen from above, the
+// plane is the table top with its normal towards the cameras; the mirror world under the table goes at the
+// start, a Gaussian that moves under the table later is put back on it, and what lies under the plane away
+// from the glossy pixels (a leg) or above it (an object) is left alone. Without glossy masks nothing happens.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/train/glossy_plane.h"
+#include "core/train/trainer.h"
+#include "tests/unit/test_selection_scene.h"
+
+namespace goris {
+namespace {
+
+constexpr int kSize = 64;
+constexpr float kTable = 1.0f;  // the table top is z = 0, |x|, |y| <= kTable
+
+// A camera above the table looking at its centre; its glossy mask holds the pixels whose ray meets the top.
+TrainView view_from(glm::vec3 eye) {
+  TrainView v;
+  v.camera = test::look_at(eye, {0.0f, 0.0f, 0.0f}, kSize, kSize, 40.0f);
+  const Camera& c = v.camera;
+  v.glossy_mask.assign(std::size_t(kSize) * kSize, 0.0f);
+  const glm::mat3 to_world = glm::transpose(c.R);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const glm::vec3 d = to_world * glm::vec3((float(x) + 0.5f - c.cx) / c.fx, (float(y) + 0.5f - c.cy) / c.fy, 1.0f);
+      const float t = -eye.z / d.z;
+      const glm::vec3 hit = eye + t * d;
+      if (t > 0 && std::abs(hit.x) <= kTable && std::abs(hit.y) <= kTable)
+        v.glossy_mask[std::size_t(y) * kSize + std::size_t(x)] = 1.0f;
+    }
+  return v;
+}
+
+struct Scene {
+  std::vector<TrainView> views;
+  GaussianModel model;
+  std::size_t table = 0, mirror = 0, leg = 0, object = 0;  // counts, in this order in the model
+};
+
+Scene table_scene() {
+  Scene s;
+  for (glm::vec3 eye : {glm::vec3(2.0f, 2.0f, 3.0f), glm::vec3(-2.0f, 2.0f, 3.0f), glm::vec3(2.0f, -2.0f, 3.0f),
+                        glm::vec3(-2.0f, -2.0f, 3.0f)})
+    s.views.push_back(view_from(eye));
+  std::vector<test::TestGaussian> gs;
+  for (int i = 0; i < 15; ++i)
+    for (int j = 0; j < 15; ++j) gs.push_back({{-0.9f + 0.128f * float(i), -0.9f + 0.128f * float(j), 0.0f}});
+  s.table = gs.size();
+  for (int i = 0; i < 6; ++i)  // the mirror world: an object's copy under the table
+    for (int j = 0; j < 6; ++j) gs.push_back({{-0.3f + 0.1f * float(i), -0.3f + 0.1f * float(j), -0.3f}});
+  s.mirror = gs.size() - s.table;
+  for (int k = 0; k < 5; ++k) gs.push_back({{2.0f, 0.0f, -0.1f * float(k + 1)}});  // a leg off the table's edge
+  s.leg = 5;
+  for (int k = 0; k < 10; ++k) gs.push_back({{0.05f * float(k) - 0.2f, 0.0f, 0.3f}});  // the object
+  s.object = 10;
+  s.model = test::make_model(gs);
+  float* ls = s.model.values(Param::LogScale);
+  for (std::size_t i = 0; i < s.table; ++i) ls[3 * i + 2] = std::log(0.004f);  // flat, normal +z
+  return s;
+}
+
+TEST(GlossyPlane, PrunesTheMirrorWorldAndKeepsCentresOnTheCamerasSide) {
+  Scene s = table_scene();
+  const std::vector<std::uint8_t> over = over_glossy_pixels(s.model, s.views);
+  for (std::size_t i = 0; i < s.table + s.mirror; ++i) EXPECT_EQ(over[i], 1) << "table or mirror world " << i;
+  for (std::size_t i = s.table + s.mirror; i < s.table + s.mirror + s.leg; ++i) EXPECT_EQ(over[i], 0) << "leg " << i;
+
+  GlossyPlaneConstraint constraint;
+  const std::string note = constraint.start(s.model, s.views);
+  ASSERT_TRUE(constraint.plane().found) << note;
+  EXPECT_GT(constraint.plane().normal.z, 0.999) << "turned towards the cameras";
+  EXPECT_NEAR(constraint.plane().offset, 0.0, 1e-4);
+  EXPECT_EQ(constraint.pruned(), s.mirror) << note;
+  ASSERT_EQ(s.model.count(), s.table + s.leg + s.object);
+  EXPECT_NE(note.find("pruned 36 of"), std::string::npos) << note;
+
+  // A table Gaussian sinks under the top, the leg moves: only the first is put back (at -tolerance / 2).
+  float* pos = s.model.values(Param::Position);
+  pos[3 * 7 + 2] = -0.2f;
+  const std::size_t leg0 = s.table;
+  pos[3 * leg0 + 2] = -0.45f;
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4001), 1u);
+  pos = s.model.values(Param::Position);
+  EXPECT_NEAR(pos[3 * 7 + 2], -0.5 * constraint.plane().tolerance, 1e-6);
+  EXPECT_FLOAT_EQ(pos[3 * leg0 + 2], -0.45f);
+  EXPECT_FLOAT_EQ(pos[3 * (s.table + s.leg) + 2], 0.3f);
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4002), 0u) << "nothing left beyond the plane";
+}
+
+TEST(GlossyPlane, WithoutGlossyMasksNothingIsFoundOrMoved) {
+  Scene s = table_scene();
+  for (TrainView& v : s.views) v.glossy_mask.clear();
+  GlossyPlaneConstraint constraint;
+  const std::string note = constraint.start(s.model, s.views);
+  EXPECT_TRUE(constraint.started());
+  EXPECT_FALSE(constraint.plane().found);
+  EXPECT_NE(note.find("none found"), std::string::npos) << note;
+  EXPECT_EQ(s.model.count(), s.table + s.mirror + s.leg + s.object);
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4001), 0u);
+}
+
+}  // namespace
+}  // namespace goris
