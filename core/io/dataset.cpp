@@ -71,6 +71,12 @@ Image load_view_glossy_mask(const View& v, Device device) {
   return fit_to_view(load_mask(p, Device::CPU), p, v, device);
 }
 
+std::optional<Image> load_view_alpha(const View& v, Device device) {
+  std::optional<Image> a = load_alpha(v.image, Device::CPU);
+  if (!a) return std::nullopt;
+  return fit_to_view(std::move(*a), v.image, v, device);
+}
+
 Image load_view_full_image(const View& v, const DatasetOptions& o, Device device) {
   const auto& p = require(v.full_image, v, "full_ image (the view with the target)");
   return fit_to_view(load_image(p, Device::CPU, o.background), p, v, device);

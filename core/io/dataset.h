@@ -85,6 +85,8 @@ Image load_view_image(const View& view, const DatasetOptions& options, Device de
 // has no such mask.
 Image load_view_object_mask(const View& view, Device device = Device::CPU);
 Image load_view_glossy_mask(const View& view, Device device = Device::CPU);
+// The view image's alpha channel at the camera's size, or nothing when the image has none.
+std::optional<Image> load_view_alpha(const View& view, Device device = Device::CPU);
 // GOR-IS test views: the render with the target, at view.camera's size.
 Image load_view_full_image(const View& view, const DatasetOptions& options, Device device = Device::CPU);
 

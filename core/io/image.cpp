@@ -119,6 +119,14 @@ Image load_mask(const fs::path& path, Device device) {
   return to_device(std::move(out), device);
 }
 
+std::optional<Image> load_alpha(const fs::path& path, Device device) {
+  Image src = read_image(path);
+  if (src.channels != 4) return std::nullopt;
+  Image out(src.width, src.height, 1, Device::CPU);
+  for (size_t i = 0; i < src.pixel_count(); ++i) out.pixels[i] = src.pixels[4 * i + 3];
+  return to_device(std::move(out), device);
+}
+
 Image resize_image(const Image& image, int width, int height) {
   if (width <= 0 || height <= 0)
     throw Error("resize_image: invalid target size " + std::to_string(width) + "x" + std::to_string(height));

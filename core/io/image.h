@@ -3,6 +3,7 @@
 // 16-bit / 65535, float files as they are) with NO gamma change: an sRGB-encoded PNG stays sRGB-encoded,
 // exactly what the photos' loss functions compare against.
 #include <filesystem>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -37,6 +38,9 @@ Image load_image(const std::filesystem::path& path, Device device, glm::vec3 bac
 // A one-channel mask in [0, 1] on `device`: grey as is; colour masks use the largest of R, G, B, times the
 // alpha when there is one (transparent = outside the mask).
 Image load_mask(const std::filesystem::path& path, Device device = Device::CPU);
+
+// The alpha channel in [0, 1] as a one-channel image on `device`, or nothing when the file has none.
+std::optional<Image> load_alpha(const std::filesystem::path& path, Device device = Device::CPU);
 
 // Width and height from the file header (PNG IHDR, JPEG SOF) without decoding the pixels; other formats
 // fall back to a full decode. Throws goris::Error naming the file when it is missing or not an image.

@@ -42,6 +42,7 @@ void visit_fields(Config& c, F&& f) {
   f("lr_region", c.lr.region);
   f("lr_label", c.lr.label);
   f("lambda_ssim", c.lambda_ssim);
+  f("alpha_weight", c.alpha_weight);
   f("depth_normal_weight", c.depth_normal_weight);
   f("depth_normal_from", c.depth_normal_from);
   f("depth_normal_median_ratio", c.depth_normal_median_ratio);
@@ -146,6 +147,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(random_init_box_ratio > 0)) fail("random_init_box_ratio must be positive");
   if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
   if (!(depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
+  if (!(alpha_weight >= 0) || !std::isfinite(alpha_weight)) fail("alpha_weight must be finite and >= 0 (0 = off)");
   if (!(depth_distortion_weight >= 0 && std::isfinite(depth_distortion_weight)))
     fail("depth_distortion_weight must be finite and >= 0");
   if (depth_distortion_from < 0) fail("depth_distortion_from must be >= 0");

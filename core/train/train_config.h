@@ -159,6 +159,10 @@ struct TrainConfig {
   // Optimisation.
   LearningRates lr;
   float lambda_ssim = 0.2f;            // colour loss (1 - l) L1 + l (1 - SSIM)
+  // L1 between the rendered alpha and the images' alpha channel (views without one are skipped). Over a
+  // black background a dark surface can be half transparent and still match the colour; steel_snowman's
+  // table was (alpha 0.3-0.7 after the warm-up), which lets a mirror world show through it. 0 = off.
+  float alpha_weight = 0.0f;
   float depth_normal_weight = 0.05f;   // RaDe-GS depth-normal consistency ...
   // ... from this iteration (0 weight = off). Deliberately NOT scaled with the run length like the other
   // schedule points: runs shorter than 7K never use it. Scaled (from 933 of a 4K run at 128 px) it cost

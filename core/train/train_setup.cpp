@@ -47,6 +47,7 @@ std::vector<TrainView> load_train_views(const std::vector<View>& views, const Da
     TrainView tv{v.name, v.camera, to_planar_rgb(img), {}, {}, {}};
     if (v.glossy_mask) tv.glossy_mask = load_view_glossy_mask(v).pixels.to_host();
     if (v.object_mask) tv.object_mask = load_view_object_mask(v).pixels.to_host();
+    if (std::optional<Image> a = load_view_alpha(v)) tv.alpha = a->pixels.to_host();
     out.push_back(std::move(tv));
   }
   return out;

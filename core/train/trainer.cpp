@@ -34,8 +34,8 @@ constexpr ParamGroup kRadianceGroups[] = {ParamGroup::Position, ParamGroup::Scal
                                           ParamGroup::Opacity,  ParamGroup::ShDc,    ParamGroup::ShRest};
 
 // Every loss term of a step by name (for messages about a bad step).
-std::array<std::pair<const char*, double>, 10> loss_term_list(const StepStats& s) {
-  return {{{"l1", s.l1}, {"ssim", s.ssim}, {"depth_normal", s.depth_normal}, {"distortion", s.distortion},
+std::array<std::pair<const char*, double>, 11> loss_term_list(const StepStats& s) {
+  return {{{"l1", s.l1}, {"ssim", s.ssim}, {"alpha", s.alpha}, {"depth_normal", s.depth_normal}, {"distortion", s.distortion},
            {"normal_prior", s.normal_prior},
            {"smoothness", s.smoothness}, {"region", s.region}, {"label", s.label}, {"appearance", s.appearance},
            {"material", s.material}}};
@@ -200,6 +200,12 @@ StepStats Trainer::step() {
         config_.depth_normal_median_ratio, g_depth.data(), g_alpha.data(), g_median.data(), g_normal.data(),
         config_.depth_normal_weight);
     out.loss += config_.depth_normal_weight * out.depth_normal;
+  }
+  if (config_.alpha_weight > 0 && view.alpha.size() == hw) {
+    const HostView alpha(fwd.alpha, hw, device_);
+    if (g_alpha.empty()) g_alpha.assign(hw, 0.0f);
+    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g_alpha.data(), config_.alpha_weight);
+    out.loss += config_.alpha_weight * out.alpha;
   }
   if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g_normal, g_extras, g_detached, out);
   if (view.inpaint) out.loss += inpaint_losses(view, fwd, g_color, g_base, g_normal, g_detached, out);

@@ -46,6 +46,7 @@ struct TrainView {
   std::vector<float> glossy_mask;   // [H][W] in [0, 1]: the paper's M_gt
   std::vector<float> object_mask;   // [H][W] in [0, 1]: the target
   std::vector<float> normal_prior;  // [3][H][W] unit normals in camera space (OpenCV axes, facing the camera)
+  std::vector<float> alpha;         // [H][W] the image's alpha channel (coverage), when it has one
   // Stage 2: weight of the photo losses per pixel ([H][W], empty = 1 everywhere; 0 under the target and
   // its reflections), and the inpainting targets (null = none for this view).
   std::vector<float> loss_weight;
@@ -76,6 +77,7 @@ struct TrainProgress {
 
 struct StepStats {
   double loss = 0, l1 = 0, ssim = 0, depth_normal = 0, distortion = 0, psnr = 0;
+  double alpha = 0;  // alpha_weight's L1 against the image's alpha (0 when off)
   // Intrinsic-mode terms (unweighted; 0 when off).
   double normal_prior = 0, smoothness = 0, region = 0, label = 0;
   double appearance = 0, material = 0;  // stage 2 (0 when off)

@@ -69,6 +69,24 @@ TEST(Image, RgbaIsCompositedOnTheBackground) {
   EXPECT_NEAR(white.pixels[1], 0.0f, 1e-6);  // opaque pixel ignores the background
 }
 
+TEST(Image, AlphaComesFromRgbaImagesOnly) {
+  const auto dir = test::scratch_dir("image_alpha");
+  Image rgba(2, 1, 4);
+  const float px[8] = {1, 0, 0, 1, 0, 1, 0, 0.2f};
+  for (int i = 0; i < 8; ++i) rgba.pixels[i] = px[i];
+  save_png(dir / "a.png", rgba, true);
+  const std::optional<Image> a = load_alpha(dir / "a.png");
+  ASSERT_TRUE(a.has_value());
+  ASSERT_EQ(a->channels, 1);
+  EXPECT_NEAR(a->pixels[0], 1.0f, 1e-6);
+  EXPECT_NEAR(a->pixels[1], 0.2f, 1e-4);
+  Image rgb(2, 1, 3);
+  for (int i = 0; i < 6; ++i) rgb.pixels[i] = 0.5f;
+  save_png(dir / "b.png", rgb);
+  EXPECT_FALSE(load_alpha(dir / "b.png").has_value());
+  test::expect_error([&] { load_alpha(dir / "missing.png"); }, "missing.png");
+}
+
 TEST(Image, GreyExpandsToRgbAndMasksAreOneChannel) {
   const auto dir = test::scratch_dir("image_grey");
   test::write_png(dir / "g.png", 4, 3, 1, 0.6f);

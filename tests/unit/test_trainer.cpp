@@ -452,6 +452,47 @@ TEST(Trainer, DepthNormalConsistencyTrainsWithoutHarm) {
   EXPECT_GT(mean_psnr(t), 30.0);
 }
 
+TEST(Trainer, AlphaLossMakesABlackSceneOverBlackOpaque) {
+  // Black Gaussians over a black background: the colour says nothing about their opacity, so a half
+  // transparent start stays so; the images' alpha (alpha_weight) makes it opaque again.
+  auto run = [](float alpha_weight) {
+    TrainConfig config = refit_config(150);
+    config.alpha_weight = alpha_weight;
+    Scene s = make_scene(config, 32);
+    GaussianModel gt = ground_truth_scene(40, 11);
+    for (size_t i = 0; i < gt.count(); ++i)
+      for (int c = 0; c < 3; ++c) gt.values(Param::Sh)[i * 48 + c] = -0.5f / 0.28209479177387814f;
+    for (TrainView& v : s.views) {
+      const RenderedImages r = s.renderer->forward(gt.view(false), v.camera);
+      v.image.assign(r.color, r.color + v.image.size());
+      v.alpha.assign(r.alpha, r.alpha + v.image.size() / 3);
+    }
+    GaussianModel start = gt.copy_to(Device::CPU);
+    for (size_t i = 0; i < start.count(); ++i) start.values(Param::OpacityLogit)[i] = -2.0f;
+    Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, std::move(start)));
+    auto alpha_error = [&] {
+      double sum = 0;
+      for (const TrainView& v : t.views()) {
+        const RenderedImages r = s.renderer->forward(t.model().view(false), v.camera);
+        sum += l1_loss<float>(r.alpha, v.alpha.data(), v.alpha.size());
+      }
+      return sum / double(t.views().size());
+    };
+    const double before = alpha_error();
+    double logged = 0;
+    while (!t.finished()) logged = t.step().alpha;
+    if (alpha_weight > 0) EXPECT_GT(logged, 0.0) << "the step reports its alpha term";
+    return std::make_pair(before, alpha_error());
+  };
+  const auto [before, without] = run(0.0f);
+  const auto [before2, with] = run(0.5f);
+  std::printf("alpha L1: %.4f at the start, %.4f without the alpha loss, %.4f with it\n", before, without, with);
+  EXPECT_GT(before, 0.05);
+  EXPECT_EQ(before, before2);
+  EXPECT_GT(without, 0.8 * before) << "the colour alone should not fix the opacity here";
+  EXPECT_LT(with, 0.3 * before);
+}
+
 TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
   // 2DGS's depth distortion from its scaled start (3000 of 30K -> 40 of 400): 0 before, finite and
   // positive after; the re-fit still converges and the term falls.
