@@ -71,7 +71,7 @@ std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector
   pruned_ = prune_gaussians(model, keep);
   over_glossy_.clear();  // refreshed at the first apply()
   char buf[200];
-  std::snprintf(buf, sizeof buf, "glossy plane n = (%.3f, %.3f, %.3f), n.x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
+  std::snprintf(buf, sizeof buf, "glossy plane n = (%.3f, %.3f, %.3f), n . x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
                 plane_.normal.x, plane_.normal.y, plane_.normal.z, plane_.offset, plane_.inliers, plane_.glossy, pruned_,
                 before);
   return buf;

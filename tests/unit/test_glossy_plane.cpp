@@ -9,6 +9,8 @@
 
 #include "core/train/glossy_plane.h"
 #include "core/train/trainer.h"
+#include "render/intrinsic/intrinsic_renderer.h"
+#include "tests/support/intrinsic_scene.h"
 #include "tests/unit/test_selection_scene.h"
 
 namespace goris {
@@ -101,6 +103,52 @@ TEST(GlossyPlane, WithoutGlossyMasksNothingIsFoundOrMoved) {
   EXPECT_NE(note.find("none found"), std::string::npos) << note;
   EXPECT_EQ(s.model.count(), s.table + s.mirror + s.leg + s.object);
   EXPECT_EQ(constraint.apply(s.model, s.views, 4001), 0u);
+}
+
+TEST(GlossyPlane, TheTrainerPrunesAtShadingStartAndHoldsTheFloorAfterwards) {
+  // floor_and_blob: a flat glossy floor at z = 0 under a rough blob. Eight Gaussians under the floor's
+  // centre play the mirror world (the depth-based prune is off, so only the plane can remove them).
+  TrainConfig cfg = test::intrinsic_config(8);
+  cfg.intrinsic.warmup = 4;
+  cfg.intrinsic.prune_mirror_world = 0;
+  cfg.intrinsic.glossy_plane = true;
+  cfg.densify.from_iter = 1 << 30;
+  cfg.densify.until_iter = 0;
+  cfg.densify.opacity_reset_interval = 1 << 30;
+  ASSERT_EQ(cfg.shading_from(), 4);
+  const std::vector<TrainView> views = test::shaded_views(cfg, test::floor_and_blob(4));
+  GaussianModel start = test::perturbed_start();
+  const std::size_t floor_count = 64, before = start.count();
+  GaussianModel with_mirror(Device::CPU);
+  with_mirror.allocate(before + 8);
+  for (int p = 0; p < kParamCount; ++p) {  // copies of blob Gaussian 70 appended
+    const ParamTensor& src = start.tensor(Param(p));
+    std::vector<float> v = src.value.to_host();
+    const std::vector<float> one(v.begin() + 70 * src.width, v.begin() + 71 * src.width);
+    for (int k = 0; k < 8; ++k) v.insert(v.end(), one.begin(), one.end());
+    with_mirror.tensor(Param(p)).value.upload(v.data(), v.size());
+  }
+  with_mirror.sh_degree = start.sh_degree;
+  with_mirror.max_sh_degree = start.max_sh_degree;
+  float* pos = with_mirror.values(Param::Position);
+  for (int k = 0; k < 8; ++k) {
+    float* p = pos + 3 * (before + std::size_t(k));
+    p[0] = -0.15f + 0.1f * float(k % 4), p[1] = -0.1f + 0.2f * float(k / 4), p[2] = -0.3f;
+  }
+  auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
+  Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, std::move(with_mirror)));
+  std::string note;
+  while (t.state().iteration < 4) note += t.step().densify_note;
+  EXPECT_NE(note.find(", 1.000), n . x = 0.000"), std::string::npos) << note;
+  EXPECT_NE(note.find("pruned 8 of 84"), std::string::npos) << note;
+  ASSERT_EQ(t.model().count(), before);
+  // A floor Gaussian pushed under the floor is back on it after the next update.
+  t.model().values(Param::Position)[3 * 10 + 2] = -0.25f;
+  t.step();
+  const float z = t.model().values(Param::Position)[3 * 10 + 2];
+  EXPECT_GT(z, -0.05f);
+  EXPECT_LT(z, 0.05f);
+  for (std::size_t i = 0; i < floor_count; ++i) EXPECT_GT(t.model().values(Param::Position)[3 * i + 2], -0.05f) << i;
 }
 
 }  // namespace
