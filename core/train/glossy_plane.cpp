@@ -77,22 +77,31 @@ std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector
   return buf;
 }
 
-std::size_t GlossyPlaneConstraint::apply(GaussianModel& model, const std::vector<TrainView>& views, int it) {
-  if (!plane_.found) return 0;
+GlossyPlaneConstraint::Step GlossyPlaneConstraint::apply(GaussianModel& model, const std::vector<TrainView>& views,
+                                                         int it, bool prune_sinkers) {
+  Step step;
+  if (!plane_.found) return step;
   if (over_glossy_.size() != model.count() || it - refreshed_at_ >= kRefreshInterval) {
+    if (prune_sinkers && sank_.size() == model.count()) {
+      std::vector<std::uint8_t> keep(sank_.size());
+      for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !sank_[i];
+      step.pruned = prune_gaussians(model, keep);
+      sinkers_pruned_ += step.pruned;
+    }
     over_glossy_ = over_glossy_pixels(model, views);
+    sank_.assign(model.count(), 0);
     refreshed_at_ = it;
   }
   ParamTensor& t = model.tensor(Param::Position);
   std::vector<float> pos = t.value.to_host();
-  std::size_t moved = 0;
   for_each_beyond(pos, plane_, over_glossy_, [&](std::size_t i, const glm::dvec3& p, double d) {
     const glm::dvec3 q = p - (d + 0.5 * plane_.tolerance) * plane_.normal;  // inside the band, float-safe
     pos[3 * i] = float(q.x), pos[3 * i + 1] = float(q.y), pos[3 * i + 2] = float(q.z);
-    ++moved;
+    sank_[i] = 1;
+    ++step.moved;
   });
-  if (moved) t.value.upload(pos.data(), pos.size());
-  return moved;
+  if (step.moved) t.value.upload(pos.data(), pos.size());
+  return step;
 }
 
 }  // namespace goris

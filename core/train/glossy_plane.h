@@ -10,7 +10,10 @@
 // warm-up iteration (RANSAC over flat Gaussians' normals, core/removal/mirror_twins.h), removes the Gaussians
 // beyond it that lie over glossy pixels, and from then on projects every such centre back onto the cameras'
 // side after each update (a projected gradient step). Which Gaussians lie over glossy pixels is refreshed
-// every `kRefreshInterval` iterations and whenever the count changes. Real geometry under the surface that
+// every `kRefreshInterval` iterations and whenever the count changes. A Gaussian put back keeps the colour
+// it took on beyond the plane; on steel_snowman (8K, with alpha_weight) those painted the snowman's
+// reflection into the table's D, which the removal then left behind as a white smear (NOTES, session 29).
+// `intrinsic_glossy_plane_prune_sinkers` removes such Gaussians at the next refresh instead. Real geometry under the surface that
 // the cameras see directly (a table's legs) lies over non-glossy pixels and is left alone.
 #include <cstddef>
 #include <cstdint>
@@ -40,19 +43,26 @@ class GlossyPlaneConstraint {
   // Fits the plane and prunes beyond it; returns a note for the log. The caller resets what is sized by the
   // count (when pruned() > 0).
   std::string start(GaussianModel& model, const std::vector<TrainView>& views);
-  // After an update at iteration `it`: refreshes the flags when due, then moves the flagged centres beyond
-  // the plane back into the inlier band (at -tolerance / 2). Returns how many moved. Does nothing without a plane.
-  std::size_t apply(GaussianModel& model, const std::vector<TrainView>& views, int it);
+  // After an update at iteration `it`: when due (every kRefreshInterval iterations, or when the count
+  // changed), with prune_sinkers removes the Gaussians it moved since the last refresh and refreshes the
+  // flags; then moves the flagged centres beyond the plane back into the inlier band (at -tolerance / 2).
+  // Does nothing without a plane. The caller resets what is sized by the count when pruned > 0.
+  struct Step {
+    std::size_t moved = 0, pruned = 0;
+  };
+  Step apply(GaussianModel& model, const std::vector<TrainView>& views, int it, bool prune_sinkers);
 
   bool started() const { return started_; }
   const MirrorPlane& plane() const { return plane_; }
-  std::size_t pruned() const { return pruned_; }
+  std::size_t pruned() const { return pruned_; }  // at start()
+  std::size_t sinkers_pruned() const { return sinkers_pruned_; }  // by apply(), in all
 
  private:
   bool started_ = false;
   MirrorPlane plane_;
   std::size_t pruned_ = 0;
-  std::vector<std::uint8_t> over_glossy_;
+  std::size_t sinkers_pruned_ = 0;
+  std::vector<std::uint8_t> over_glossy_, sank_;  // per Gaussian; sank_: moved since the last refresh
   int refreshed_at_ = -1;
 };
 

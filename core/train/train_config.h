@@ -71,6 +71,8 @@ struct IntrinsicSettings {
   // From the last warm-up iteration on, keep the Gaussians over glossy pixels on the cameras' side of the
   // glossy plane (core/train/glossy_plane.h). For planar glossy surfaces; off until measured.
   bool glossy_plane = false;
+  // With glossy_plane: remove the Gaussians it had to put back, at its next refresh (glossy_plane.h).
+  bool glossy_plane_prune_sinkers = false;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;

@@ -327,8 +327,9 @@ StepStats Trainer::step() {
         if (config_.filter_3d) compute_filter3d(m, cameras());
       }
       out.densify_note += (out.densify_note.empty() ? "" : "; ") + note;
-    } else {
-      glossy_plane_.apply(m, views_, it);
+    } else if (glossy_plane_.apply(m, views_, it, config_.intrinsic.glossy_plane_prune_sinkers).pruned > 0) {
+      state_.stats.reset(m.count(), device_);
+      if (config_.filter_3d) compute_filter3d(m, cameras());
     }
   }
 

@@ -85,12 +85,23 @@ TEST(GlossyPlane, PrunesTheMirrorWorldAndKeepsCentresOnTheCamerasSide) {
   pos[3 * 7 + 2] = -0.2f;
   const std::size_t leg0 = s.table;
   pos[3 * leg0 + 2] = -0.45f;
-  EXPECT_EQ(constraint.apply(s.model, s.views, 4001), 1u);
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4001, false).moved, 1u);
   pos = s.model.values(Param::Position);
   EXPECT_NEAR(pos[3 * 7 + 2], -0.5 * constraint.plane().tolerance, 1e-6);
   EXPECT_FLOAT_EQ(pos[3 * leg0 + 2], -0.45f);
   EXPECT_FLOAT_EQ(pos[3 * (s.table + s.leg) + 2], 0.3f);
-  EXPECT_EQ(constraint.apply(s.model, s.views, 4002), 0u) << "nothing left beyond the plane";
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4002, false).moved, 0u) << "nothing left beyond the plane";
+  // With prune_sinkers the Gaussian put back goes at the next refresh, and nothing else does.
+  pos = s.model.values(Param::Position);
+  pos[3 * 7 + 2] = -0.2f;
+  const std::size_t count = s.model.count();
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4003, true).moved, 1u);
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4050, true).pruned, 0u) << "not due yet";
+  const GlossyPlaneConstraint::Step due = constraint.apply(s.model, s.views, 4001 + GlossyPlaneConstraint::kRefreshInterval, true);
+  EXPECT_EQ(due.pruned, 1u);
+  EXPECT_EQ(due.moved, 0u);
+  EXPECT_EQ(s.model.count(), count - 1);
+  EXPECT_EQ(constraint.sinkers_pruned(), 1u);
 }
 
 TEST(GlossyPlane, WithoutGlossyMasksNothingIsFoundOrMoved) {
@@ -102,7 +113,7 @@ TEST(GlossyPlane, WithoutGlossyMasksNothingIsFoundOrMoved) {
   EXPECT_FALSE(constraint.plane().found);
   EXPECT_NE(note.find("none found"), std::string::npos) << note;
   EXPECT_EQ(s.model.count(), s.table + s.mirror + s.leg + s.object);
-  EXPECT_EQ(constraint.apply(s.model, s.views, 4001), 0u);
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4001, true).moved, 0u);
 }
 
 TEST(GlossyPlane, TheTrainerPrunesAtShadingStartAndHoldsTheFloorAfterwards) {
