@@ -60,12 +60,13 @@ void blur(const T* src, T* dst, T* tmp, int w, int h) {
 }  // namespace
 
 template <class T>
-T l1_loss(const T* pred, const T* target, size_t n, T* grad, T weight) {
+T l1_loss(const T* pred, const T* target, size_t n, T* grad, T weight, const T* element_weight) {
   if (n == 0) return T(0);
+  const auto w = [&](size_t i) { return element_weight ? element_weight[i] : T(1); };
   const double sum = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, n, 4096), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double acc) {
-        for (size_t i = r.begin(); i != r.end(); ++i) acc += std::abs(double(pred[i]) - double(target[i]));
+        for (size_t i = r.begin(); i != r.end(); ++i) acc += double(w(i)) * std::abs(double(pred[i]) - double(target[i]));
         return acc;
       },
       [](double a, double b) { return a + b; });
@@ -74,7 +75,7 @@ T l1_loss(const T* pred, const T* target, size_t n, T* grad, T weight) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
         const T d = pred[i] - target[i];
-        grad[i] += d > 0 ? g : (d < 0 ? -g : T(0));
+        grad[i] += w(i) * (d > 0 ? g : (d < 0 ? -g : T(0)));
       }
     });
   }
@@ -189,7 +190,7 @@ ColorLossParts weighted_color_loss(const float* pred, const float* target, const
 }
 
 #define GORIS_INSTANTIATE(T)                                                                               \
-  template T l1_loss<T>(const T*, const T*, size_t, T*, T);                                                \
+  template T l1_loss<T>(const T*, const T*, size_t, T*, T, const T*);                                                \
   template T mse<T>(const T*, const T*, size_t);                                                           \
   template T ssim<T>(const T*, const T*, int, int, int, T*, T);                                            \
   template ColorLossParts color_loss<T>(const T*, const T*, int, int, int, T*, T, T);

@@ -8,8 +8,10 @@
 namespace goris {
 
 // mean |pred - target| over n values. d/dpred = sign(pred - target) / n (0 where they are equal).
+// element_weight: null, or n weights w_i: mean w_i |pred_i - target_i| (still divided by n).
 template <class T>
-T l1_loss(const T* pred, const T* target, size_t n, T* grad = nullptr, T weight = T(1));
+T l1_loss(const T* pred, const T* target, size_t n, T* grad = nullptr, T weight = T(1),
+          const T* element_weight = nullptr);
 
 // Mean squared error over n values (no gradient: metrics only).
 template <class T>

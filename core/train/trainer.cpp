@@ -204,7 +204,9 @@ StepStats Trainer::step() {
   if (config_.alpha_weight > 0 && view.alpha.size() == hw) {
     const HostView alpha(fwd.alpha, hw, device_);
     if (g_alpha.empty()) g_alpha.assign(hw, 0.0f);
-    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g_alpha.data(), config_.alpha_weight);
+    // Stage 2 leaves the pixels under the target and its reflections to the inpainting (loss_weight 0).
+    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g_alpha.data(), config_.alpha_weight,
+                        view.loss_weight.empty() ? nullptr : view.loss_weight.data());
     out.loss += config_.alpha_weight * out.alpha;
   }
   if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g_normal, g_extras, g_detached, out);
@@ -310,11 +312,15 @@ StepStats Trainer::step() {
     compute_filter3d(m, cameras());
   }
 
+  // What a prune outside densify_and_prune invalidates: the per-Gaussian statistics and the 3D filter.
+  const auto after_prune = [&] {
+    state_.stats.reset(m.count(), device_);
+    if (config_.filter_3d) compute_filter3d(m, cameras());
+  };
   if (config_.prunes_mirror_world_after(it, out.densify.after > 0)) {
     const size_t before = m.count();
     const size_t removed = prune_mirror_world(m, views_, *renderer_, config_.intrinsic.prune_mirror_world);
-    state_.stats.reset(m.count(), device_);
-    if (config_.filter_3d) compute_filter3d(m, cameras());
+    after_prune();
     out.densify_note += (out.densify_note.empty() ? "" : "; ") + std::string("mirror world: pruned ") +
                         std::to_string(removed) + " of " + std::to_string(before) +
                         (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying");
@@ -322,14 +328,10 @@ StepStats Trainer::step() {
   if (config_.mode == "intrinsic" && config_.intrinsic.glossy_plane && it >= config_.shading_from()) {
     if (!glossy_plane_.started()) {
       const std::string note = glossy_plane_.start(m, views_);
-      if (glossy_plane_.pruned() > 0) {
-        state_.stats.reset(m.count(), device_);
-        if (config_.filter_3d) compute_filter3d(m, cameras());
-      }
+      if (glossy_plane_.pruned() > 0) after_prune();
       out.densify_note += (out.densify_note.empty() ? "" : "; ") + note;
     } else if (glossy_plane_.apply(m, views_, it, config_.intrinsic.glossy_plane_prune_sinkers).pruned > 0) {
-      state_.stats.reset(m.count(), device_);
-      if (config_.filter_3d) compute_filter3d(m, cameras());
+      after_prune();
     }
   }
 

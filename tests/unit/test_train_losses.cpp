@@ -41,6 +41,26 @@ TEST(L1Loss, ValueAndGradient) {
   expect_gradient(f, p, g, 1e-6, 1e-7);
 }
 
+TEST(L1Loss, PerElementWeightsValueAndGradient) {
+  // The alpha loss in stage 2: pixels of weight 0 neither count nor get a gradient.
+  std::mt19937_64 rng(2);
+  const size_t n = 6 * 5;
+  const auto t = random_image(n, rng);
+  auto p = random_image(n, rng);
+  const auto w = random_image(n, rng);
+  for (size_t i = 0; i < n; ++i)
+    if (std::abs(p[i] - t[i]) < 1e-3) p[i] += 2e-3;
+  std::vector<double> weights(w);
+  weights[3] = 0.0;
+  double expect = 0;
+  for (size_t i = 0; i < n; ++i) expect += weights[i] * std::abs(p[i] - t[i]);
+  std::vector<double> g(n, 0.0);
+  EXPECT_NEAR(l1_loss<double>(p.data(), t.data(), n, g.data(), 0.7, weights.data()), expect / n, 1e-14);
+  EXPECT_EQ(g[3], 0.0);
+  auto f = [&](const std::vector<double>& x) { return 0.7 * l1_loss<double>(x.data(), t.data(), n, nullptr, 1.0, weights.data()); };
+  expect_gradient(f, p, g, 1e-6, 1e-7);
+}
+
 TEST(L1Loss, GradientAccumulates) {
   std::vector<double> p = {0.5, 0.2}, t = {0.1, 0.4}, g = {1.0, 1.0};
   l1_loss<double>(p.data(), t.data(), 2, g.data());
