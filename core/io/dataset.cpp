@@ -57,8 +57,10 @@ const std::filesystem::path& require(const std::optional<std::filesystem::path>&
 
 }  // namespace
 
-Image load_view_image(const View& v, const DatasetOptions& o, Device device) {
-  return fit_to_view(load_image(v.image, Device::CPU, o.background), v.image, v, device);
+Image load_view_image(const View& v, const DatasetOptions& o, Device device, std::optional<Image>* alpha) {
+  Image im = fit_to_view(load_image(v.image, Device::CPU, o.background, alpha), v.image, v, device);
+  if (alpha && *alpha) **alpha = fit_to_view(std::move(**alpha), v.image, v, Device::CPU);
+  return im;
 }
 
 Image load_view_object_mask(const View& v, Device device) {
@@ -69,12 +71,6 @@ Image load_view_object_mask(const View& v, Device device) {
 Image load_view_glossy_mask(const View& v, Device device) {
   const auto& p = require(v.glossy_mask, v, "glossy-surface mask");
   return fit_to_view(load_mask(p, Device::CPU), p, v, device);
-}
-
-std::optional<Image> load_view_alpha(const View& v, Device device) {
-  std::optional<Image> a = load_alpha(v.image, Device::CPU);
-  if (!a) return std::nullopt;
-  return fit_to_view(std::move(*a), v.image, v, device);
 }
 
 Image load_view_full_image(const View& v, const DatasetOptions& o, Device device) {

@@ -80,13 +80,13 @@ Dataset load_dataset(const std::filesystem::path& path, const DatasetOptions& op
 std::string detect_dataset_format(const std::filesystem::path& path);
 
 // The view's image as RGB on `device` at view.camera's size, RGBA composited on options.background.
-Image load_view_image(const View& view, const DatasetOptions& options, Device device = Device::CPU);
+// alpha: when given, the image's alpha channel at the camera's size (CPU), or nothing when it has none.
+Image load_view_image(const View& view, const DatasetOptions& options, Device device = Device::CPU,
+                      std::optional<Image>* alpha = nullptr);
 // The view's object / glossy mask as one channel in [0, 1] at view.camera's size; throws when the view
 // has no such mask.
 Image load_view_object_mask(const View& view, Device device = Device::CPU);
 Image load_view_glossy_mask(const View& view, Device device = Device::CPU);
-// The view image's alpha channel at the camera's size, or nothing when the image has none.
-std::optional<Image> load_view_alpha(const View& view, Device device = Device::CPU);
 // GOR-IS test views: the render with the target, at view.camera's size.
 Image load_view_full_image(const View& view, const DatasetOptions& options, Device device = Device::CPU);
 

@@ -32,8 +32,10 @@ struct ImageSize {
 Image read_image(const std::filesystem::path& path);
 
 // An RGB image on `device`: grey is expanded to RGB and RGBA is composited on `background`
-// (rgb * a + background * (1 - a)).
-Image load_image(const std::filesystem::path& path, Device device, glm::vec3 background = glm::vec3(0.0f));
+// (rgb * a + background * (1 - a)). alpha: when given, set to the alpha channel (one channel, on the CPU)
+// or to nothing when the file has none - one decode for both.
+Image load_image(const std::filesystem::path& path, Device device, glm::vec3 background = glm::vec3(0.0f),
+                 std::optional<Image>* alpha = nullptr);
 
 // A one-channel mask in [0, 1] on `device`: grey as is; colour masks use the largest of R, G, B, times the
 // alpha when there is one (transparent = outside the mask).

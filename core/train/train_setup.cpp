@@ -41,13 +41,14 @@ std::vector<TrainView> load_train_views(const std::vector<View>& views, const Da
     if (v.camera.has_distortion())
       throw Error(v.image.string(), "the camera has lens distortion, which the rasterizer does not model "
                                     "(undistort the images first)");
-    const Image img = load_view_image(v, options, Device::CPU);
+    std::optional<Image> alpha;
+    const Image img = load_view_image(v, options, Device::CPU, &alpha);
     if (img.width != v.camera.width || img.height != v.camera.height)
       throw Error(v.image.string(), "image size differs from its camera's");
     TrainView tv{v.name, v.camera, to_planar_rgb(img), {}, {}, {}};
     if (v.glossy_mask) tv.glossy_mask = load_view_glossy_mask(v).pixels.to_host();
     if (v.object_mask) tv.object_mask = load_view_object_mask(v).pixels.to_host();
-    if (std::optional<Image> a = load_view_alpha(v)) tv.alpha = a->pixels.to_host();
+    if (alpha) tv.alpha = alpha->pixels.to_host();
     out.push_back(std::move(tv));
   }
   return out;
