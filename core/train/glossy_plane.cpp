@@ -1,6 +1,9 @@
 #include "core/train/glossy_plane.h"
 
+#include <cmath>
 #include <cstdio>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include "core/compute/parallel_for.h"
 #include "core/removal/selection_points.h"
@@ -102,6 +105,36 @@ GlossyPlaneConstraint::Step GlossyPlaneConstraint::apply(GaussianModel& model, c
   });
   if (step.moved) t.value.upload(pos.data(), pos.size());
   return step;
+}
+
+std::size_t GlossyPlaneConstraint::align_normals(GaussianModel& model) const {
+  if (!plane_.found || over_glossy_.size() != model.count()) return 0;
+  const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
+  const std::vector<glm::vec3> flat = flat_normals(model);  // zero where a Gaussian is not flat
+  ParamTensor& t = model.tensor(Param::Rotation);
+  std::vector<float> rot = t.value.to_host();
+  const glm::dvec3 n = plane_.normal;
+  std::size_t turned = 0;
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    if (!over_glossy_[i] || flat[i] == glm::vec3(0.0f)) continue;
+    const glm::dvec3 p(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    if (std::abs(plane_.signed_distance(p)) > plane_.tolerance) continue;
+    const glm::dvec3 a = glm::normalize(glm::dvec3(flat[i]));
+    const glm::dvec3 target = glm::dot(a, n) < 0 ? -n : n;  // the nearer of the two sides
+    const double c = glm::dot(a, target);
+    if (c > 1.0 - 1e-12) continue;
+    // The shortest rotation taking a to target, (1 + a.t, a x t) normalised, applied before the stored one;
+    // the stored quaternion's length is kept (it is stored unnormalised, DESIGN.md §4).
+    const glm::dvec3 axis = glm::cross(a, target);
+    const glm::dquat turn = glm::normalize(glm::dquat(1.0 + c, axis.x, axis.y, axis.z));
+    float* r = &rot[4 * i];
+    const glm::dquat q(r[0], r[1], r[2], r[3]);
+    const glm::dquat out = turn * q;
+    r[0] = float(out.w), r[1] = float(out.x), r[2] = float(out.y), r[3] = float(out.z);
+    ++turned;
+  }
+  if (turned) t.value.upload(rot.data(), rot.size());
+  return turned;
 }
 
 }  // namespace goris

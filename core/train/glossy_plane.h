@@ -54,6 +54,11 @@ class GlossyPlaneConstraint {
     std::size_t moved = 0, pruned = 0;
   };
   Step apply(GaussianModel& model, const std::vector<TrainView>& views, int it, bool prune_sinkers);
+  // After apply(): turns the flagged flat Gaussians in the plane's inlier band so that their shortest axis
+  // (their rendered normal) is the plane's normal, keeping their shape and in-plane orientation. A mirror's
+  // reflected ray is off by twice its normal's error: 1-2 degrees left on steel's table move a reflection by
+  // pixels (`intrinsic_glossy_plane_align`, NOTES session 30). Returns how many were turned.
+  std::size_t align_normals(GaussianModel& model) const;
 
   bool started() const { return started_; }
   const MirrorPlane& plane() const { return plane_; }

@@ -95,6 +95,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_prune_mirror_world_repeat", c.intrinsic.prune_mirror_world_repeat);
   f("intrinsic_glossy_plane", c.intrinsic.glossy_plane);
   f("intrinsic_glossy_plane_prune_sinkers", c.intrinsic.glossy_plane_prune_sinkers);
+  f("intrinsic_glossy_plane_align", c.intrinsic.glossy_plane_align);
   f("intrinsic_coarse_tracing", c.intrinsic.coarse_tracing);
   f("intrinsic_coarse_max_level", c.intrinsic.coarse_max_level);
   f("intrinsic_normal_prior", c.intrinsic.normal_prior);

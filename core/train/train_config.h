@@ -73,6 +73,8 @@ struct IntrinsicSettings {
   bool glossy_plane = false;
   // With glossy_plane: remove the Gaussians it had to put back, at its next refresh (glossy_plane.h).
   bool glossy_plane_prune_sinkers = false;
+  // With glossy_plane: turn the flat Gaussians in the plane so that their normal is the plane's (glossy_plane.h).
+  bool glossy_plane_align = false;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
   bool coarse_tracing = false;

@@ -45,7 +45,8 @@ std::vector<TrainView> load_train_views(const std::vector<View>& views, const Da
     const Image img = load_view_image(v, options, Device::CPU, &alpha);
     if (img.width != v.camera.width || img.height != v.camera.height)
       throw Error(v.image.string(), "image size differs from its camera's");
-    TrainView tv{v.name, v.camera, to_planar_rgb(img), {}, {}, {}};
+    TrainView tv;
+    tv.name = v.name, tv.camera = v.camera, tv.image = to_planar_rgb(img);
     if (v.glossy_mask) tv.glossy_mask = load_view_glossy_mask(v).pixels.to_host();
     if (v.object_mask) tv.object_mask = load_view_object_mask(v).pixels.to_host();
     if (alpha) tv.alpha = alpha->pixels.to_host();

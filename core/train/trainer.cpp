@@ -330,8 +330,9 @@ StepStats Trainer::step() {
       const std::string note = glossy_plane_.start(m, views_);
       if (glossy_plane_.pruned() > 0) after_prune();
       out.densify_note += (out.densify_note.empty() ? "" : "; ") + note;
-    } else if (glossy_plane_.apply(m, views_, it, config_.intrinsic.glossy_plane_prune_sinkers).pruned > 0) {
-      after_prune();
+    } else {
+      if (glossy_plane_.apply(m, views_, it, config_.intrinsic.glossy_plane_prune_sinkers).pruned > 0) after_prune();
+      if (config_.intrinsic.glossy_plane_align) glossy_plane_.align_normals(m);
     }
   }
 

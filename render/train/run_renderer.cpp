@@ -22,7 +22,8 @@ std::vector<GlossyMaskView> training_glossy_masks(const TrainConfig& config) {
   select_training_data(config, dataset);
   std::vector<TrainView> views;
   for (const View& v : dataset.train) {
-    views.push_back(TrainView{v.name, v.camera, {}, {}, {}, {}});
+    views.emplace_back().name = v.name;
+    views.back().camera = v.camera;
     if (v.glossy_mask) views.back().glossy_mask = load_view_glossy_mask(v).pixels.to_host();
   }
   if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/removal/selection_points.h"
 #include "core/train/glossy_plane.h"
 #include "core/train/trainer.h"
 #include "render/intrinsic/intrinsic_renderer.h"
@@ -102,6 +105,42 @@ TEST(GlossyPlane, PrunesTheMirrorWorldAndKeepsCentresOnTheCamerasSide) {
   EXPECT_EQ(due.moved, 0u);
   EXPECT_EQ(s.model.count(), count - 1);
   EXPECT_EQ(constraint.sinkers_pruned(), 1u);
+}
+
+TEST(GlossyPlane, AlignsTheTablesFlatGaussiansToThePlaneOnly) {
+  Scene s = table_scene();
+  GlossyPlaneConstraint constraint;
+  constraint.start(s.model, s.views);
+  ASSERT_TRUE(constraint.plane().found);
+  const std::size_t leg0 = s.table, object0 = s.table + s.leg;
+  // Tilt table Gaussian 3 by 4 degrees about x (its stored quaternion scaled by 2: the length is kept), make
+  // the leg and the object flat and tilted too: only the table Gaussian, in the band over glossy pixels, turns.
+  const float half = 0.5f * glm::radians(4.0f);
+  const glm::quat tilt(std::cos(half), std::sin(half), 0.0f, 0.0f);
+  float* rot = s.model.values(Param::Rotation);
+  float* ls = s.model.values(Param::LogScale);
+  for (std::size_t i : {std::size_t(3), leg0, object0}) {
+    rot[4 * i] = 2.0f * tilt.w, rot[4 * i + 1] = 2.0f * tilt.x, rot[4 * i + 2] = 0.0f, rot[4 * i + 3] = 0.0f;
+    ls[3 * i + 2] = std::log(0.004f);
+  }
+  ls[3 * 3 + 0] = std::log(0.05f), ls[3 * 3 + 1] = std::log(0.02f);  // anisotropic in the plane
+  const std::vector<float> scales_before(ls, ls + 3 * s.model.count());
+  const glm::vec3 in_plane_before = glm::mat3_cast(tilt)[0];
+  EXPECT_EQ(constraint.apply(s.model, s.views, 4001, false).moved, 0u);
+  EXPECT_EQ(constraint.align_normals(s.model), 1u);
+  EXPECT_EQ(constraint.align_normals(s.model), 0u) << "already aligned";
+
+  const std::vector<glm::vec3> normals = flat_normals(s.model);
+  EXPECT_GT(std::abs(normals[3].z), 1.0f - 1e-6f) << "table Gaussian 3 now has the plane's normal";
+  EXPECT_NEAR(std::abs(normals[leg0].z), std::cos(glm::radians(4.0f)), 1e-5) << "the leg is off the glossy pixels";
+  EXPECT_NEAR(std::abs(normals[object0].z), std::cos(glm::radians(4.0f)), 1e-5) << "the object is off the plane";
+  rot = s.model.values(Param::Rotation);
+  const glm::quat q(rot[12], rot[13], rot[14], rot[15]);
+  EXPECT_NEAR(glm::length(q), 2.0f, 1e-5) << "the stored length is kept";
+  // The shortest turn: the long in-plane axis (x) stays where it was, it was already in the plane.
+  EXPECT_GT(glm::dot(glm::mat3_cast(glm::normalize(q))[0], in_plane_before), 1.0f - 1e-6f);
+  ls = s.model.values(Param::LogScale);
+  for (std::size_t k = 0; k < scales_before.size(); ++k) EXPECT_EQ(ls[k], scales_before[k]) << "scales untouched";
 }
 
 TEST(GlossyPlane, WithoutGlossyMasksNothingIsFoundOrMoved) {
