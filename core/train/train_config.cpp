@@ -90,6 +90,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
   f("intrinsic_net_residual", c.intrinsic.net_residual);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
+  f("intrinsic_ray_offset_normal", c.intrinsic.ray_offset_normal);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
   f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);
   f("intrinsic_prune_mirror_world_repeat", c.intrinsic.prune_mirror_world_repeat);

@@ -58,6 +58,7 @@ struct IntrinsicSettings {
   int net_hidden_layers = 6;       // 3x3 layers of the roughness net
   bool net_residual = false;       // R_s = sigmoid(net + logit(roughness)), starting at R_s = R (ssf::NetConfig)
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
+  bool ray_offset_normal = false;  // the offset along the surface normal instead of along the ray
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
   // > 0: at the last warm-up iteration remove the Gaussians seen only behind glossy surfaces (the warm-up's
   // mirror world, core/train/mirror_world.h); the value is the depth tolerance (x the rendered depth). Part

@@ -58,14 +58,19 @@ GORIS_HDI PixelGeometry<T> pixel_geometry(const Camera& cam, int x, int y, const
   return g;
 }
 
-// dL/d(n_cam) from dL/d(omega_r), through the reflection, the normalisation and the rotation to world.
+// dL/d(n_cam) from dL/d(n), the unit world normal: through the normalisation and the rotation to world.
 template <class T>
-GORIS_HDI Vec3<T> reflection_vjp_to_camera_normal(const PixelGeometry<T>& g, const Vec3<T>& dwr) {
+GORIS_HDI Vec3<T> unit_normal_vjp_to_camera_normal(const PixelGeometry<T>& g, const Vec3<T>& dn) {
   if (g.degenerate) return Vec3<T>(T(0));
-  const Vec3<T> dn = T(-2) * (glm::dot(g.d, g.n) * dwr + glm::dot(dwr, g.n) * g.d);
   const T len = sqrt(glm::dot(g.n_raw, g.n_raw));
   const Vec3<T> dn_raw = (dn - g.n * glm::dot(g.n, dn)) / len;
   return glm::transpose(g.Rt) * dn_raw;
+}
+
+// dL/d(n_cam) from dL/d(omega_r), through the reflection.
+template <class T>
+GORIS_HDI Vec3<T> reflection_vjp_to_camera_normal(const PixelGeometry<T>& g, const Vec3<T>& dwr) {
+  return unit_normal_vjp_to_camera_normal(g, T(-2) * (glm::dot(g.d, g.n) * dwr + glm::dot(dwr, g.n) * g.d));
 }
 
 // Schlick's weight (1 - cos)^5 on the clamped cosine. Treated as a constant in the backward pass, as the
