@@ -1,5 +1,6 @@
 #include "core/train/glossy_plane.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -46,17 +47,89 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
   return plane;
 }
 
+PlaneFootprint::PlaneFootprint(const std::vector<float>& pos, const MirrorPlane& plane,
+                               const std::vector<std::uint8_t>& flags) {
+  if (!plane.found) return;
+  u_ = glm::normalize(glm::cross(plane.normal, std::abs(plane.normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  v_ = glm::cross(plane.normal, u_);
+  std::vector<glm::dvec2> in_band;
+  glm::dvec2 lo(1e300), hi(-1e300);
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    const glm::dvec3 p(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    if (!flags[i] || std::abs(plane.signed_distance(p)) > plane.tolerance) continue;
+    in_band.emplace_back(glm::dot(p, u_), glm::dot(p, v_));
+    lo = glm::min(lo, in_band.back()), hi = glm::max(hi, in_band.back());
+  }
+  if (in_band.empty()) return;
+  // At least the centres' mean spacing, so that the closing bridges the gaps between sparse centres.
+  const glm::dvec2 size = hi - lo;
+  cell_ = std::max({glm::length(size) / kCells, std::sqrt(size.x * size.y / double(in_band.size())), 1e-9});
+  const int pad = kClose + 1;  // room for the closing's dilation
+  origin_ = lo - double(pad) * cell_;
+  nu_ = int((hi.x - lo.x) / cell_) + 1 + 2 * pad, nv_ = int((hi.y - lo.y) / cell_) + 1 + 2 * pad;
+  std::vector<std::uint8_t> grid(std::size_t(nu_) * std::size_t(nv_), 0);
+  for (const glm::dvec2& q : in_band) grid[index(cell_of(q))] = 1;
+  // A square window of radius r: any (dilate) or all (erode) of its cells set. Off the grid counts as unset.
+  auto morph = [&](int r, bool dilate) {
+    std::vector<std::uint8_t> out(grid.size(), 0);
+    for (int y = 0; y < nv_; ++y)
+      for (int x = 0; x < nu_; ++x) {
+        bool any = false, all = true;
+        for (int dy = -r; dy <= r; ++dy)
+          for (int dx = -r; dx <= r; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            const bool set = xx >= 0 && yy >= 0 && xx < nu_ && yy < nv_ && grid[index({xx, yy})];
+            any |= set, all &= set;
+          }
+        out[index({x, y})] = dilate ? any : all;
+      }
+    grid.swap(out);
+  };
+  morph(kClose, true);  // close the gaps between sparse centres,
+  // fill the holes (what the border cannot reach through unset cells: a mirror's reflections are seen
+  // through it, and its top can be sparse there after the warm-up),
+  std::vector<std::uint8_t> outside(grid.size(), 0);
+  std::vector<glm::ivec2> stack;
+  auto reach = [&](glm::ivec2 c) {
+    if (c.x < 0 || c.y < 0 || c.x >= nu_ || c.y >= nv_ || grid[index(c)] || outside[index(c)]) return;
+    outside[index(c)] = 1;
+    stack.push_back(c);
+  };
+  for (int x = 0; x < nu_; ++x) reach({x, 0}), reach({x, nv_ - 1});
+  for (int y = 0; y < nv_; ++y) reach({0, y}), reach({nu_ - 1, y});
+  while (!stack.empty()) {
+    const glm::ivec2 c = stack.back();
+    stack.pop_back();
+    reach(c + glm::ivec2(1, 0)), reach(c - glm::ivec2(1, 0)), reach(c + glm::ivec2(0, 1)), reach(c - glm::ivec2(0, 1));
+  }
+  for (std::size_t k = 0; k < grid.size(); ++k) grid[k] = !outside[k];
+  morph(kClose + kMargin, false);  // then keep only what lies kMargin cells inside the outline
+  inside_.swap(grid);
+}
+
+bool PlaneFootprint::contains(const glm::dvec3& p) const {
+  if (inside_.empty()) return false;
+  const glm::ivec2 c = cell_of({glm::dot(p, u_), glm::dot(p, v_)});
+  return c.x >= 0 && c.y >= 0 && c.x < nu_ && c.y < nv_ && inside_[index(c)];
+}
+
+glm::ivec2 PlaneFootprint::cell_of(const glm::dvec2& q) const {
+  const glm::dvec2 c = glm::floor((q - origin_) / cell_);
+  return {int(std::clamp(c.x, -1.0, double(nu_))), int(std::clamp(c.y, -1.0, double(nv_)))};
+}
+
 namespace {
 
-// The flagged centres more than the plane's tolerance beyond it.
+// The flagged centres more than the plane's tolerance beyond it, inside the surface's footprint (what lies
+// beyond the outline - the table's own edge, its legs - is real geometry seen directly).
 template <typename F>
-void for_each_beyond(const std::vector<float>& pos, const MirrorPlane& plane, const std::vector<std::uint8_t>& flags,
-                     F&& f) {
+void for_each_beyond(const std::vector<float>& pos, const MirrorPlane& plane, const PlaneFootprint& footprint,
+                     const std::vector<std::uint8_t>& flags, F&& f) {
   for (std::size_t i = 0; i < flags.size(); ++i) {
     if (!flags[i]) continue;
     const glm::dvec3 p(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
     const double d = plane.signed_distance(p);
-    if (d < -plane.tolerance) f(i, p, d);
+    if (d < -plane.tolerance && footprint.contains(p)) f(i, p, d);
   }
 }
 
@@ -68,8 +141,9 @@ std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector
   plane_ = glossy_surface_plane(model, views, over_glossy_);
   if (!plane_.found) return "glossy plane: none found, not constrained";
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
+  footprint_ = PlaneFootprint(pos, plane_, over_glossy_);
   std::vector<std::uint8_t> keep(model.count(), 1);
-  for_each_beyond(pos, plane_, over_glossy_, [&](std::size_t i, const glm::dvec3&, double) { keep[i] = 0; });
+  for_each_beyond(pos, plane_, footprint_, over_glossy_, [&](std::size_t i, const glm::dvec3&, double) { keep[i] = 0; });
   const std::size_t before = model.count();
   pruned_ = prune_gaussians(model, keep);
   over_glossy_.clear();  // refreshed at the first apply()
@@ -92,12 +166,13 @@ GlossyPlaneConstraint::Step GlossyPlaneConstraint::apply(GaussianModel& model, c
       sinkers_pruned_ += step.pruned;
     }
     over_glossy_ = over_glossy_pixels(model, views);
+    footprint_ = PlaneFootprint(model.tensor(Param::Position).value.to_host(), plane_, over_glossy_);
     sank_.assign(model.count(), 0);
     refreshed_at_ = it;
   }
   ParamTensor& t = model.tensor(Param::Position);
   std::vector<float> pos = t.value.to_host();
-  for_each_beyond(pos, plane_, over_glossy_, [&](std::size_t i, const glm::dvec3& p, double d) {
+  for_each_beyond(pos, plane_, footprint_, over_glossy_, [&](std::size_t i, const glm::dvec3& p, double d) {
     const glm::dvec3 q = p - (d + 0.5 * plane_.tolerance) * plane_.normal;  // inside the band, float-safe
     pos[3 * i] = float(q.x), pos[3 * i + 1] = float(q.y), pos[3 * i + 2] = float(q.z);
     sank_[i] = 1;

@@ -8,7 +8,7 @@
 //
 // `intrinsic_glossy_plane` (off by default) fits the plane the centres on glossy pixels lie on at the last
 // warm-up iteration (RANSAC over flat Gaussians' normals, core/removal/mirror_twins.h), removes the Gaussians
-// beyond it that lie over glossy pixels, and from then on projects every such centre back onto the cameras'
+// beyond it that lie over glossy pixels inside its footprint, and from then on projects every such centre back onto the cameras'
 // side after each update (a projected gradient step). Which Gaussians lie over glossy pixels is refreshed
 // every `kRefreshInterval` iterations and whenever the count changes. A Gaussian put back keeps the colour
 // it took on beyond the plane; on steel_snowman (8K, with alpha_weight) those painted the snowman's
@@ -22,6 +22,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/removal/mirror_twins.h"
 #include "core/scene/gaussians.h"
@@ -38,6 +40,29 @@ std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const s
 // normal turned to the side most camera centres are on. found = false when no plane holds enough of them.
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
                                  const std::vector<std::uint8_t>& over_glossy);
+
+// Where the surface is, seen along its normal: the cells of a grid in the plane (kCells across the in-band
+// centres' extent, or their mean spacing when coarser) that hold a flagged centre within the plane's
+// tolerance, closed over kClose cells, with its holes filled, less a margin of kMargin cells along the
+// outline. On steel_snowman the table's own side, 0.11 deep, lies beyond the plane over glossy pixels too;
+// without the footprint the constraint cut it off (NOTES, session 30).
+class PlaneFootprint {
+ public:
+  static constexpr double kCells = 48;
+  static constexpr int kClose = 2, kMargin = 1;
+  PlaneFootprint() = default;
+  PlaneFootprint(const std::vector<float>& positions, const MirrorPlane& plane, const std::vector<std::uint8_t>& flags);
+  bool contains(const glm::dvec3& p) const;  // p projected onto the plane falls inside
+
+ private:
+  glm::ivec2 cell_of(const glm::dvec2& in_plane) const;  // -1 or n when off the grid
+  std::size_t index(glm::ivec2 c) const { return std::size_t(c.y) * std::size_t(nu_) + std::size_t(c.x); }
+  glm::dvec3 u_{1, 0, 0}, v_{0, 1, 0};  // in-plane axes
+  glm::dvec2 origin_{0, 0};
+  double cell_ = 1;
+  int nu_ = 0, nv_ = 0;
+  std::vector<std::uint8_t> inside_;  // [nv][nu]; empty = nothing inside
+};
 
 class GlossyPlaneConstraint {
  public:
@@ -68,6 +93,7 @@ class GlossyPlaneConstraint {
  private:
   bool started_ = false;
   MirrorPlane plane_;
+  PlaneFootprint footprint_;  // refreshed with the flags
   std::size_t pruned_ = 0;
   std::size_t sinkers_pruned_ = 0;
   std::vector<std::uint8_t> over_glossy_, sank_;  // per Gaussian; sank_: moved since the last refresh
