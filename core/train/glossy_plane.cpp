@@ -50,7 +50,8 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
 PlaneFootprint::PlaneFootprint(const std::vector<float>& pos, const MirrorPlane& plane,
                                const std::vector<std::uint8_t>& flags) {
   if (!plane.found) return;
-  u_ = glm::normalize(glm::cross(plane.normal, std::abs(plane.normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 other = std::abs(plane.normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  u_ = glm::normalize(glm::cross(plane.normal, other));
   v_ = glm::cross(plane.normal, u_);
   std::vector<glm::dvec2> in_band;
   glm::dvec2 lo(1e300), hi(-1e300);
@@ -143,7 +144,8 @@ std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
   footprint_ = PlaneFootprint(pos, plane_, over_glossy_);
   std::vector<std::uint8_t> keep(model.count(), 1);
-  for_each_beyond(pos, plane_, footprint_, over_glossy_, [&](std::size_t i, const glm::dvec3&, double) { keep[i] = 0; });
+  for_each_beyond(pos, plane_, footprint_, over_glossy_,
+                  [&](std::size_t i, const glm::dvec3&, double) { keep[i] = 0; });
   const std::size_t before = model.count();
   pruned_ = prune_gaussians(model, keep);
   over_glossy_.clear();  // refreshed at the first apply()

@@ -8,16 +8,17 @@
 //
 // `intrinsic_glossy_plane` (off by default) fits the plane the centres on glossy pixels lie on at the last
 // warm-up iteration (RANSAC over flat Gaussians' normals, core/removal/mirror_twins.h), removes the Gaussians
-// beyond it that lie over glossy pixels inside its footprint, and from then on projects every such centre back onto the cameras'
-// side after each update (a projected gradient step). Which Gaussians lie over glossy pixels is refreshed
-// every `kRefreshInterval` iterations and whenever the count changes. A Gaussian put back keeps the colour
-// it took on beyond the plane; on steel_snowman (8K, with alpha_weight) those painted the snowman's
-// reflection into the table's D, which the removal then left behind as a white smear (NOTES, session 29).
+// beyond it that lie over glossy pixels inside its footprint (PlaneFootprint, below), and from then on
+// projects every such centre back onto the cameras' side after each update (a projected gradient step).
+// Which Gaussians lie over glossy pixels, and the footprint, are refreshed every `kRefreshInterval`
+// iterations and whenever the count changes. A Gaussian put back keeps the colour it took on beyond the
+// plane; on steel_snowman (8K, with alpha_weight) those painted the snowman's reflection into the table's
+// D, which the removal then left behind as a white smear (NOTES, session 29).
 // `intrinsic_glossy_plane_prune_sinkers` removes such Gaussians at the next refresh instead. Real geometry
-// under the surface that the cameras see directly (a table's legs) lies over non-glossy pixels and is left
-// alone. Alone the constraint cost steel 4.7 dB: over the black background the table stays half
-// transparent. With `alpha_weight` (the images' alpha) it is opaque and G carries the reflections (README,
-// "An opaque table, held to its plane").
+// under the surface that the cameras see directly lies over non-glossy pixels (a table's legs) or outside
+// the footprint (its own side) and is left alone. Alone the constraint cost steel 4.7 dB: over the black
+// background the table stays half transparent. With `alpha_weight` (the images' alpha) it is opaque and G
+// carries the reflections (README, "An opaque table, held to its plane").
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -100,8 +100,8 @@ IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, De
   if (!(extent > 0)) throw Error("intrinsic renderer", "the scene extent must be positive");
   const float offset =
       config.intrinsic.ray_offset > 0 ? config.intrinsic.ray_offset : ShadingSettings::default_ray_offset(extent);
-  (config.intrinsic.ray_offset_normal ? shading_settings_.normal_offset : shading_settings_.ray_offset) = offset;
-  if (config.intrinsic.ray_offset_normal) shading_settings_.ray_offset = 0.0f;
+  shading_settings_.ray_offset = config.intrinsic.ray_offset_normal ? 0.0f : offset;
+  shading_settings_.normal_offset = config.intrinsic.ray_offset_normal ? offset : 0.0f;
   for (int c = 0; c < 3; ++c) shading_settings_.env_center[c] = config.intrinsic.env_center[c];
   shading_settings_.env_radius = config.intrinsic.env_radius;
   traced_settings_.divide_opaque = config.intrinsic.divide_opaque;

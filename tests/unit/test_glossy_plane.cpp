@@ -111,7 +111,8 @@ TEST(GlossyPlane, PrunesTheMirrorWorldAndKeepsCentresOnTheCamerasSide) {
   const std::size_t count = s.model.count();
   EXPECT_EQ(constraint.apply(s.model, s.views, 4003, true).moved, 1u);
   EXPECT_EQ(constraint.apply(s.model, s.views, 4050, true).pruned, 0u) << "not due yet";
-  const GlossyPlaneConstraint::Step due = constraint.apply(s.model, s.views, 4001 + GlossyPlaneConstraint::kRefreshInterval, true);
+  const int due_at = 4001 + GlossyPlaneConstraint::kRefreshInterval;
+  const GlossyPlaneConstraint::Step due = constraint.apply(s.model, s.views, due_at, true);
   EXPECT_EQ(due.pruned, 1u);
   EXPECT_EQ(due.moved, 0u);
   EXPECT_EQ(s.model.count(), count - 1);
