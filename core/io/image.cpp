@@ -85,16 +85,21 @@ Image read_image(const fs::path& path) {
   return from_mat(rgb);
 }
 
+namespace {
+
+// The alpha channel of a decoded image (one channel, CPU), or nothing when it has none.
+std::optional<Image> alpha_channel(const Image& src) {
+  if (src.channels != 4) return std::nullopt;
+  Image a(src.width, src.height, 1, Device::CPU);
+  for (size_t i = 0; i < src.pixel_count(); ++i) a.pixels[i] = src.pixels[4 * i + 3];
+  return a;
+}
+
+}  // namespace
+
 Image load_image(const fs::path& path, Device device, glm::vec3 background, std::optional<Image>* alpha) {
   Image src = read_image(path);
-  if (alpha) {
-    alpha->reset();
-    if (src.channels == 4) {
-      Image a(src.width, src.height, 1, Device::CPU);
-      for (size_t i = 0; i < src.pixel_count(); ++i) a.pixels[i] = src.pixels[4 * i + 3];
-      *alpha = std::move(a);
-    }
-  }
+  if (alpha) *alpha = alpha_channel(src);
   if (src.channels == 3) return to_device(std::move(src), device);
   Image out(src.width, src.height, 3, Device::CPU);
   const size_t n = src.pixel_count();
@@ -128,8 +133,7 @@ Image load_mask(const fs::path& path, Device device) {
 }
 
 std::optional<Image> load_alpha(const fs::path& path, Device device) {
-  std::optional<Image> alpha;
-  load_image(path, Device::CPU, glm::vec3(0.0f), &alpha);
+  std::optional<Image> alpha = alpha_channel(read_image(path));
   if (alpha) *alpha = to_device(std::move(*alpha), device);
   return alpha;
 }

@@ -47,29 +47,38 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
   return plane;
 }
 
+namespace {
+
+// Within the plane's inlier distance: the surface's own Gaussians.
+bool in_band(const MirrorPlane& plane, const glm::dvec3& p) {
+  return std::abs(plane.signed_distance(p)) <= plane.tolerance;
+}
+
+}  // namespace
+
 PlaneFootprint::PlaneFootprint(const std::vector<float>& pos, const MirrorPlane& plane,
                                const std::vector<std::uint8_t>& flags) {
   if (!plane.found) return;
   const glm::dvec3 other = std::abs(plane.normal.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   u_ = glm::normalize(glm::cross(plane.normal, other));
   v_ = glm::cross(plane.normal, u_);
-  std::vector<glm::dvec2> in_band;
+  std::vector<glm::dvec2> centres;  // in-plane coordinates of the flagged in-band centres
   glm::dvec2 lo(1e300), hi(-1e300);
   for (std::size_t i = 0; i < flags.size(); ++i) {
     const glm::dvec3 p(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
-    if (!flags[i] || std::abs(plane.signed_distance(p)) > plane.tolerance) continue;
-    in_band.emplace_back(glm::dot(p, u_), glm::dot(p, v_));
-    lo = glm::min(lo, in_band.back()), hi = glm::max(hi, in_band.back());
+    if (!flags[i] || !in_band(plane, p)) continue;
+    centres.emplace_back(glm::dot(p, u_), glm::dot(p, v_));
+    lo = glm::min(lo, centres.back()), hi = glm::max(hi, centres.back());
   }
-  if (in_band.empty()) return;
+  if (centres.empty()) return;
   // At least the centres' mean spacing, so that the closing bridges the gaps between sparse centres.
   const glm::dvec2 size = hi - lo;
-  cell_ = std::max({glm::length(size) / kCells, std::sqrt(size.x * size.y / double(in_band.size())), 1e-9});
+  cell_ = std::max({glm::length(size) / kCells, std::sqrt(size.x * size.y / double(centres.size())), 1e-9});
   const int pad = kClose + 1;  // room for the closing's dilation
   origin_ = lo - double(pad) * cell_;
   nu_ = int((hi.x - lo.x) / cell_) + 1 + 2 * pad, nv_ = int((hi.y - lo.y) / cell_) + 1 + 2 * pad;
   std::vector<std::uint8_t> grid(std::size_t(nu_) * std::size_t(nv_), 0);
-  for (const glm::dvec2& q : in_band) grid[index(cell_of(q))] = 1;
+  for (const glm::dvec2& q : centres) grid[index(cell_of(q))] = 1;
   // A square window of radius r: any (dilate) or all (erode) of its cells set. Off the grid counts as unset.
   auto morph = [&](int r, bool dilate) {
     std::vector<std::uint8_t> out(grid.size(), 0);
@@ -160,20 +169,21 @@ GlossyPlaneConstraint::Step GlossyPlaneConstraint::apply(GaussianModel& model, c
                                                          int it, bool prune_sinkers) {
   Step step;
   if (!plane_.found) return step;
-  if (over_glossy_.size() != model.count() || it - refreshed_at_ >= kRefreshInterval) {
-    if (prune_sinkers && sank_.size() == model.count()) {
-      std::vector<std::uint8_t> keep(sank_.size());
-      for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !sank_[i];
-      step.pruned = prune_gaussians(model, keep);
-      sinkers_pruned_ += step.pruned;
-    }
-    over_glossy_ = over_glossy_pixels(model, views);
-    footprint_ = PlaneFootprint(model.tensor(Param::Position).value.to_host(), plane_, over_glossy_);
-    sank_.assign(model.count(), 0);
-    refreshed_at_ = it;
+  const bool refresh = over_glossy_.size() != model.count() || it - refreshed_at_ >= kRefreshInterval;
+  if (refresh && prune_sinkers && sank_.size() == model.count()) {
+    std::vector<std::uint8_t> keep(sank_.size());
+    for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !sank_[i];
+    step.pruned = prune_gaussians(model, keep);
+    sinkers_pruned_ += step.pruned;
   }
   ParamTensor& t = model.tensor(Param::Position);
   std::vector<float> pos = t.value.to_host();
+  if (refresh) {
+    over_glossy_ = over_glossy_pixels(model, views);
+    footprint_ = PlaneFootprint(pos, plane_, over_glossy_);
+    sank_.assign(model.count(), 0);
+    refreshed_at_ = it;
+  }
   for_each_beyond(pos, plane_, footprint_, over_glossy_, [&](std::size_t i, const glm::dvec3& p, double d) {
     const glm::dvec3 q = p - (d + 0.5 * plane_.tolerance) * plane_.normal;  // inside the band, float-safe
     pos[3 * i] = float(q.x), pos[3 * i + 1] = float(q.y), pos[3 * i + 2] = float(q.z);
@@ -195,7 +205,7 @@ std::size_t GlossyPlaneConstraint::align_normals(GaussianModel& model) const {
   for (std::size_t i = 0; i < flat.size(); ++i) {
     if (!over_glossy_[i] || flat[i] == glm::vec3(0.0f)) continue;
     const glm::dvec3 p(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
-    if (std::abs(plane_.signed_distance(p)) > plane_.tolerance) continue;
+    if (!in_band(plane_, p)) continue;
     const glm::dvec3 a = glm::normalize(glm::dvec3(flat[i]));
     const glm::dvec3 target = glm::dot(a, n) < 0 ? -n : n;  // the nearer of the two sides
     const double c = glm::dot(a, target);

@@ -66,7 +66,8 @@ T l1_loss(const T* pred, const T* target, size_t n, T* grad, T weight, const T* 
   const double sum = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, n, 4096), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double acc) {
-        for (size_t i = r.begin(); i != r.end(); ++i) acc += double(w(i)) * std::abs(double(pred[i]) - double(target[i]));
+        for (size_t i = r.begin(); i != r.end(); ++i)
+          acc += double(w(i)) * std::abs(double(pred[i]) - double(target[i]));
         return acc;
       },
       [](double a, double b) { return a + b; });
@@ -190,7 +191,7 @@ ColorLossParts weighted_color_loss(const float* pred, const float* target, const
 }
 
 #define GORIS_INSTANTIATE(T)                                                                               \
-  template T l1_loss<T>(const T*, const T*, size_t, T*, T, const T*);                                                \
+  template T l1_loss<T>(const T*, const T*, size_t, T*, T, const T*);                                      \
   template T mse<T>(const T*, const T*, size_t);                                                           \
   template T ssim<T>(const T*, const T*, int, int, int, T*, T);                                            \
   template ColorLossParts color_loss<T>(const T*, const T*, int, int, int, T*, T, T);
