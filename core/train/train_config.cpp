@@ -91,6 +91,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_net_residual", c.intrinsic.net_residual);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
   f("intrinsic_ray_offset_normal", c.intrinsic.ray_offset_normal);
+  f("intrinsic_trace_glossy_transparent", c.intrinsic.trace_glossy_transparent);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
   f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);
   f("intrinsic_prune_mirror_world_repeat", c.intrinsic.prune_mirror_world_repeat);
@@ -193,6 +194,8 @@ void TrainConfig::validate(const std::string& what) const {
     fail("intrinsic_init_roughness and intrinsic_init_fresnel must lie in (0, 1) (sigmoid-activated)");
   if (in.net_hidden_layers < 0 || in.net_hidden_layers > 16) fail("intrinsic_net_hidden_layers must lie in 0..16");
   if (!(in.ray_offset >= 0)) fail("intrinsic_ray_offset must be >= 0");
+  if (!(in.trace_glossy_transparent >= 0 && in.trace_glossy_transparent <= 1))
+    fail("intrinsic_trace_glossy_transparent must be in [0, 1]");
   if (!(in.env_distance >= 0) || !std::isfinite(in.env_distance) || !(in.env_radius >= 0) ||
       !std::isfinite(in.env_radius))
     fail("intrinsic_env_distance and intrinsic_env_radius must be finite and >= 0 (0 = at infinity)");

@@ -59,6 +59,12 @@ struct IntrinsicSettings {
   bool net_residual = false;       // R_s = sigmoid(net + logit(roughness)), starting at R_s = R (ssf::NetConfig)
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
   bool ray_offset_normal = false;  // the offset along the surface normal instead of along the ray
+  // > 0: Gaussians whose emit weight is below this are transparent to the reflection rays (neither occlude
+  // nor emit). A ray reflected off a plane never meets that plane again, but it starts inside the glossy
+  // surface's own Gaussians, which the ray offset only partly skips and which then dim L_ind and V; skipping
+  // them lets the offset be small, so that an object's foot is reflected too. For planar glossy surfaces
+  // (with glossy_plane); a curved glossy object would stop shadowing itself. 0 = off (the paper).
+  float trace_glossy_transparent = 0.0f;
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
   // > 0: at the last warm-up iteration remove the Gaussians seen only behind glossy surfaces (the warm-up's
   // mirror world, core/train/mirror_world.h); the value is the depth tolerance (x the rendered depth). Part

@@ -22,4 +22,9 @@ void add_emit_grads(Device d, const float* demit, const std::uint8_t* region_emi
   add_emit_grads<Device::CPU>(demit, region_emits, n, stride, region, grad_extras);
 }
 
+void transparent_logits(Device d, const float* logits, const float* emit, std::size_t n, float threshold, float* out) {
+  if (d == Device::CUDA) return cuda::transparent_logits(logits, emit, n, threshold, out);
+  transparent_logits<Device::CPU>(logits, emit, n, threshold, out);
+}
+
 }  // namespace goris::intrinsic_glue

@@ -14,6 +14,7 @@ void net_input(Device d, const float* roughness, const float* distance, const fl
                std::size_t hw, float extent, float* in);
 void add_emit_grads(Device d, const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride,
                     int region, float* grad_extras);
+void transparent_logits(Device d, const float* logits, const float* emit, std::size_t n, float threshold, float* out);
 
 namespace cuda {
 void emit_weights(const float* extras, int stride, int region, std::size_t n, const float* override_w, bool or_region,
@@ -22,6 +23,7 @@ void net_input(const float* roughness, const float* distance, const float* depth
                float extent, float* in);
 void add_emit_grads(const float* demit, const std::uint8_t* region_emits, std::size_t n, int stride, int region,
                     float* grad_extras);
+void transparent_logits(const float* logits, const float* emit, std::size_t n, float threshold, float* out);
 }  // namespace cuda
 
 }  // namespace goris::intrinsic_glue

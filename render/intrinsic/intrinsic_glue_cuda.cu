@@ -25,5 +25,9 @@ void add_emit_grads(const float* demit, const std::uint8_t* region_emits, std::s
   intrinsic_glue::add_emit_grads<Device::CUDA>(demit, region_emits, n, stride, region, grad_extras);
   check();
 }
+void transparent_logits(const float* logits, const float* emit, std::size_t n, float threshold, float* out) {
+  intrinsic_glue::transparent_logits<Device::CUDA>(logits, emit, n, threshold, out);
+  check();
+}
 
 }  // namespace goris::intrinsic_glue::cuda

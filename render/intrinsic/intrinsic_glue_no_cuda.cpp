@@ -13,6 +13,7 @@ namespace {
 void emit_weights(const float*, int, int, std::size_t, const float*, bool, float*, std::uint8_t*) { no_cuda(); }
 void net_input(const float*, const float*, const float*, const float*, std::size_t, float, float*) { no_cuda(); }
 void add_emit_grads(const float*, const std::uint8_t*, std::size_t, int, int, float*) { no_cuda(); }
+void transparent_logits(const float*, const float*, std::size_t, float, float*) { no_cuda(); }
 
 }  // namespace goris::intrinsic_glue::cuda
 #endif

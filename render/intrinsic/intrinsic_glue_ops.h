@@ -49,4 +49,14 @@ void add_emit_grads(const float* demit, const std::uint8_t* region_emits, std::s
   });
 }
 
+// The opacity logits the reflection rays see (intrinsic_trace_glossy_transparent): a Gaussian whose emit
+// weight is below `threshold` gets a logit whose opacity is 0, so the tracer gives it an empty box and no
+// ray ever hits it (nor sends it a gradient); the others keep theirs.
+constexpr float kTransparentLogit = -1e4f;  // sigmoid = 0 in float
+
+template <Device D>
+void transparent_logits(const float* logits, const float* emit, std::size_t n, float threshold, float* out) {
+  parallel_for(D, n, [=] GORIS_HD(std::size_t i) { out[i] = emit[i] < threshold ? kTransparentLogit : logits[i]; });
+}
+
 }  // namespace goris::intrinsic_glue

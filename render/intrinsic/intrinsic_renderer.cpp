@@ -74,6 +74,7 @@ struct IntrinsicRenderer::Frame {
   ReflectionRays rays;                          // the traced rays (coarse tracing: first pass, then the rest)
   Buffer<float> emit;                           // [N] region weight of each Gaussian (rough ones emit)
   Buffer<std::uint8_t> region_emits;            // [N] 1 where emit is M (else set_emit_weights(): no gradient to M)
+  Buffer<float> trace_logits;                   // [N] opacity logits the rays see (trace_glossy_transparent), or empty
   Buffer<float> ray_color, ray_depth, ray_alpha;  // per ray
   Buffer<float> L_raw, V_raw;                   // traced_to_images
   Buffer<float> L, V;                           // what shade() read (filtered or raw)
@@ -161,6 +162,20 @@ void IntrinsicRenderer::net_forward(Frame& f, const Buffer<float>& distance) {
   net_.forward(in, g.height, g.width, f.rs);
 }
 
+GaussianView IntrinsicRenderer::traced_view(const GaussianView& gaussians, Frame& f) const {
+  const float threshold = config_.intrinsic.trace_glossy_transparent;
+  if (!(threshold > 0)) return gaussians;
+  const std::size_t n = std::size_t(gaussians.count);
+  if (f.trace_logits.size() != n) {
+    f.trace_logits = Buffer<float>(n, device_);
+    intrinsic_glue::transparent_logits(device_, gaussians.opacity_logits, f.emit.data(), n, threshold,
+                                       f.trace_logits.data());
+  }
+  GaussianView v = gaussians;
+  v.opacity_logits = f.trace_logits.data();
+  return v;
+}
+
 void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps) {
   auto f = std::make_unique<Frame>();
   const GBuffer& g = raster_.gbuffer;
@@ -201,7 +216,7 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
                                  overridden ? emit_override_on_device_.data() : nullptr, emit_or_region_, f->emit.data(),
                                  f->region_emits.data());
     if (n_glossy > 0) {
-      GaussianView plain = gaussians;
+      GaussianView plain = traced_view(gaussians, *f);
       plain.extras = nullptr;
       plain.n_extras = 0;
       tracer_.build(plain, f->emit.data());
@@ -481,7 +496,7 @@ std::vector<float> IntrinsicRenderer::reflected_label(const GaussianView& gaussi
   std::vector<float> label(hw, 0.0f);
   if (n > 0) {
     Buffer<float> ray_extras(n * std::size_t(extra::kCount), device_), ray_alpha(n, device_);
-    tracer_.build(gaussians, f.emit.data());
+    tracer_.build(traced_view(gaussians, *frame_), f.emit.data());
     TraceOutputs out;
     out.extras = ray_extras.data();
     out.alpha = ray_alpha.data();

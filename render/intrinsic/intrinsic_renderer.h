@@ -133,6 +133,9 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   void trace_rays(const ReflectionRays& rays, std::size_t first, std::size_t count, Buffer<float>& color,
                   Buffer<float>& depth, Buffer<float>& alpha, std::size_t at);
   void net_forward(Frame& f, const Buffer<float>& distance);
+  // The Gaussians as the reflection rays see them: with intrinsic_trace_glossy_transparent, those whose emit
+  // weight (f.emit) is below it get a zero opacity (f.trace_logits, which must outlive the tracer's use).
+  GaussianView traced_view(const GaussianView& gaussians, Frame& f) const;
 
   TrainConfig config_;
   float extent_;

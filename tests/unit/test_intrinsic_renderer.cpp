@@ -288,6 +288,47 @@ TEST(IntrinsicRenderer, CoarseTracingStatsMapsAndReflectedLabel) {
   EXPECT_GT(label, 0.0);
 }
 
+// intrinsic_trace_glossy_transparent: the floor's Gaussians (emit weight M = 0.05) are invisible to its own
+// reflection rays, so with a tiny ray offset the rays that start inside the floor are no longer dimmed by it
+// (traced V = 1 wherever the blob is missed), while the blob's reflection stays; the composite gradient
+// stays exact.
+TEST(IntrinsicRenderer, GlossyGaussiansTransparentToReflectionRays) {
+  TrainConfig cfg = intrinsic_config(10);
+  cfg.intrinsic.ray_offset = 1e-4f;
+  GaussianModel m = floor_and_blob(1);
+  const Camera cam = test_camera(40);
+  IntrinsicRenderer opaque(cfg, 3.0f, Device::CPU);
+  cfg.intrinsic.trace_glossy_transparent = 0.5f;
+  IntrinsicRenderer clear(cfg, 3.0f, Device::CPU);
+  clear.load_own_state(opaque.save_own_state(), "same net");
+  const IntrinsicMaps a = opaque.render_maps(m.view(true), cam), b = clear.render_maps(m.view(true), cam);
+  ASSERT_EQ(a.glossy_pixels, b.glossy_pixels);
+  ASSERT_GT(b.glossy_pixels, 100u);
+  ASSERT_EQ(a.visibility_traced.size(), b.visibility_traced.size());
+  std::size_t dim_a = 0, dim_b = 0, blob_b = 0, unit_b = 0;
+  for (std::size_t p = 0; p < b.visibility_traced.size(); ++p) {
+    if (a.visibility_traced[p] < 0.999f) ++dim_a;
+    if (b.visibility_traced[p] < 0.999f) ++dim_b;
+    if (b.visibility_traced[p] < 0.5f) ++blob_b;
+    if (b.visibility_traced[p] == 1.0f) ++unit_b;
+    // Skipping occluders can only let more light through.
+    EXPECT_GE(b.visibility_traced[p], a.visibility_traced[p] - 1e-6f) << p;
+  }
+  EXPECT_GT(dim_a, b.glossy_pixels / 2) << "the floor should dim its own rays at this offset";
+  EXPECT_LT(dim_b, dim_a / 2);
+  EXPECT_GT(blob_b, 5u) << "the blob's reflection must stay";
+  EXPECT_GT(unit_b, b.glossy_pixels / 4);
+  // The lighting-aware mask's label rays see the same Gaussians.
+  const std::vector<float> e = clear.reflected_label(m.view(true), cam);
+  double label = 0;
+  for (float v : e) label += v;
+  EXPECT_GT(label, 0.0);
+
+  std::size_t traced = 0, glossy = 0;
+  check_composite_gradient(cfg, &traced, &glossy);
+  EXPECT_GT(glossy, 100u);
+}
+
 TEST(IntrinsicRenderer, OwnStateRoundTripsAndRejectsForeignFiles) {
   const TrainConfig cfg = intrinsic_config(100);
   IntrinsicRenderer a(cfg, 3.0f, Device::CPU);
