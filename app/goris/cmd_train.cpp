@@ -39,6 +39,7 @@ struct Options {
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> sets;  // KEY=VALUE overrides of config.json keys
+  std::string preset;             // a named group of overrides, applied before `sets`
   bool resume = false;
 };
 
@@ -61,6 +62,7 @@ void reject_changes_on_resume(const Options& o) {
   no(o.mode != "radiance", "--mode");
   no(!o.normals.empty(), "--normals");
   no(!o.sets.empty(), "--set");
+  no(!o.preset.empty(), "--preset");
 }
 
 void run_train(const Options& o) {
@@ -90,6 +92,7 @@ void run_train(const Options& o) {
     if (o.resolution) config.resolution = *o.resolution;
     if (o.downscale) config.downscale = *o.downscale;
     if (o.init_points) config.random_init_points = *o.init_points;
+    if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
     apply_config_overrides(o.sets, config);
   }
   if (o.iters) config.iterations = *o.iters;
@@ -199,6 +202,9 @@ void setup_train(CLI::App& root) {
       ->check(CLI::PositiveNumber);
   c->add_option("--checkpoint-every", o->checkpoint_every, "Checkpoint interval in iterations (2000; 0 = end only)")
       ->check(CLI::NonNegativeNumber);
+  c->add_option("--preset", o->preset,
+                "Named settings applied before --set: planar-glossy (stage 1 for one planar glossy surface with "
+                "glossy masks, see README)");
   c->add_option("--set", o->sets, "Override any training setting: KEY=VALUE with a config.json key (repeatable)");
   c->callback([o] { run_train(*o); });
 }

@@ -308,4 +308,12 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
   }
 }
 
+std::vector<std::string> config_preset(const std::string& name) {
+  if (name == "planar-glossy")
+    return {"intrinsic_material_losses_in_warmup=false", "alpha_weight=0.3", "intrinsic_glossy_plane=true",
+            "intrinsic_glossy_plane_prune_sinkers=true", "intrinsic_trace_glossy_transparent=0.5",
+            "intrinsic_glossy_plane_align=true", "intrinsic_env_distance=1.4"};
+  throw Error("--preset " + name + ": unknown preset (known: planar-glossy)");
+}
+
 }  // namespace goris

@@ -25,3 +25,4 @@ file(WRITE "${WORK}/bad_run/config.json" "{\"iterations\": 10, \"typo_key\": 1}"
 expect_failure(ARGS eval "${WORK}/bad_run" EXPECT "config.json" "unknown key 'typo_key'")
 expect_failure(ARGS train "${WORK}/x" --out "${WORK}/run" --set no_such_key=1 EXPECT "unknown setting 'no_such_key'")
 expect_failure(ARGS train "${WORK}/x" --out "${WORK}/run" --set iterations EXPECT "KEY=VALUE")
+expect_failure(ARGS train "${WORK}/x" --out "${WORK}/run" --preset shiny EXPECT "unknown preset" "planar-glossy")
