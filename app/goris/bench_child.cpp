@@ -119,7 +119,9 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
 }
 
 Metrics::Metrics()
-    : psnr(std::nan("")), ssim(std::nan("")), m_psnr(std::nan("")), m_ssim(std::nan("")), gaussians(std::nan("")) {}
+    : psnr(std::nan("")), ssim(std::nan("")), m_psnr(std::nan("")), m_ssim(std::nan("")), gaussians(std::nan("")),
+      region_psnr(std::nan("")), region_ssim(std::nan("")), region_flip(std::nan("")), ghost_ratio(std::nan("")),
+      flip(std::nan("")), region_fraction(std::nan("")) {}
 
 Metrics read_metrics(const fs::path& metrics_json) {
   const json j = read_json_object(metrics_json);
@@ -127,6 +129,13 @@ Metrics read_metrics(const fs::path& metrics_json) {
   m.psnr = json_number(j, "psnr"), m.ssim = json_number(j, "ssim"), m.gaussians = json_number(j, "gaussians");
   if (j.contains("masked")) m.m_psnr = json_number(j["masked"], "psnr"), m.m_ssim = json_number(j["masked"], "ssim");
   m.device = j.value("device", std::string());
+  m.flip = json_number(j, "flip");
+  if (j.contains("removal")) {
+    const json& r = j["removal"];
+    m.region_psnr = json_number(r, "region_psnr"), m.region_ssim = json_number(r, "region_ssim");
+    m.region_flip = json_number(r, "region_flip"), m.ghost_ratio = json_number(r, "ghost_ratio");
+    m.region_fraction = json_number(r, "region_fraction");
+  }
   return m;
 }
 

@@ -35,6 +35,9 @@ std::string failure_message(const std::filesystem::path& log);
 // The means of `goris eval`'s metrics.json (NaN where absent or null: e.g. a mean over non-finite renders).
 struct Metrics {
   double psnr, ssim, m_psnr, m_ssim, gaussians;
+  // What the removal had to fix (goris eval's "removal" block, on data sets with full_ images): PSNR / SSIM /
+  // FLIP inside the changed region, the ghost ratio over it, and FLIP over the whole image.
+  double region_psnr, region_ssim, region_flip, ghost_ratio, flip, region_fraction;
   std::string device;  // the device the evaluation rendered on
   Metrics();
 };

@@ -1,8 +1,9 @@
-// `goris bench pipeline --data D1 [D2 ...] --configs NAMES --out DIR [--schedule short|medium|full ...]
-// [--device D]`: the paper's ablation ladder (baseline, +elt, +ssf, full, distilled) run end to end per scene
+// `goris bench pipeline --data D1 [D2 ...] | --suite NAME  --configs NAMES --out DIR [--schedule short|medium|full ...]
+// [--device D] [--check SUITE.json]`: the paper's ablation ladder (baseline, +elt, +ssf, full, distilled) run end to end per scene
 // and schedule, each step a `goris` child process (this binary), so a crash in one configuration is recorded
 // and the bench goes on. Writes results.csv, results.md and PSNR-against-time charts (chart.svg/png and
-// chart_SCENE.svg/png) with the Pareto front. A configuration whose result.json in DIR was made with the
+// chart_SCENE.svg/png) with the Pareto front; with --suite (app/goris/bench_suite.h) the scenes are made with
+// `goris synth` (cached) and suite.md / suite.json summarise the removal metrics. A configuration whose result.json in DIR was made with the
 // same options is reused, not rerun.
 #include <algorithm>
 #include <chrono>
@@ -22,6 +23,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "app/goris/bench_child.h"
+#include "app/goris/bench_suite.h"
 #include "app/goris/command.h"
 #include "core/io/file_bytes.h"
 #include "core/report/chart.h"
@@ -58,6 +60,7 @@ const std::vector<ConfigSpec>& ladder() {
   static const std::vector<ConfigSpec> specs = {
       {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask", false,
        "radiance stage 1; RGB-only inpainting, no lighting-aware mask"},
+      {"default", "default", {}, "", false, "`goris train` and `goris remove` with no options: what a user gets"},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
@@ -84,6 +87,10 @@ const std::vector<ConfigSpec>& ladder() {
 
 struct Options {
   std::vector<std::string> data;
+  std::string suite;       // a generalization suite (bench_suite.h) instead of, or besides, --data
+  std::string scene_cache;  // where the suite's scenes are rendered and kept ("" = OUT/scenes)
+  std::string check;        // a committed suite.json to compare with; a regression fails the bench
+  double tolerance_db = 0.5;  // the changed-region PSNR drop --check accepts (the suite's seed-to-seed noise)
   std::string configs = "baseline,+elt,+ssf,full,distilled";
   std::string out;
   std::vector<std::string> schedules = {"short"};
@@ -101,6 +108,8 @@ struct Row {
   int train_iters = 0, remove_iters = 0;
   double gaussians = std::nan(""), psnr = std::nan(""), ssim = std::nan(""), m_psnr = std::nan(""),
          m_ssim = std::nan("");
+  double region_psnr = std::nan(""), region_ssim = std::nan(""), region_flip = std::nan(""), flip = std::nan(""),
+         ghost_ratio = std::nan("");
   double train_s = 0, select_s = 0, remove_s = 0, export_s = 0, eval_s = 0, peak_mib = 0;
   double peak_device_mib = 0;   // CUDA memory in use at the peak of any step (0 on the CPU)
   double cpu_s = std::nan("");  // CPU seconds of train + select + remove (+ export); NaN in older results
@@ -122,7 +131,9 @@ json row_json(const Row& r) {
           {"remove_iters", r.remove_iters}, {"gaussians", r.gaussians}, {"psnr", r.psnr},  {"ssim", r.ssim},
           {"m_psnr", r.m_psnr},     {"m_ssim", r.m_ssim},         {"train_s", r.train_s},     {"select_s", r.select_s},
           {"remove_s", r.remove_s}, {"export_s", r.export_s},     {"eval_s", r.eval_s},       {"peak_mib", r.peak_mib},
-          {"peak_device_mib", r.peak_device_mib}, {"cpu_s", r.cpu_s},       {"remove_steps", r.remove_steps}, {"note", r.note}};
+          {"peak_device_mib", r.peak_device_mib}, {"cpu_s", r.cpu_s},       {"remove_steps", r.remove_steps}, {"note", r.note},
+          {"region_psnr", r.region_psnr}, {"region_ssim", r.region_ssim}, {"region_flip", r.region_flip},
+          {"flip", r.flip}, {"ghost_ratio", r.ghost_ratio}};
 }
 
 Row row_from_json(const json& j) {
@@ -135,6 +146,8 @@ Row row_from_json(const json& j) {
   r.gaussians = d("gaussians"), r.psnr = d("psnr"), r.ssim = d("ssim"), r.m_psnr = d("m_psnr"), r.m_ssim = d("m_ssim");
   r.train_s = d("train_s"), r.select_s = d("select_s"), r.remove_s = d("remove_s"), r.export_s = d("export_s");
   r.eval_s = d("eval_s"), r.peak_mib = d("peak_mib"), r.cpu_s = d("cpu_s");
+  r.region_psnr = d("region_psnr"), r.region_ssim = d("region_ssim"), r.region_flip = d("region_flip");
+  r.flip = d("flip"), r.ghost_ratio = d("ghost_ratio");
   r.peak_device_mib = j.contains("peak_device_mib") ? d("peak_device_mib") : 0.0;
   if (j.contains("remove_steps") && j["remove_steps"].is_object())
     for (auto it = j["remove_steps"].begin(); it != j["remove_steps"].end(); ++it)
@@ -171,6 +184,7 @@ class Bench {
                  const Row* full);
   void evaluate(Row& r, const fs::path& run_dir, const fs::path& logs);
   void write_outputs(const std::vector<Row>& rows, bool final) const;
+  void write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const;
   std::string stage1_notes(const std::vector<Row>& rows) const;
   bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem,
                    const TimeAxis& axis) const;
@@ -224,6 +238,8 @@ void Bench::evaluate(Row& r, const fs::path& run_dir, const fs::path& logs) {
   add_peaks(r, ev);
   if (!ev.ok) throw Error(ev.error);
   r.psnr = m.psnr, r.ssim = m.ssim, r.m_psnr = m.m_psnr, r.m_ssim = m.m_ssim, r.gaussians = m.gaussians;
+  r.region_psnr = m.region_psnr, r.region_ssim = m.region_ssim, r.region_flip = m.region_flip, r.flip = m.flip;
+  r.ghost_ratio = m.ghost_ratio;
   r.device = m.device.empty() ? o_.device : m.device;
 }
 
@@ -442,14 +458,16 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   for (int k = 0; k < goris::kRemovalStepCount; ++k) steps.push_back(goris::removal_step_name(goris::RemovalStep(k)));
 
   std::string csv = "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim,"
-                    "train_s,select_s,remove_s";
+                    "region_psnr,region_ssim,region_flip,flip,ghost_ratio,train_s,select_s,remove_s";
   for (const auto& s : steps) csv += "," + step_column(s);
   csv += ",export_s,eval_s,total_s,cpu_s,peak_host_mib,peak_device_mib,reused,error,note\n";
   for (const Row& r : rows) {
     csv += csv_field(r.scene) + "," + csv_field(r.config) + "," + r.schedule + "," + r.status + "," +
            csv_field(r.device) + "," + std::to_string(r.train_iters) + "," + std::to_string(r.remove_iters) + "," +
            fmt(r.gaussians, "%.0f") + "," + fmt(r.psnr, "%.3f") + "," + fmt(r.ssim, "%.4f") + "," +
-           fmt(r.m_psnr, "%.3f") + "," + fmt(r.m_ssim, "%.4f") + "," + fmt(r.train_s, "%.2f") + "," +
+           fmt(r.m_psnr, "%.3f") + "," + fmt(r.m_ssim, "%.4f") + "," + fmt(r.region_psnr, "%.3f") + "," +
+           fmt(r.region_ssim, "%.4f") + "," + fmt(r.region_flip, "%.4f") + "," + fmt(r.flip, "%.4f") + "," +
+           fmt(r.ghost_ratio, "%.3f") + "," + fmt(r.train_s, "%.2f") + "," +
            fmt(r.select_s, "%.2f") + "," + fmt(r.remove_s, "%.2f");
     for (const auto& s : steps) csv += "," + (r.remove_steps.count(s) ? fmt(r.remove_steps.at(s), "%.2f") : "");
     csv += "," + fmt(r.export_s, "%.2f") + "," + fmt(r.eval_s, "%.2f") + "," + fmt(r.total_s(), "%.2f") + "," +
@@ -474,17 +492,19 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
         "barely change. The chart and the ratios below use " + std::string(axis.cpu ? "CPU" : "total wall") +
         " time. Stage 1 is trained once per kind and shared (its time is counted in each configuration that "
         "uses it). Metrics: test views against the after-removal ground truth; M-PSNR / M-SSIM inside the "
-        "target's region. Peak memory: the largest resident set (host) and the most CUDA memory in use (device; - "
+        "target's region; region PSNR and ghost inside the region the removal changes (`goris eval`, on data "
+        "sets with `full_` views); FLIP: LDR-FLIP over the whole image. Peak memory: the largest resident set (host) and the most CUDA memory in use (device; - "
         "on the CPU) of any step's process.\n\n";
   md += "| scene | config | schedule | status | train s | select s | remove s | export s | eval s | total s | CPU s "
-        "| host MiB | device MiB | Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | device |\n";
-  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+        "| host MiB | device MiB | Gaussians | PSNR | SSIM | M-PSNR | M-SSIM | region PSNR | ghost | FLIP | device |\n";
+  md += "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
   for (const Row& r : rows)
     md += "| " + md_cell(r.scene) + " | " + r.config + " | " + r.schedule + " | " + r.status + (r.reused ? " (reused)" : "") +
           " | " + fmt(r.train_s, "%.1f") + " | " + fmt(r.select_s, "%.1f") + " | " + fmt(r.remove_s, "%.1f") + " | " +
           fmt(r.export_s, "%.1f") + " | " + fmt(r.eval_s, "%.1f") + " | " + fmt(r.total_s(), "%.1f") + " | " +
           fmt(r.cpu_s, "%.1f") + " | " + fmt(r.peak_mib, "%.0f") + " | " + device_mib(r, "-") + " | " + fmt(r.gaussians, "%.0f") + " | " + fmt(r.psnr, "%.2f") + " | " +
           fmt(r.ssim, "%.4f") + " | " + fmt(r.m_psnr, "%.2f") + " | " + fmt(r.m_ssim, "%.4f") + " | " +
+          fmt(r.region_psnr, "%.2f") + " | " + fmt(r.ghost_ratio, "%.2f") + " | " + fmt(r.flip, "%.3f") + " | " +
           md_cell(r.device) + " |\n";
   std::string notes;
   for (const Row& r : rows) {
@@ -538,6 +558,41 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
     for (const auto& m : missing) std::printf("no successful configuration with a PSNR: no %s.svg/png\n", m.c_str());
 }
 
+// suite.md / suite.json: the removal metrics per scene against baseline, the goals, and with --check the
+// regressions against a committed suite.json (each printed; the bench then exits 1).
+void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const {
+  const TimeAxis axis = time_axis(rows);
+  for (const auto& sched : o_.schedules) {
+    std::vector<goris::bench::SuiteResult> results;
+    for (const Row& r : rows) {
+      if (r.schedule != sched || !kinds.count(r.scene)) continue;
+      goris::bench::SuiteResult s;
+      s.scene = r.scene, s.kind = kinds.at(r.scene), s.config = r.config, s.ok = r.status == "ok";
+      s.psnr = r.psnr, s.region_psnr = r.region_psnr, s.region_ssim = r.region_ssim, s.region_flip = r.region_flip;
+      s.flip = r.flip, s.ghost_ratio = r.ghost_ratio, s.seconds = axis.of(r);
+      const fs::path sheet = fs::path("runs") / r.scene / sched / r.config / "run" / "removal" / "metrics_removal.png";
+      if (fs::exists(out_ / sheet)) s.contact_sheet = sheet.string();
+      results.push_back(s);
+    }
+    const auto sum = goris::bench::summarize_suite(o_.suite, sched, results, "baseline");
+    const std::string stem = o_.schedules.size() == 1 ? "suite" : "suite_" + sched;
+    write_text(out_ / (stem + ".md"), sum.markdown);
+    write_text(out_ / (stem + ".json"), sum.json.dump(2) + "\n");
+    std::printf("wrote %s and %s\n", (out_ / (stem + ".md")).c_str(), (out_ / (stem + ".json")).c_str());
+    if (o_.check.empty()) continue;
+    const json committed = read_json_object(o_.check);
+    if (committed.value("schedule", "") != sched) continue;
+    const auto bad = goris::bench::suite_regressions(committed, sum.json, o_.tolerance_db);
+    if (bad.empty()) {
+      std::printf("suite check against %s: no regression (tolerance %.2f dB)\n", o_.check.c_str(), o_.tolerance_db);
+      continue;
+    }
+    std::printf("\nSUITE REGRESSION against %s (tolerance %.2f dB):\n", o_.check.c_str(), o_.tolerance_db);
+    for (const auto& b : bad) std::printf("  %s\n", b.c_str());
+    goris::cli::set_exit_code(1);
+  }
+}
+
 TimeAxis Bench::time_axis(const std::vector<Row>& rows) const {
   TimeAxis a;
   if (o_.time_axis == "wall") return a;
@@ -579,6 +634,18 @@ void Bench::run() {
     if (std::find(schedules.begin(), schedules.end(), s) == schedules.end()) schedules.push_back(s);
   o_.schedules = schedules;
   std::vector<std::pair<std::string, std::string>> scenes;  // name, absolute data path
+  std::map<std::string, std::string> kinds;                  // suite scenes: their kind
+  if (!o_.suite.empty()) {
+    const auto& suite = goris::bench::suite_scenes(o_.suite);
+    const fs::path cache = o_.scene_cache.empty() ? out_ / "scenes" : fs::absolute(o_.scene_cache);
+    std::printf("suite %s: %zu scenes in %s\n", o_.suite.c_str(), suite.size(), cache.c_str());
+    for (const auto& sc : suite) {
+      const fs::path dir =
+          goris::bench::ensure_suite_scene(sc, cache, fs::path(GORIS_RESOURCE_DIR) / "synth" / "render_scene.py");
+      scenes.push_back({sc.name, dir.string()});
+      kinds[sc.name] = sc.kind;
+    }
+  }
   for (const auto& d : o_.data) {
     if (!fs::is_directory(d)) throw Error(d, "not a data set folder");
     const fs::path abs = fs::weakly_canonical(fs::absolute(d));
@@ -603,6 +670,7 @@ void Bench::run() {
     }
   std::printf("\n");
   write_outputs(rows, true);
+  if (!o_.suite.empty()) write_suite(rows, kinds);
   int failed = 0;
   for (const Row& r : rows) failed += r.status == "failed";
   std::printf("wrote %s, %s and the charts in %s (%zu rows, %d failed)\n", (out_ / "results.csv").c_str(),
@@ -615,7 +683,15 @@ void setup_bench_pipeline(CLI::App& root) {
   auto o = std::make_shared<Options>();
   auto* c = bench.add_subcommand(
       "pipeline", "The ablation ladder end to end per scene and schedule: times, memory, PSNR/SSIM, Pareto chart");
-  c->add_option("--data", o->data, "Data set folders (one row block per scene)")->required()->expected(1, -1);
+  c->add_option("--data", o->data, "Data set folders (one row block per scene)")->expected(1, -1);
+  std::string suites;
+  for (const auto& n : goris::bench::suite_names()) suites += (suites.empty() ? "" : ", ") + n;
+  c->add_option("--suite", o->suite,
+                              "A generalization suite of `goris synth` scenes (" + suites + "; rendered once, cached)");
+  c->add_option("--scene-cache", o->scene_cache, "Where the suite's scenes are kept (default OUT/scenes)");
+  c->add_option("--check", o->check,
+                "A committed suite.json: exit 1 when a scene's changed-region PSNR fell by more than --tolerance");
+  c->add_option("--tolerance", o->tolerance_db, "dB of changed-region PSNR that --check accepts")->capture_default_str();
   c->add_option("--configs", o->configs, "Comma-separated: " + config_names() + " or all")->capture_default_str();
   c->add_option("--resolution", o->resolution, "Train and evaluate at this image width (0 = the data set's)")
       ->capture_default_str()
@@ -642,7 +718,16 @@ void setup_bench_pipeline(CLI::App& root) {
   c->add_flag("--report-only", o->report_only,
               "Write the tables and charts from the results already in --out; configurations without one are "
               "listed as not run");
-  c->callback([o] { Bench(*o).run(); });
+  c->callback([o, c] {
+    if (o->data.empty() && o->suite.empty()) throw Error("goris bench pipeline", "give --data DIR... or --suite NAME");
+    // A suite's own defaults: the default against the baseline at its schedule, from 30K random points.
+    if (!o->suite.empty()) {
+      if (c->count("--configs") == 0) o->configs = "baseline,default";
+      if (c->count("--schedule") == 0) o->schedules = {o->suite == "fast" ? "short" : "medium"};
+      if (c->count("--init-points") == 0) o->init_points = 30000;
+    }
+    Bench(*o).run();
+  });
 }
 
 }  // namespace

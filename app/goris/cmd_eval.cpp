@@ -7,6 +7,12 @@
 // side (at least 4 pixels) and clamped to the image; views whose mask is empty are left out of the
 // masked means. A crop rather than the exact mask keeps SSIM's 11x11 windows meaningful at the edges.
 //
+// Every view also gets LDR-FLIP (core/metrics/flip.h) over the whole image. Against the after-removal ground
+// truth of a GOR-IS-style set (test views with full_XXX.png) the "removal" block measures what the removal
+// had to fix (core/metrics/removal_metrics.h): PSNR, SSIM and FLIP inside the changed region (where full_ and
+// r_ differ), the ghost ratio over it (pooled over the views: sum |render - r_| / sum |full_ - r_|), and a
+// contact sheet of the views with the largest changed regions (METRICS_removal.png beside the metrics file).
+//
 // Runs with material channels on a data set with true normals (`goris synth`: train/gt/normal_XXX.exr) also
 // get "intrinsic_ground_truth": normal angular error, roughness and F0 on the training views' glossy
 // surface (render/train/intrinsic_accuracy.h). Intrinsic runs on a data set with glossy masks get
@@ -31,6 +37,7 @@
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/io/image.h"
+#include "core/metrics/removal_metrics.h"
 #include "core/train/image_losses.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
@@ -94,6 +101,38 @@ double mean_of(const std::vector<double>& v) {
 }
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// One row of the removal contact sheet: full_ | r_ | render | |render - r_| x 4, planar [3][H][W] each.
+struct SheetRow {
+  double region_fraction = 0;
+  std::vector<float> before, after, render;
+};
+
+// The sheet of up to `rows` views (those with the largest changed regions), columns as in SheetRow, 2 px gaps.
+void write_removal_sheet(std::vector<SheetRow> views, int w, int h, const fs::path& path, size_t rows = 4) {
+  std::stable_sort(views.begin(), views.end(),
+                   [](const SheetRow& a, const SheetRow& b) { return a.region_fraction > b.region_fraction; });
+  views.resize(std::min(views.size(), rows));
+  if (views.empty()) return;
+  const int gap = 2, cols = 4, W = cols * w + (cols - 1) * gap, H = int(views.size()) * h + (int(views.size()) - 1) * gap;
+  Image sheet;
+  sheet.width = W, sheet.height = H, sheet.channels = 3;
+  std::vector<float> px(size_t(W) * H * 3, 1.0f);
+  for (size_t r = 0; r < views.size(); ++r)
+    for (int c = 0; c < cols; ++c)
+      for (int ch = 0; ch < 3; ++ch)
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x) {
+            const size_t i = (size_t(ch) * h + y) * w + x;
+            const SheetRow& v = views[r];
+            const float value = c == 0 ? v.before[i] : c == 1 ? v.after[i] : c == 2 ? v.render[i]
+                                                                             : std::min(1.0f, 4.0f * std::abs(v.render[i] - v.after[i]));
+            const int X = c * (w + gap) + x, Y = int(r) * (h + gap) + y;
+            px[(size_t(Y) * W + X) * 3 + ch] = value;
+          }
+  sheet.pixels = Buffer<float>(px, Device::CPU);
+  save_png(path, sheet);
+}
 
 // Normals for every run (a radiance run's geometry has normals too); materials only where they were learned.
 // Adds j["intrinsic_ground_truth"] when the data set has true normals (train/gt/normal_*.exr).
@@ -182,7 +221,9 @@ void run_eval(const Options& o) {
   const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
 
   nlohmann::json per_view = nlohmann::json::array();
-  std::vector<double> psnrs, ssims, m_psnrs, m_ssims;
+  std::vector<double> psnrs, ssims, m_psnrs, m_ssims, flips, region_psnrs, region_ssims, region_flips, region_fractions;
+  double ghost_num = 0, ghost_den = 0;  // pooled over the views
+  std::vector<SheetRow> sheet;
   double render_ms = 0;
   size_t non_finite = 0;  // NaN / Inf in the renders (clamping below would hide an Inf)
   for (const View& v : views) {
@@ -209,6 +250,34 @@ void run_eval(const Options& o) {
     ssims.push_back(s);
     jv["psnr"] = number_or_null(psnr);
     jv["ssim"] = s;
+    if (o.gt == "after" && v.full_image) {
+      const std::vector<float> before = to_planar_rgb(load_view_full_image(v, dopt));
+      const RemovalMetrics rm = removal_metrics(clamped.data(), gt.data(), before.data(), w, h);
+      flips.push_back(rm.flip);
+      jv["flip"] = rm.flip;
+      jv["region_fraction"] = rm.region_fraction;
+      region_fractions.push_back(rm.region_fraction);
+      if (rm.region_fraction > 0) {
+        region_psnrs.push_back(rm.region_psnr), region_ssims.push_back(rm.region_ssim);
+        region_flips.push_back(rm.region_flip);
+        jv["region_psnr"] = number_or_null(rm.region_psnr);
+        jv["region_ssim"] = rm.region_ssim;
+        jv["region_flip"] = rm.region_flip;
+        jv["ghost_ratio"] = number_or_null(rm.ghost_ratio);
+        const size_t hw = size_t(w) * h;
+        for (size_t p = 0; p < hw; ++p)
+          if (rm.region[p])
+            for (int ch = 0; ch < 3; ++ch) {
+              const size_t i = size_t(ch) * hw + p;
+              ghost_num += std::abs(double(clamped[i]) - gt[i]), ghost_den += std::abs(double(before[i]) - gt[i]);
+            }
+      }
+      sheet.push_back({rm.region_fraction, before, gt, clamped});
+    } else {
+      const double f = flip_mean(clamped.data(), gt.data(), w, h);
+      flips.push_back(f);
+      jv["flip"] = f;
+    }
     if (v.object_mask) {
       if (const auto c = mask_crop(load_view_object_mask(v))) {
         const auto cp = crop_planar(clamped, w, h, *c), cg = crop_planar(gt, w, h, *c);
@@ -240,6 +309,21 @@ void run_eval(const Options& o) {
                  {"ssim", number_or_null(mean_of(m_ssims))},
                  {"views", m_psnrs.size()},
                  {"region", "bounding box of the object mask (>= 0.5), grown by 10% per side (min 4 px)"}};
+  j["flip"] = number_or_null(mean_of(flips));
+  const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
+  const fs::path sheet_path = out.parent_path() / (out.stem().string() + "_removal.png");
+  if (!region_fractions.empty()) {
+    j["removal"] = {{"views", region_psnrs.size()},
+                    {"region_fraction", mean_of(region_fractions)},
+                    {"region_psnr", number_or_null(mean_of(region_psnrs))},
+                    {"region_ssim", number_or_null(mean_of(region_ssims))},
+                    {"region_flip", number_or_null(mean_of(region_flips))},
+                    {"ghost_ratio", number_or_null(ghost_den > 1e-9 ? ghost_num / ghost_den : std::nan(""))},
+                    {"contact_sheet", sheet_path.filename().string()},
+                    {"region", "pixels where full_ and r_ differ by > 0.04 (max over RGB) after a 3x3 median, "
+                               "dilated 2 px; means over the views with such pixels, the ghost ratio pooled"}};
+    write_removal_sheet(std::move(sheet), views[0].camera.width, views[0].camera.height, sheet_path);
+  }
   j["non_finite_values"] = non_finite;
   j["render_ms_mean"] = render_ms / double(views.size());
   j["peak_host_memory_mib"] = peak_host_memory_mib();
@@ -271,12 +355,16 @@ void run_eval(const Options& o) {
   const std::optional<MaterialSeparation> sep = material_separation(config, ds, model, device, j);
   j["per_view"] = per_view;
 
-  const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
   write_json_file(out, j);
   std::printf("%s split (%zu views at %dx%d, gt %s): PSNR %.2f dB  SSIM %.4f", o.split.c_str(), views.size(),
               views[0].camera.width, views[0].camera.height, o.gt.c_str(), mean_of(psnrs), mean_of(ssims));
   if (!m_psnrs.empty()) std::printf("  M-PSNR %.2f dB  M-SSIM %.4f (%zu views)", mean_of(m_psnrs), mean_of(m_ssims), m_psnrs.size());
-  std::printf("\n");
+  std::printf("  FLIP %.4f\n", mean_of(flips));
+  if (j.contains("removal") && !region_psnrs.empty())
+    std::printf("changed region (%.1f %% of the pixels, %zu views): PSNR %.2f dB  SSIM %.4f  FLIP %.4f  ghost %.3f "
+                "(contact sheet %s)\n",
+                100 * mean_of(region_fractions), region_psnrs.size(), mean_of(region_psnrs), mean_of(region_ssims),
+                mean_of(region_flips), ghost_den > 1e-9 ? ghost_num / ghost_den : std::nan(""), sheet_path.c_str());
   if (acc) {
     std::printf("against the true intrinsics (%zu training views, %zu glossy pixels): normal error %.1f deg mean, %.1f "
                 "median", acc->views, acc->pixels, acc->normal_mean_deg, acc->normal_median_deg);

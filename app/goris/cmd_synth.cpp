@@ -38,6 +38,20 @@ void setup_synth(CLI::App& root) {
   c->add_option("--table-roughness", a->opt.table_roughness,
                  "override the glossy table top's roughness (0 = mirror .. 1; presets with a table)")
       ->check(CLI::Range(0.0, 1.0));
+  auto names = [](const std::vector<std::string>& v) {
+    std::string t;
+    for (const auto& n : v) t += (t.empty() ? "" : "|") + n;
+    return t;
+  };
+  c->add_option("--table-material", a->opt.table_material,
+                "override the table top's material: " + names(goris::synth::table_material_names()));
+  c->add_option("--table-shape", a->opt.table_shape,
+                "override the glossy surface's shape: " + names(goris::synth::table_shape_names()));
+  c->add_option("--target-shape", a->opt.target_shape,
+                "override the target's shape: " + names(goris::synth::target_shape_names()));
+  c->add_option("--objects", a->opt.objects, "override the number of diffuse objects besides the target (0-6)");
+  c->add_option("--camera-elevation", a->opt.camera_elevation,
+                "override the cameras' elevations: " + names(goris::synth::camera_elevation_names()));
   c->add_option("--blender", a->blender, "Blender executable (default: blender on PATH)");
   c->add_flag("--contact-sheet", a->contact_sheet, "also write contact_sheet.png (test views: full_ | r_ | mask)");
   c->add_flag("--no-gt", a->no_gt, "skip the intrinsic ground-truth maps (train/gt/*.exr)");

@@ -61,6 +61,16 @@ Material marble_top(Rng& rng, double roughness) {
   return m;
 }
 
+// A dark glossy dielectric (lacquer, plastic): F0 0.04-0.08, so the reflections are dimmer than a metal's and
+// uncoloured, over a dark base colour.
+Material dielectric_top(Rng& rng, double roughness) {
+  Material m;
+  m.color = hsv(rng.unit(), rng.uniform(0.2, 0.6), rng.uniform(0.05, 0.25));
+  m.roughness = roughness;
+  m.specular = rng.uniform(0.5, 1.0);
+  return m;
+}
+
 SceneObject table_top(const Material& m) {
   SceneObject o{"table", "cylinder", {0, 0, -0.04}, {0, 0, 0}, {kTableRadius, kTableRadius, 0.04}, m, false, true};
   return o;
@@ -230,12 +240,97 @@ const std::map<std::string, PresetFn>& presets() {
   return p;
 }
 
+void check_name(const char* what, const std::optional<std::string>& v, const std::vector<std::string>& names) {
+  if (!v || std::find(names.begin(), names.end(), *v) != names.end()) return;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  throw Error("goris synth", std::string(what) + ": unknown value '" + *v + "' (" + list + ")");
+}
+
+bool is_diffuse_extra(const SceneObject& o) { return o.name.rfind("object_", 0) == 0; }
+
+// The overrides of SynthOptions, applied after the preset drew its scene. Their own random choices come
+// from a second generator, so the preset's draws - and a scene without overrides - stay the seed's.
+void apply_overrides(const SynthOptions& o, SceneDescription& s, CameraRing& ring) {
+  Rng rng(o.seed ^ 0x9e3779b9u);
+  auto table = std::find_if(s.objects.begin(), s.objects.end(), [](const SceneObject& x) { return x.name == "table"; });
+  const bool table_override = o.table_material || o.table_shape || o.table_roughness;
+  if (table_override && table == s.objects.end())
+    throw Error("goris synth", "--table-*: preset '" + o.preset + "' has no table top");
+  if (o.table_material) {
+    const double r = table->material.roughness;
+    table->material = *o.table_material == "metal"    ? metal_top(rng, r)
+                      : *o.table_material == "marble" ? marble_top(rng, r)
+                                                      : dielectric_top(rng, r);
+  }
+  if (o.table_roughness) {
+    const double r = *o.table_roughness;
+    if (!(r >= 0.0 && r <= 1.0))
+      throw Error("goris synth", "--table-roughness must be between 0 and 1, got " + std::to_string(r));
+    table->material.roughness = r;
+  }
+  if (o.table_shape == "rect") {
+    table->shape = "cube";
+    table->scale = {1.8, 1.3, 0.04};
+    table->rotation = {0, 0, rng.uniform(0, kPi)};
+  } else if (o.table_shape == "floor") {
+    table->shape = "plane";
+    table->scale = {3.5, 3.5, 1};
+    table->location = {0, 0, 0};
+  }
+  auto target = std::find_if(s.objects.begin(), s.objects.end(), [](const SceneObject& x) { return x.target; });
+  if (o.target_shape && target != s.objects.end()) {
+    SceneObject& t = *target;
+    const double a = rng.uniform(0, 2 * kPi);
+    t.rotation = {0, 0, a};
+    if (*o.target_shape == "convex") {
+      const double size = rng.uniform(0.3, 0.4);
+      t.shape = rng.chance(0.5) ? "sphere" : "cube";
+      t.scale = {size, size, size};
+    } else if (*o.target_shape == "thin") {
+      t.shape = "cylinder", t.scale = {0.06, 0.06, 0.45};
+    } else if (*o.target_shape == "holed") {
+      t.shape = "torus", t.scale = {0.42, 0.42, 0.42};
+      t.rotation = {kPi / 2, 0, a};  // upright: the hole faces the views
+    } else if (*o.target_shape == "tall") {
+      t.shape = "cylinder", t.scale = {0.2, 0.2, 0.7};
+    } else {  // small
+      t.shape = "sphere", t.scale = {0.15, 0.15, 0.15};
+    }
+    // Resting on the surface: an upright torus stands on its rim (major + minor radius = 1.0 x scale).
+    t.location[2] = t.shape == "torus" && t.rotation[0] != 0 ? t.scale[2] : rest_height(t.shape, t.scale[2]);
+  }
+  if (o.objects) {
+    s.objects.erase(std::remove_if(s.objects.begin(), s.objects.end(), is_diffuse_extra), s.objects.end());
+    scatter_objects(rng, s, *o.objects, 0.75, 1.2);
+  }
+  if (o.camera_elevation == "low") ring.min_elevation = 0.21, ring.max_elevation = 0.61;
+  if (o.camera_elevation == "high") ring.min_elevation = 0.79, ring.max_elevation = 1.36;
+}
+
 void check_range(const char* what, int v, int lo, int hi) {
   if (v < lo || v > hi)
     throw Error(std::string("goris synth"), std::string(what) + " must be between " + std::to_string(lo) + " and " +
                                                 std::to_string(hi) + ", got " + std::to_string(v));
 }
 }  // namespace
+
+const std::vector<std::string>& table_material_names() {
+  static const std::vector<std::string> n{"metal", "dielectric", "marble"};
+  return n;
+}
+const std::vector<std::string>& table_shape_names() {
+  static const std::vector<std::string> n{"round", "rect", "floor"};
+  return n;
+}
+const std::vector<std::string>& target_shape_names() {
+  static const std::vector<std::string> n{"convex", "thin", "holed", "tall", "small"};
+  return n;
+}
+const std::vector<std::string>& camera_elevation_names() {
+  static const std::vector<std::string> n{"low", "mid", "high"};
+  return n;
+}
 
 const std::vector<std::string>& preset_names() {
   static const std::vector<std::string> names{"glossy-table", "marble", "lambert-room", "twin-mirrors", "occluded"};
@@ -253,6 +348,11 @@ SceneDescription make_scene(const SynthOptions& o) {
   check_range("--spp", o.samples, 1, 65536);
   check_range("--train", o.train_views, 1, 1000);
   check_range("--test", o.test_views, 1, 1000);
+  check_name("--table-material", o.table_material, table_material_names());
+  check_name("--table-shape", o.table_shape, table_shape_names());
+  check_name("--target-shape", o.target_shape, target_shape_names());
+  check_name("--camera-elevation", o.camera_elevation, camera_elevation_names());
+  if (o.objects) check_range("--objects", *o.objects, 0, 6);
 
   SceneDescription s;
   s.preset = o.preset;
@@ -265,16 +365,7 @@ SceneDescription make_scene(const SynthOptions& o) {
   s.camera_angle_x = 0.6911112070083618;  // the 50 mm lens of the shared GOR-IS scenes
   Rng rng(o.seed);
   CameraRing ring = it->second(rng, s);
-  if (o.table_roughness) {
-    const double r = *o.table_roughness;
-    if (!(r >= 0.0 && r <= 1.0))
-      throw Error("goris synth", "--table-roughness must be between 0 and 1, got " + std::to_string(r));
-    auto table =
-        std::find_if(s.objects.begin(), s.objects.end(), [](const SceneObject& x) { return x.name == "table"; });
-    if (table == s.objects.end())
-      throw Error("goris synth", "--table-roughness: preset '" + o.preset + "' has no table top");
-    table->material.roughness = r;  // after the preset: the seed's other random choices stay the same
-  }
+  apply_overrides(o, s, ring);
   s.train_cameras = hemisphere_cameras(ring, o.train_views, 0.0);
   s.test_cameras = hemisphere_cameras(ring, o.test_views, 0.5);
   return s;

@@ -7,8 +7,8 @@
 //   lambert-room  diffuse floor and wall, area light, no glossy surface (a failure case of the method)
 //   twin-mirrors  steel table and a vertical mirror facing it (the other failure case)
 //   occluded      the target sits behind a bigger object, hidden from most views
-// table_roughness overrides the glossy table top's roughness (the stability bench's extreme 0.0 and 1.0)
-// and leaves everything else of the seed's scene as it was.
+// The optional fields override one choice of the seed's scene (presets with a table top only) and leave
+// the seed's other random choices as they were; unset, the scene is the seed's own.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,8 +26,29 @@ struct SynthOptions {
   int test_views = 20;
   uint32_t seed = 1;
   bool ground_truth_maps = true;
-  std::optional<double> table_roughness;  // in [0, 1]; presets with a table top only
+  // The glossy surface's roughness in [0, 1] (0 = mirror; the stability bench's extremes 0.0 and 1.0).
+  std::optional<double> table_roughness;
+  // The glossy surface's material: "metal" (metallic, tinted grey), "dielectric" (dark lacquer, F0 0.04-0.08)
+  // or "marble" (polished stone with veins).
+  std::optional<std::string> table_material;
+  // The glossy surface's shape: "round" (a 1.5 m radius disc), "rect" (a 3.6 x 2.6 m slab) or "floor" (a
+  // 7 x 7 m plane reaching past the views' edges).
+  std::optional<std::string> table_shape;
+  // The target's shape: "convex" (sphere or cube), "thin" (a post 0.12 m across), "holed" (an upright
+  // torus: the hole shows the table through it), "tall" (a 1.4 m column) or "small" (a 0.3 m sphere).
+  std::optional<std::string> target_shape;
+  // Diffuse objects besides the target, 0-6.
+  std::optional<int> objects;
+  // Camera elevations: "low" (12-35 degrees: grazing views, long reflections), "mid" (20-70, the
+  // default) or "high" (45-78).
+  std::optional<std::string> camera_elevation;
 };
+
+// The names each override accepts, for help texts and errors.
+const std::vector<std::string>& table_material_names();
+const std::vector<std::string>& table_shape_names();
+const std::vector<std::string>& target_shape_names();
+const std::vector<std::string>& camera_elevation_names();
 
 const std::vector<std::string>& preset_names();
 

@@ -17,6 +17,16 @@ std::string scene_json(const std::string& preset, uint32_t seed) {
   o.seed = seed;
   return to_json(make_scene(o)).dump();
 }
+
+// make_scene's error message for options it must refuse ("" when it accepted them).
+std::string error_of(const SynthOptions& o) {
+  try {
+    make_scene(o);
+  } catch (const goris::Error& e) {
+    return e.what();
+  }
+  return "";
+}
 }  // namespace
 
 TEST(SynthPresets, SameSeedGivesIdenticalSceneJson) {
@@ -30,14 +40,9 @@ TEST(SynthPresets, DifferentSeedsGiveDifferentScenes) {
 TEST(SynthPresets, UnknownPresetListsThePresets) {
   SynthOptions o;
   o.preset = "no-such-scene";
-  try {
-    make_scene(o);
-    FAIL() << "expected an error";
-  } catch (const goris::Error& e) {
-    std::string msg = e.what();
-    EXPECT_NE(msg.find("no-such-scene"), std::string::npos) << msg;
-    for (const auto& p : preset_names()) EXPECT_NE(msg.find(p), std::string::npos) << msg;
-  }
+  const std::string msg = error_of(o);
+  EXPECT_NE(msg.find("no-such-scene"), std::string::npos) << msg;
+  for (const auto& p : preset_names()) EXPECT_NE(msg.find(p), std::string::npos) << msg;
 }
 
 TEST(SynthPresets, BadCountsAreErrors) {
@@ -182,4 +187,92 @@ TEST(SynthPresets, TableRoughnessOutOfRangeOrWithoutATableIsAnError) {
   } catch (const goris::Error& e) {
     EXPECT_NE(std::string(e.what()).find("lambert-room"), std::string::npos) << e.what();
   }
+}
+
+namespace {
+const nlohmann::json* object_named(const nlohmann::json& scene, const std::string& name) {
+  for (const auto& o : scene["objects"])
+    if (o["name"] == name) return &o;
+  return nullptr;
+}
+const nlohmann::json* target_of(const nlohmann::json& scene) {
+  for (const auto& o : scene["objects"])
+    if (o["target"].get<bool>()) return &o;
+  return nullptr;
+}
+}  // namespace
+
+TEST(SynthPresets, OverridesChangeTheirChoiceAndKeepTheRestOfTheScene) {
+  SynthOptions o;
+  o.seed = 9;
+  const nlohmann::json base = to_json(make_scene(o));
+  o.table_material = "dielectric";
+  o.table_roughness = 0.01;
+  const nlohmann::json d = to_json(make_scene(o));
+  const auto* table = object_named(d, "table");
+  ASSERT_TRUE(table);
+  EXPECT_EQ((*table)["material"]["metallic"].get<double>(), 0.0);
+  EXPECT_EQ((*table)["material"]["roughness"].get<double>(), 0.01);
+  EXPECT_GE((*table)["material"]["specular"].get<double>(), 0.5);  // F0 >= 0.04
+  EXPECT_EQ((*target_of(d)).dump(), (*target_of(base)).dump());       // the target is the seed's
+  EXPECT_EQ(d["cameras"].dump(), base["cameras"].dump());
+
+  o = SynthOptions{};
+  o.seed = 9;
+  o.table_shape = "floor";
+  const nlohmann::json floor_scene = to_json(make_scene(o));
+  const auto* floor = object_named(floor_scene, "table");
+  o.table_shape = "rect";
+  const nlohmann::json rect = to_json(make_scene(o));
+  EXPECT_EQ((*object_named(rect, "table"))["shape"], "cube");
+  EXPECT_EQ((*floor)["shape"], "plane");
+  EXPECT_TRUE((*floor)["glossy"].get<bool>());
+}
+
+TEST(SynthPresets, TargetShapesRestOnTheTable) {
+  for (const auto& shape : target_shape_names()) {
+    SynthOptions o;
+    o.seed = 4;
+    o.target_shape = shape;
+    const nlohmann::json j = to_json(make_scene(o));
+    const auto* t = target_of(j);
+    ASSERT_TRUE(t) << shape;
+    const double z = (*t)["location"][2].get<double>(), sz = (*t)["scale"][2].get<double>();
+    EXPECT_GT(z, 0.0) << shape;
+    if (shape == "tall") EXPECT_GE(2 * sz, 1.2) << "a tall target stands over 1.2 m";
+    if (shape == "thin") EXPECT_LE((*t)["scale"][0].get<double>(), 0.1) << "a thin target";
+    if (shape == "holed") EXPECT_EQ((*t)["shape"], "torus");
+    if (shape == "small") EXPECT_LE(sz, 0.2);
+  }
+}
+
+TEST(SynthPresets, ObjectCountAndElevationOverrides) {
+  SynthOptions o;
+  o.seed = 3;
+  o.objects = 6;
+  o.camera_elevation = "low";
+  const nlohmann::json j = to_json(make_scene(o));
+  int extras = 0;
+  for (const auto& obj : j["objects"]) extras += obj["name"].get<std::string>().rfind("object_", 0) == 0;
+  EXPECT_EQ(extras, 6);
+  for (const auto& c : j["cameras"]["train"]) {
+    const double dx = c["location"][0].get<double>(), dy = c["location"][1].get<double>();
+    const double dz = c["location"][2].get<double>() - 0.15;
+    EXPECT_LE(std::atan2(dz, std::hypot(dx, dy)), 0.62);  // 35 degrees
+  }
+}
+
+TEST(SynthPresets, UnknownOverrideValuesListTheKnownOnes) {
+  SynthOptions o;
+  o.table_shape = "hexagon";
+  const std::string m = error_of(o);
+  EXPECT_NE(m.find("hexagon"), std::string::npos) << m;
+  EXPECT_NE(m.find("floor"), std::string::npos) << m;
+  o = SynthOptions{};
+  o.objects = 9;
+  EXPECT_THROW(make_scene(o), goris::Error);
+  o = SynthOptions{};
+  o.preset = "lambert-room";
+  o.table_material = "metal";
+  EXPECT_THROW(make_scene(o), goris::Error);
 }

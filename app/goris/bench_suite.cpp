@@ -1,0 +1,287 @@
+#include "app/goris/bench_suite.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "app/goris/bench_child.h"
+#include "core/io/file_bytes.h"
+#include "core/synth/synth.h"
+#include "core/util/error.h"
+
+namespace goris::bench {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+// Every suite scene is rendered alike: small enough that the whole suite trains on two CPU cores in about an
+// hour at the medium schedule, with enough views for the removal's reference views and the test metrics.
+synth::SynthOptions suite_render(const std::string& preset, uint32_t seed) {
+  synth::SynthOptions o;
+  o.preset = preset;
+  o.seed = seed;
+  o.resolution = 128;
+  o.samples = 32;
+  o.train_views = 32;
+  o.test_views = 10;
+  return o;
+}
+
+struct Variation {
+  const char* material = nullptr;
+  double roughness = -1;
+  const char* shape = nullptr;
+  const char* target = nullptr;
+  int objects = -1;
+  const char* elevation = nullptr;
+};
+
+SuiteScene glossy(const char* name, const char* preset, uint32_t seed, const Variation& v) {
+  SuiteScene s{name, "glossy", suite_render(preset, seed)};
+  if (v.material) s.synth.table_material = v.material;
+  if (v.roughness >= 0) s.synth.table_roughness = v.roughness;
+  if (v.shape) s.synth.table_shape = v.shape;
+  if (v.target) s.synth.target_shape = v.target;
+  if (v.objects >= 0) s.synth.objects = v.objects;
+  if (v.elevation) s.synth.camera_elevation = v.elevation;
+  return s;
+}
+
+const std::vector<SuiteScene>& generalization() {
+  // Seeds are fixed: the suite is the same on every machine. Each row varies several axes at once so that
+  // twelve scenes cover every material, roughness band, surface shape, target shape and elevation.
+  static const std::vector<SuiteScene> s = {
+      glossy("metal_round_convex", "glossy-table", 101, {"metal", 0.04, "round", "convex", -1, nullptr}),
+      glossy("marble_round_monkey", "marble", 102, {nullptr, 0.12, "round", nullptr, -1, nullptr}),
+      glossy("metal_round_holed_rough", "glossy-table", 103, {"metal", 0.20, "round", "holed", -1, nullptr}),
+      glossy("dielectric_round_tall_mirror", "glossy-table", 104, {"dielectric", 0.01, "round", "tall", -1, nullptr}),
+      glossy("metal_rect_small_mirror", "glossy-table", 105, {"metal", 0.0, "rect", "small", -1, nullptr}),
+      glossy("dielectric_rect_thin", "glossy-table", 106, {"dielectric", 0.08, "rect", "thin", -1, nullptr}),
+      glossy("marble_floor_convex_low", "glossy-table", 107, {"marble", 0.15, "floor", "convex", -1, "low"}),
+      glossy("metal_floor_tall_high_rough", "glossy-table", 108, {"metal", 0.30, "floor", "tall", -1, "high"}),
+      glossy("dielectric_round_holed_crowded", "glossy-table", 109, {"dielectric", 0.35, "round", "holed", 6, nullptr}),
+      glossy("occluded_metal", "occluded", 110, {"metal", 0.05, nullptr, nullptr, -1, nullptr}),
+      glossy("metal_round_sparse_high", "glossy-table", 111, {"metal", 0.10, "round", "convex", 1, "high"}),
+      glossy("marble_rect_tall_low", "glossy-table", 112, {"marble", 0.25, "rect", "tall", -1, "low"}),
+      {"lambert_room", "lambertian", suite_render("lambert-room", 113)},
+      {"twin_mirrors", "failure", suite_render("twin-mirrors", 114)},
+  };
+  return s;
+}
+
+const std::vector<SuiteScene>& fast() {
+  static const std::vector<SuiteScene> s = [] {
+    std::vector<SuiteScene> f;
+    for (const auto& sc : generalization())
+      if (sc.name == "metal_round_holed_rough" || sc.name == "dielectric_round_tall_mirror" || sc.name == "lambert_room")
+        f.push_back(sc);
+    return f;
+  }();
+  return s;
+}
+
+double nan() { return std::nan(""); }
+
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+struct Stats {
+  double mean = nan(), worst = nan();
+  std::string worst_scene;
+};
+
+// Mean and minimum of values (NaN entries are left out of both; a missing scene makes the stats partial).
+Stats stats_of(const std::vector<std::pair<std::string, double>>& v, bool higher_is_better = true) {
+  Stats s;
+  double sum = 0;
+  int n = 0;
+  for (const auto& [scene, x] : v) {
+    if (!std::isfinite(x)) continue;
+    sum += x, ++n;
+    const bool worse = !std::isfinite(s.worst) || (higher_is_better ? x < s.worst : x > s.worst);
+    if (worse) s.worst = x, s.worst_scene = scene;
+  }
+  if (n) s.mean = sum / n;
+  return s;
+}
+}  // namespace
+
+const std::vector<std::string>& suite_names() {
+  static const std::vector<std::string> n{"generalization", "fast"};
+  return n;
+}
+
+const std::vector<SuiteScene>& suite_scenes(const std::string& suite) {
+  if (suite == "generalization") return generalization();
+  if (suite == "fast") return fast();
+  throw Error("--suite", "unknown suite '" + suite + "' (generalization, fast)");
+}
+
+fs::path ensure_suite_scene(const SuiteScene& scene, const fs::path& cache, const fs::path& blender_script) {
+  const fs::path dir = fs::absolute(cache) / scene.name;
+  const std::string want = synth::to_json(synth::make_scene(scene.synth)).dump(1) + "\n";
+  if (fs::exists(dir / "scene.json") && fs::exists(dir / "transforms_test.json")) {
+    if (read_text_file(dir / "scene.json") == want) return dir;
+    std::fprintf(stderr, "suite scene %s: %s was made from another scene description; rendering it again\n",
+                 scene.name.c_str(), dir.c_str());
+  }
+  synth::SynthJob job;
+  job.options = scene.synth;
+  job.out = dir;
+  job.script = blender_script;
+  job.contact_sheet = true;
+  job.on_frame = [&](int done, int total) {
+    std::fprintf(stderr, "\r  synth %s: view %d/%d   ", scene.name.c_str(), done, total);
+    std::fflush(stderr);
+  };
+  fs::create_directories(dir.parent_path());
+  std::printf("  synth %s (%s, seed %u)\n", scene.name.c_str(), scene.synth.preset.c_str(), scene.synth.seed);
+  std::fflush(stdout);
+  synth::run_synth(job);
+  std::fprintf(stderr, "\n");
+  return dir;
+}
+
+SuiteResult::SuiteResult()
+    : psnr(nan()), region_psnr(nan()), region_ssim(nan()), region_flip(nan()), flip(nan()), ghost_ratio(nan()),
+      seconds(nan()) {}
+
+SuiteSummary summarize_suite(const std::string& suite, const std::string& schedule,
+                             const std::vector<SuiteResult>& results, const std::string& reference) {
+  std::vector<std::string> scenes, configs;
+  std::map<std::pair<std::string, std::string>, const SuiteResult*> at;
+  std::map<std::string, std::string> kind;
+  for (const SuiteResult& r : results) {
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+    if (std::find(configs.begin(), configs.end(), r.config) == configs.end()) configs.push_back(r.config);
+    at[{r.scene, r.config}] = &r;
+    kind[r.scene] = r.kind;
+  }
+  auto get = [&](const std::string& s, const std::string& c) -> const SuiteResult* {
+    auto it = at.find({s, c});
+    return it == at.end() || !it->second->ok ? nullptr : it->second;
+  };
+
+  SuiteSummary out;
+  json j = {{"format", "goris-suite"}, {"version", 1}, {"suite", suite}, {"schedule", schedule},
+            {"reference", reference}};
+  json rows = json::array();
+  std::string md = "# Generalization suite `" + suite + "`, schedule " + schedule + "\n\n";
+  md += "Changed region: the pixels where the test views with the target (`full_`) and without it (`r_`) differ "
+        "(after a 3x3 median, so that path-tracing noise is no change; threshold 0.04, dilated 2 px). Ghost = "
+        "sum |render - r_| / sum |full_ - r_| over it (1 = nothing removed, 0 = all of it). FLIP: LDR-FLIP, "
+        "0 = identical. Delta: against `" + reference + "` on the same scene.\n\n";
+  md += "| scene | kind | config | PSNR | region PSNR | Δ region | region SSIM | region FLIP | ghost | time s | "
+        "time × |\n|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const auto& s : scenes)
+    for (const auto& c : configs) {
+      const SuiteResult* r = at.count({s, c}) ? at[{s, c}] : nullptr;
+      if (!r) continue;
+      const SuiteResult* ref = get(s, reference);
+      const double d = r->ok && ref ? r->region_psnr - ref->region_psnr : nan();
+      const double tx = r->ok && ref && ref->seconds > 0 ? r->seconds / ref->seconds : nan();
+      md += "| " + s + " | " + r->kind + " | " + c + " | " +
+            (r->ok ? fmt(r->psnr, "%.2f") + " | " + fmt(r->region_psnr, "%.2f") + " | " + fmt(d, "%+.2f") + " | " +
+                         fmt(r->region_ssim, "%.3f") + " | " + fmt(r->region_flip, "%.3f") + " | " +
+                         fmt(r->ghost_ratio, "%.2f") + " | " + fmt(r->seconds, "%.0f") + " | " + fmt(tx, "%.2f")
+                   : std::string("failed | | | | | | |")) +
+            " |\n";
+      rows.push_back({{"scene", s},
+                      {"kind", r->kind},
+                      {"config", c},
+                      {"ok", r->ok},
+                      {"psnr", num(r->psnr)},
+                      {"region_psnr", num(r->region_psnr)},
+                      {"region_ssim", num(r->region_ssim)},
+                      {"region_flip", num(r->region_flip)},
+                      {"flip", num(r->flip)},
+                      {"ghost_ratio", num(r->ghost_ratio)},
+                      {"seconds", num(r->seconds)}});
+    }
+  j["rows"] = rows;
+
+  // Per configuration: the glossy scenes' mean and worst gain in the changed region and ghost, and the
+  // Lambertian scenes' PSNR difference and time ratio - the goals a default must meet.
+  json goals = json::object();
+  md += "\n| config | glossy scenes | mean Δ region dB | worst Δ region dB (scene) | worst ghost (scene) | "
+        "Lambertian ΔPSNR | Lambertian time × |\n|---|--:|--:|--:|--:|--:|--:|\n";
+  for (const auto& c : configs) {
+    if (c == reference) continue;
+    std::vector<std::pair<std::string, double>> gain, ghost, lam_d, lam_t;
+    int glossy_total = 0;
+    for (const auto& s : scenes) {
+      const SuiteResult *r = get(s, c), *ref = get(s, reference);
+      if (kind[s] == "glossy") {
+        ++glossy_total;
+        gain.push_back({s, r && ref ? r->region_psnr - ref->region_psnr : nan()});
+        ghost.push_back({s, r ? r->ghost_ratio : nan()});
+      } else if (kind[s] == "lambertian" && r && ref) {
+        lam_d.push_back({s, r->psnr - ref->psnr});
+        lam_t.push_back({s, ref->seconds > 0 ? r->seconds / ref->seconds : nan()});
+      }
+    }
+    const Stats g = stats_of(gain), gh = stats_of(ghost, false), ld = stats_of(lam_d), lt = stats_of(lam_t, false);
+    int measured = 0;
+    for (const auto& x : gain) measured += std::isfinite(x.second);
+    md += "| " + c + " | " + std::to_string(measured) + " of " + std::to_string(glossy_total) + " | " +
+          fmt(g.mean, "%+.2f") + " | " + fmt(g.worst, "%+.2f") + (g.worst_scene.empty() ? "" : " (" + g.worst_scene + ")") +
+          " | " + fmt(gh.worst, "%.2f") + (gh.worst_scene.empty() ? "" : " (" + gh.worst_scene + ")") + " | " +
+          fmt(ld.worst, "%+.2f") + " | " + fmt(lt.worst, "%.2f") + " |\n";
+    const bool complete = measured == glossy_total && glossy_total > 0;
+    goals[c] = {{"glossy_measured", measured},
+                {"glossy_scenes", glossy_total},
+                {"mean_region_gain_db", num(g.mean)},
+                {"worst_region_gain_db", num(g.worst)},
+                {"worst_region_gain_scene", g.worst_scene},
+                {"worst_ghost_ratio", num(gh.worst)},
+                {"worst_ghost_scene", gh.worst_scene},
+                {"lambertian_worst_psnr_delta_db", num(ld.worst)},
+                {"lambertian_worst_time_ratio", num(lt.worst)},
+                {"meets_goals", complete && g.mean >= 3.0 && g.worst >= 1.0 && gh.worst <= 0.25 &&
+                                    (lam_d.empty() || (ld.worst >= -0.3 && lt.worst <= 1.2))}};
+  }
+  j["goals"] = goals;
+  md += "\nGoals: mean Δ region ≥ +3 dB and every glossy scene ≥ +1 dB over `" + reference +
+        "`, ghost ≤ 0.25 on every glossy scene, Lambertian scenes within 0.3 dB at ≤ 1.2× the time.\n";
+  for (auto it = goals.begin(); it != goals.end(); ++it)
+    md += "- `" + it.key() + "`: " + (it.value()["meets_goals"].get<bool>() ? "meets them" : "does not meet them") + "\n";
+
+  bool sheets = false;
+  for (const SuiteResult& r : results) sheets = sheets || !r.contact_sheet.empty();
+  if (sheets) {
+    md += "\nContact sheets (test views: `full_` | `r_` | cleaned render | error ×4):\n\n";
+    for (const SuiteResult& r : results)
+      if (!r.contact_sheet.empty()) md += "- " + r.scene + " / " + r.config + ": [" + r.contact_sheet + "](" + r.contact_sheet + ")\n";
+  }
+  out.markdown = md;
+  out.json = j;
+  return out;
+}
+
+std::vector<std::string> suite_regressions(const json& committed, const json& current, double tolerance_db) {
+  std::vector<std::string> bad;
+  if (!committed.contains("rows") || !current.contains("rows")) return {"a suite summary without rows"};
+  std::map<std::pair<std::string, std::string>, json> now;
+  for (const auto& r : current["rows"]) now[{r.value("scene", ""), r.value("config", "")}] = r;
+  for (const auto& old : committed["rows"]) {
+    const auto key = std::make_pair(old.value("scene", ""), old.value("config", ""));
+    const auto it = now.find(key);
+    if (it == now.end() || !old.value("ok", false)) continue;  // not rerun, or nothing to keep
+    const json& r = it->second;
+    if (!r.value("ok", false)) {
+      bad.push_back(key.first + " / " + key.second + ": failed (it succeeded in the committed results)");
+      continue;
+    }
+    const double a = json_number(old, "region_psnr"), b = json_number(r, "region_psnr");
+    if (std::isfinite(a) && std::isfinite(b) && b < a - tolerance_db) {
+      char line[256];
+      std::snprintf(line, sizeof line, "%s / %s: changed-region PSNR %.2f dB, committed %.2f (%.2f below, tolerance %.2f)",
+                    key.first.c_str(), key.second.c_str(), b, a, a - b, tolerance_db);
+      bad.push_back(line);
+    }
+  }
+  return bad;
+}
+
+}  // namespace goris::bench

@@ -1,0 +1,57 @@
+#pragma once
+// The generalization suite of `goris bench pipeline --suite NAME`: GOR-IS-style scenes made with `goris synth`
+// that vary what a removal depends on (the glossy surface's material, roughness and shape, the target's
+// shape, the clutter, the camera elevation) plus the method's two failure cases, cached by their scene
+// description; and the suite's summary: the removal metrics of each scene, their mean and worst scene, the
+// goals they must meet and the regression check against a committed summary.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/synth/presets.h"
+
+namespace goris::bench {
+
+struct SuiteScene {
+  std::string name;
+  std::string kind;  // "glossy" (the method applies), "lambertian" or "failure" (twin mirrors)
+  synth::SynthOptions synth;
+};
+
+// "generalization" (14 scenes: 12 glossy, a Lambertian room and twin mirrors) or "fast" (3 of them, for the
+// short schedule). goris::Error listing the names for another name.
+const std::vector<SuiteScene>& suite_scenes(const std::string& suite);
+const std::vector<std::string>& suite_names();
+
+// The data set folder of a scene under `cache` (cache/NAME), rendered with Blender unless a folder made from
+// the same scene description is there already. Progress goes to stderr.
+std::filesystem::path ensure_suite_scene(const SuiteScene& scene, const std::filesystem::path& cache,
+                                         const std::filesystem::path& blender_script);
+
+// One configuration's result on one scene, as the suite summary reads it.
+struct SuiteResult {
+  std::string scene, kind, config;
+  bool ok = false;
+  double psnr, region_psnr, region_ssim, region_flip, flip, ghost_ratio, seconds;
+  std::string contact_sheet;  // relative to the bench folder; "" when none
+  SuiteResult();
+};
+
+// The summary of `results` (every config against `reference`, normally "baseline"): suite.md text and the
+// suite.json object that a later run checks against.
+struct SuiteSummary {
+  std::string markdown;
+  nlohmann::json json;
+};
+SuiteSummary summarize_suite(const std::string& suite, const std::string& schedule,
+                             const std::vector<SuiteResult>& results, const std::string& reference);
+
+// Compares `current` with a committed suite.json: a configuration whose changed-region PSNR on any scene
+// fell by more than `tolerance_db` (or that failed where it succeeded) is a regression. Returns the
+// regressions, one line each (empty: none).
+std::vector<std::string> suite_regressions(const nlohmann::json& committed, const nlohmann::json& current,
+                                           double tolerance_db);
+
+}  // namespace goris::bench

@@ -1,0 +1,111 @@
+// The generalization suite's scenes (every axis the removal depends on is covered, every scene is a valid
+// `goris synth` scene) and its summary: goals from the per-scene results, regressions against a committed one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "app/goris/bench_suite.h"
+#include "core/util/error.h"
+
+using namespace goris::bench;
+
+TEST(BenchSuite, GeneralizationCoversEveryAxisWithValidScenes) {
+  const auto& scenes = suite_scenes("generalization");
+  EXPECT_GE(scenes.size(), 12u);
+  std::set<std::string> names, materials, shapes, targets, elevations, kinds, presets;
+  std::set<double> roughness;
+  for (const auto& s : scenes) {
+    EXPECT_TRUE(names.insert(s.name).second) << "duplicate " << s.name;
+    EXPECT_NO_THROW(goris::synth::make_scene(s.synth)) << s.name;
+    kinds.insert(s.kind), presets.insert(s.synth.preset);
+    if (s.synth.table_material) materials.insert(*s.synth.table_material);
+    if (s.synth.preset == "marble") materials.insert("marble");
+    if (s.synth.table_shape) shapes.insert(*s.synth.table_shape);
+    if (s.synth.target_shape) targets.insert(*s.synth.target_shape);
+    if (s.synth.camera_elevation) elevations.insert(*s.synth.camera_elevation);
+    if (s.synth.table_roughness) roughness.insert(*s.synth.table_roughness);
+  }
+  int glossy = 0;
+  for (const auto& s : scenes) glossy += s.kind == "glossy";
+  EXPECT_GE(glossy, 10);
+  EXPECT_EQ(materials, (std::set<std::string>{"dielectric", "marble", "metal"}));
+  EXPECT_EQ(shapes, (std::set<std::string>{"floor", "rect", "round"}));
+  EXPECT_EQ(targets, (std::set<std::string>{"convex", "holed", "small", "tall", "thin"}));
+  EXPECT_TRUE(elevations.count("low") && elevations.count("high"));
+  EXPECT_TRUE(presets.count("lambert-room") && presets.count("twin-mirrors") && presets.count("occluded"));
+  EXPECT_LE(*roughness.begin(), 0.01);
+  EXPECT_GE(*roughness.rbegin(), 0.35);
+}
+
+TEST(BenchSuite, FastIsASubsetAndUnknownSuitesAreNamed) {
+  const auto& all = suite_scenes("generalization");
+  const auto& fast = suite_scenes("fast");
+  EXPECT_EQ(fast.size(), 3u);
+  for (const auto& f : fast) {
+    bool found = false;
+    for (const auto& s : all) found = found || (s.name == f.name && s.kind == f.kind);
+    EXPECT_TRUE(found) << f.name;
+  }
+  try {
+    suite_scenes("nope");
+    FAIL();
+  } catch (const goris::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("generalization"), std::string::npos) << e.what();
+  }
+}
+
+namespace {
+SuiteResult result(const std::string& scene, const std::string& kind, const std::string& config, double region,
+                   double ghost, double psnr = 25, double seconds = 100) {
+  SuiteResult r;
+  r.scene = scene, r.kind = kind, r.config = config, r.ok = true;
+  r.region_psnr = region, r.ghost_ratio = ghost, r.psnr = psnr, r.seconds = seconds;
+  r.region_ssim = 0.8, r.region_flip = 0.1, r.flip = 0.05;
+  return r;
+}
+}  // namespace
+
+TEST(BenchSuite, SummaryGivesMeanWorstAndGoals) {
+  std::vector<SuiteResult> rs = {
+      result("a", "glossy", "baseline", 20, 0.6), result("a", "glossy", "default", 25, 0.1),
+      result("b", "glossy", "baseline", 22, 0.5), result("b", "glossy", "default", 23.5, 0.2),
+      result("room", "lambertian", "baseline", 30, 0.1, 28, 100), result("room", "lambertian", "default", 30, 0.1, 27.9, 110),
+  };
+  SuiteSummary s = summarize_suite("generalization", "medium", rs, "baseline");
+  const auto& g = s.json["goals"]["default"];
+  EXPECT_NEAR(g["mean_region_gain_db"].get<double>(), 3.25, 1e-9);
+  EXPECT_NEAR(g["worst_region_gain_db"].get<double>(), 1.5, 1e-9);
+  EXPECT_EQ(g["worst_region_gain_scene"], "b");
+  EXPECT_NEAR(g["worst_ghost_ratio"].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(g["lambertian_worst_time_ratio"].get<double>(), 1.1, 1e-9);
+  EXPECT_TRUE(g["meets_goals"].get<bool>());
+  EXPECT_NE(s.markdown.find("| a | glossy | default |"), std::string::npos) << s.markdown;
+
+  rs[3].ghost_ratio = 0.3;  // a ghost left on one scene fails the goals
+  EXPECT_FALSE(summarize_suite("generalization", "medium", rs, "baseline").json["goals"]["default"]["meets_goals"].get<bool>());
+  rs[3].ghost_ratio = 0.2;
+  rs[5].seconds = 130;  // the Lambertian scene at 1.3x the baseline's time fails them too
+  EXPECT_FALSE(summarize_suite("generalization", "medium", rs, "baseline").json["goals"]["default"]["meets_goals"].get<bool>());
+  rs[5].seconds = 110;
+  rs[1].ok = false;  // a failed glossy scene: the goals are not met (the mean would skip it)
+  const auto partial = summarize_suite("generalization", "medium", rs, "baseline").json["goals"]["default"];
+  EXPECT_EQ(partial["glossy_measured"].get<int>(), 1);
+  EXPECT_FALSE(partial["meets_goals"].get<bool>());
+}
+
+TEST(BenchSuite, RegressionsAreDropsBeyondTheTolerance) {
+  std::vector<SuiteResult> before = {result("a", "glossy", "default", 25, 0.1), result("b", "glossy", "default", 23, 0.2)};
+  const auto committed = summarize_suite("fast", "short", before, "baseline").json;
+  auto now = before;
+  now[0].region_psnr = 24.7;  // within 0.5 dB
+  EXPECT_TRUE(suite_regressions(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5).empty());
+  now[1].region_psnr = 22.0;
+  auto bad = suite_regressions(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  ASSERT_EQ(bad.size(), 1u);
+  EXPECT_NE(bad[0].find("b / default"), std::string::npos) << bad[0];
+  now[1].region_psnr = 23, now[0].ok = false;
+  bad = suite_regressions(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  ASSERT_EQ(bad.size(), 1u);
+  EXPECT_NE(bad[0].find("failed"), std::string::npos) << bad[0];
+}
