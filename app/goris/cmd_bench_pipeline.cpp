@@ -58,8 +58,8 @@ struct ConfigSpec {
 
 const std::vector<ConfigSpec>& ladder() {
   static const std::vector<ConfigSpec> specs = {
-      {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask", false,
-       "radiance stage 1; RGB-only inpainting, no lighting-aware mask"},
+      {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask,twins", false,
+       "radiance stage 1; RGB-only inpainting, no lighting-aware mask, no mirror twin"},
       {"default", "default", {}, "", false, "`goris train` and `goris remove` with no options: what a user gets"},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},

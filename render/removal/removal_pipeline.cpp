@@ -19,6 +19,7 @@
 #include "core/io/npy_write.h"
 #include "core/io/ply.h"
 #include "core/removal/mirror_twins.h"
+#include "render/removal/planar_reflection.h"
 #include "core/removal/selection_file.h"
 #include "core/removal/selection_labels.h"
 #include "core/removal/selection_points.h"
@@ -124,13 +125,55 @@ Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold
   return m;
 }
 
-// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h); glossy = region < 0.5.
-MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target) {
-  const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
+// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h). Glossy Gaussians:
+// region < 0.5 on an intrinsic model; on a radiance model those inside the photos' glossy masks
+// (planar_reflection.h), as it has no region channel.
+MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target, bool intrinsic,
+                            const std::vector<Camera>& cameras, const std::vector<TrainView>& views) {
+  const std::vector<glm::vec3> centres = selection_points(model).position;
   std::vector<std::uint8_t> glossy(model.count(), 0);
-  if (model.tensor(Param::ExtraLogit).width == extra::kCount)
-    for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
-  return select_mirror_twins(selection_points(model).position, glossy, target, {}, flat_normals(model));
+  if (intrinsic) {  // the region channel, plane fitted to the flat glossy Gaussians
+    const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
+    if (model.tensor(Param::ExtraLogit).width == extra::kCount)
+      for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
+    return select_mirror_twins(centres, glossy, target, {}, flat_normals(model));
+  }
+  std::vector<const std::vector<float>*> masks;
+  for (const TrainView& v : views) masks.push_back(&v.glossy_mask);
+  glossy = glossy_from_masks(centres, cameras, masks);
+  // A radiance model's surface is not always made of flat Gaussians (few are flat early in training): with
+  // fewer than min_glossy flat glossy ones the plane is fitted to the glossy centres alone. Either way a
+  // plane counts only when every camera is on one side of it (the photos look at the surface from its front)
+  // and it is level: its normal within 20 degrees of the cameras' mean up direction (photos are taken
+  // upright; tables and floors are level) - without that RANSAC takes a tilted slab through the volume of
+  // glossy centres that a radiance model spreads behind the surface.
+  std::vector<glm::vec3> normals = flat_normals(model);
+  MirrorSettings ms;
+  glm::dvec3 up(0.0);
+  for (const Camera& c : cameras) up -= glm::dvec3(c.R[0][1], c.R[1][1], c.R[2][1]);  // minus the image's down
+  up = glm::length(up) > 0 ? glm::normalize(up) : up;
+  const double min_cos_up = std::cos(20.0 * 3.14159265358979323846 / 180.0);
+  std::size_t flat = 0;
+  for (std::size_t i = 0; i < normals.size(); ++i) flat += glossy[i] && glm::length(normals[i]) > 0.5f;
+  if (flat < ms.min_glossy) {
+    normals.clear();
+    // Without normals the surface's share of the glossy centres is smaller (the mirror world and the
+    // Gaussians still spread through the volume count too); the camera test above rejects the wrong planes.
+    ms.min_inlier_fraction = 0.05;
+  }
+  std::vector<glm::dvec3> eyes;
+  for (const Camera& c : cameras) eyes.push_back(glm::dvec3(c.center()));
+  ms.accept = [eyes, up, min_cos_up](const glm::dvec3& n, double offset) {
+    if (std::abs(glm::dot(n, up)) < min_cos_up) return false;
+    bool above = false, below = false;
+    for (const glm::dvec3& e : eyes) (glm::dot(n, e) > offset ? above : below) = true;
+    return !(above && below);
+  };
+  return select_mirror_twins(centres, glossy, target, ms, normals);
+}
+
+bool any_glossy_mask(const std::vector<TrainView>& views) {
+  return std::any_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); });
 }
 
 // E_obj of the lighting-aware mask (in [0, 1]) as a grey image, for a person to see what tau cut.
@@ -206,6 +249,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   report.gaussians_before = model.count();
   const RasterSettings raster = RasterRenderer::settings_for(config);
   auto cancelled = [&] { return stop && stop->load(); };
+  // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
+  std::vector<TrainView> views = load_train_views(ds.train, dopt);
+  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);  // --mode auto's
+  const bool glossy_masks = any_glossy_mask(views);
 
   // 1. Selection.
   SelectionMask selected, twins, target_only;  // target_only: without the twin (the shadow's occluder)
@@ -236,11 +283,12 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                  "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
     std::string twin_note;
     target_only = selected;
-    if (intrinsic && !o.ablate.count("twins")) {
-      const MirrorTwins t = mirror_twins_of(model, selected);
+    if ((intrinsic || glossy_masks) && !o.ablate.count("twins")) {
+      const MirrorTwins t = mirror_twins_of(model, selected, intrinsic, cameras, views);
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
       twins = t.twins;
       glossy_plane = t.plane;
+      report.glossy_plane = t.plane;
       report.mirror_twins = t.count;
       report.selected += t.count;
       record.parameters["mirror_twins"] = t.count;
@@ -252,6 +300,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       else if (!t.plane.found && t.plane.candidates > 0)
         twin_note = "; no mirror twin (no glossy plane: at most " + std::to_string(t.plane.inliers) + " of " +
                     std::to_string(t.plane.candidates) + " flat glossy Gaussians lie in one)";
+      else if (!t.plane.found)
+        twin_note = "; no mirror twin (no glossy plane: " + std::to_string(t.plane.glossy) + " glossy Gaussians, " +
+                    std::to_string(t.plane.candidates) + " of them flat)";
     }
     record.model_fingerprint = model_fingerprint(model);
     write_selection(out / "selection.json", record, selected);
@@ -261,13 +312,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
 
   // The scene without the target (and twin): the dereflection's and the inpainting's renders, the lift's base.
   SplitScene split = split_removed(model, selected);
-  // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
-  std::vector<TrainView> views = load_train_views(ds.train, dopt);
-  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);  // --mode auto's
   ShadowRelight relit;
 
   // 2. Lighting-aware masks.
-  std::vector<Mask> lighting(cameras.size());
+  std::vector<Mask> lighting(cameras.size()), reflection(cameras.size());
   {
     StepScope s(report, RemovalStep::LightingMasks, on_progress);
     if (intrinsic && !o.ablate.count("lamask")) {
@@ -306,6 +354,18 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         report.dereflected_pixels = d.pixels;
       }
     }
+    // The target mirrored through the glossy plane, on the glossy surface: its reflection, whatever the
+    // model made of it (planar_reflection.h). Inpainted and kept out of the photo loss below.
+    if (glossy_plane.found && glossy_masks && !o.ablate.count("lamask") && !cancelled()) {
+      GaussianModel mirrored = mirrored_through(model, target_only, glossy_plane);
+      fs::create_directories(out / "reflection_masks");
+      for (std::size_t i = 0; i < cameras.size(); ++i) {
+        if (views[i].glossy_mask.empty()) continue;
+        reflection[i] = planar_reflection_mask(mirrored, cameras[i], views[i].glossy_mask, raster);
+        report.reflection_pixels += count_set(reflection[i]);
+        save_mask_png(out / "reflection_masks" / (ds.train[i].name + ".png"), reflection[i]);
+      }
+    }
     std::string shadow_note;
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
@@ -322,7 +382,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);
     const std::string dereflect_note =
         report.dereflected_pixels ? "; " + std::to_string(report.dereflected_pixels) + " dereflected" : "";
-    s.finish(std::to_string(report.lighting_pixels) + " pixels" +
+    const std::string reflection_note =
+        report.reflection_pixels ? "; " + std::to_string(report.reflection_pixels) + " in the planar reflection" : "";
+    s.finish(std::to_string(report.lighting_pixels) + " pixels" + reflection_note +
              (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : "") + dereflect_note +
              shadow_note);
   }
@@ -338,6 +400,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                   [&](std::size_t i, std::size_t n) { s.tell(i, n, i < ds.train.size() ? ds.train[i].name : ""); });
     fs::create_directories(out / "inpaint_masks");
     for (std::size_t i = 0; i < holes.size(); ++i) {
+      if (reflection[i].width == holes[i].mask.width) holes[i].mask = mask_or(holes[i].mask, reflection[i]);
       report.inpaint_pixels += count_set(holes[i].mask);
       save_mask_png(out / "inpaint_masks" / (ds.train[i].name + ".png"), holes[i].mask);
     }
@@ -463,6 +526,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       Mask ex = dilate_mask(holes[i].covered, soft_edge_radius(w));
       if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
       if (lighting[i].width == w && !o.dereflect_lighting) ex = mask_or(ex, lighting[i]);
+      if (reflection[i].width == w) ex = mask_or(ex, reflection[i]);
       exclude[i] = std::move(ex);
       inputs[i].exclude = &exclude[i];
       inputs[i].removed_depth = &holes[i].removed_depth;
@@ -513,6 +577,12 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["added_by_lift"] = report.added;
     j["lighting_mask_pixels"] = report.lighting_pixels;
     j["mirror_twins"] = report.mirror_twins;
+    j["reflection_pixels"] = report.reflection_pixels;
+    if (report.glossy_plane.found)
+      j["glossy_plane"] = {{"normal", {report.glossy_plane.normal.x, report.glossy_plane.normal.y, report.glossy_plane.normal.z}},
+                           {"offset", report.glossy_plane.offset},
+                           {"inliers", report.glossy_plane.inliers},
+                           {"candidates", report.glossy_plane.candidates}};
     j["lighting_fresnel_reference"] = report.lighting_fresnel_reference;
     j["dereflected_pixels"] = report.dereflected_pixels;
     j["shadow"] = {{"found", report.shadow_found}, {"summary", report.shadow}, {"relit_pixels", report.shadow_pixels}};

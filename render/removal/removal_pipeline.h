@@ -4,11 +4,14 @@
 // so a person can look at it:
 //
 //   selection        RUN/selection.json if present (goris select / the editor), else label > 0.3 closed by
-//                    the hull of the selected centres; intrinsic runs add the target's mirror twin below a
-//                    planar glossy surface                      -> removal/selection.json (+ .npy)
+//                    the hull of the selected centres, and the target's mirror twin below a planar glossy
+//                    surface (intrinsic runs, or any run with glossy masks)
+//                                                              -> removal/selection.json (+ .npy)
 //   lighting masks   reflections of the target per training view (intrinsic runs; not with --ablate lamask)
 //                                                              -> removal/lighting_masks/VIEW.png
 //                                                                 (E_obj as grey: lighting_energy/VIEW.png)
+//                    and, where a glossy plane was found, the target mirrored through it on the glossy
+//                    surface (planar_reflection.h; inpainted, no photo loss) -> removal/reflection_masks/VIEW.png
 //                    and its cast shadow (any run; not with --ablate lamask or shadows): the light is fitted
 //                    to the photos' pixels on the support plane, which are relit for the fine-tune (and the
 //                    reference views' renders before inpainting)
@@ -32,6 +35,8 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include "core/removal/mirror_twins.h"
 
 namespace goris {
 
@@ -69,6 +74,8 @@ struct RemovalReport {
   std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
   std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
+  MirrorPlane glossy_plane;           // the glossy surface's plane (found = false: none)
+  std::size_t reflection_pixels = 0;  // the mirrored target on the glossy surface (planar_reflection.h), all views
   std::size_t glossy_filled_pixels = 0;  // glossy-mask pixels filled under the target (removed_glossy_masks.h)
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
