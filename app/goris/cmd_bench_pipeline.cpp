@@ -166,6 +166,16 @@ std::string device_mib(const Row& r, const std::string& none = "") {
   return r.peak_device_mib > 0 ? fmt(r.peak_device_mib, "%.0f") : none;
 }
 
+// This executable's size and modification time: a build's identity for the results of `default`.
+std::string binary_fingerprint() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return "unknown";
+  const auto size = fs::file_size(exe, ec);
+  const auto time = fs::last_write_time(exe, ec).time_since_epoch().count();
+  return std::to_string(size) + "-" + std::to_string(time);
+}
+
 // Stage 1 of a scene under a schedule, trained once per stage-1 kind and shared by the configurations.
 struct Stage1 {
   fs::path run;
@@ -205,7 +215,10 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   args.insert(args.end(), s.extra_train_args.begin(), s.extra_train_args.end());
   if (o_.resolution > 0) args.insert(args.end(), {"--resolution", std::to_string(o_.resolution)});
   if (o_.init_points > 0) args.insert(args.end(), {"--init-points", std::to_string(o_.init_points)});
-  const json options = {{"args", args}};
+  json options = {{"args", args}};
+  // `default` means whatever goris train does with no options: that changes with the binary, so a result
+  // is reused only from the same build.
+  if (c.train_args.empty()) options["binary"] = binary_fingerprint();
   Stage1 st{dir / "run", {}};
   // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
   if (fs::exists(dir / "stage1.json")) {
@@ -256,6 +269,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                         {"resolution", o_.resolution},
                         {"device", o_.device}};
   if (o_.init_points > 0) options["init_points"] = o_.init_points;  // absent by default: older results stay reusable
+  if (c.train_args.empty()) options["binary"] = binary_fingerprint();
   if (const auto row = goris::bench::reusable_row(dir, options)) {
     Row old = row_from_json(*row);
     old.reused = true;

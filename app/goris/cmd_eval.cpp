@@ -10,7 +10,8 @@
 // Every view also gets LDR-FLIP (core/metrics/flip.h) over the whole image. Against the after-removal ground
 // truth of a GOR-IS-style set (test views with full_XXX.png) the "removal" block measures what the removal
 // had to fix (core/metrics/removal_metrics.h): PSNR, SSIM and FLIP inside the changed region (where full_ and
-// r_ differ), the ghost ratio over it (pooled over the views: sum |render - r_| / sum |full_ - r_|), and a
+// r_ differ), the ghost ratio over it (pooled over the views: sum |render - r_| / sum |full_ - r_|, after a
+// 3x3 median), and a
 // contact sheet of the views with the largest changed regions (METRICS_removal.png beside the metrics file).
 //
 // Runs with material channels on a data set with true normals (`goris synth`: train/gt/normal_XXX.exr) also
@@ -264,13 +265,7 @@ void run_eval(const Options& o) {
         jv["region_ssim"] = rm.region_ssim;
         jv["region_flip"] = rm.region_flip;
         jv["ghost_ratio"] = number_or_null(rm.ghost_ratio);
-        const size_t hw = size_t(w) * h;
-        for (size_t p = 0; p < hw; ++p)
-          if (rm.region[p])
-            for (int ch = 0; ch < 3; ++ch) {
-              const size_t i = size_t(ch) * hw + p;
-              ghost_num += std::abs(double(clamped[i]) - gt[i]), ghost_den += std::abs(double(before[i]) - gt[i]);
-            }
+        ghost_num += rm.ghost_residual, ghost_den += rm.ghost_imprint;
       }
       sheet.push_back({rm.region_fraction, before, gt, clamped});
     } else {

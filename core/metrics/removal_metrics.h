@@ -37,7 +37,10 @@ struct RemovalMetrics {
   double region_fraction = 0;  // share of the image in the changed region
   double region_psnr = 0;      // PSNR (dB) of render vs after over the region's pixels and 3 channels; +inf if equal
   double region_ssim = 0;      // mean of the render-vs-after SSIM map over the region's pixels
-  double ghost_ratio = 0;      // sum |render - after| / sum |before - after| over the region: 1 = nothing removed
+  // sum |render - after| / sum |before - after| over the region, each image after the region's median (so
+  // that the ground truth's path-tracing noise is no ghost): 1 = nothing removed, 0 = all of it.
+  double ghost_ratio = 0;
+  double ghost_residual = 0, ghost_imprint = 0;  // its numerator and denominator, to pool over views
   double flip = 0;             // LDR-FLIP mean of render vs after over the whole image
   double region_flip = 0;      // LDR-FLIP mean over the region's pixels
   std::vector<uint8_t> region;  // the changed region, [H][W], 1 = changed

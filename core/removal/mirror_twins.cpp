@@ -122,15 +122,30 @@ MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std
     throw Error("mirror twins", std::to_string(centres.size()) + " Gaussians, " + std::to_string(glossy.size()) +
                                     " glossy flags, " + std::to_string(target.size()) + " selection entries and " +
                                     std::to_string(normals.size()) + " normals");
-  MirrorTwins out;
-  out.twins.assign(centres.size(), 0);
   std::vector<glm::vec3> g, gn;
   for (std::size_t i = 0; i < centres.size(); ++i)
     if (glossy[i] && !target[i]) {
       g.push_back(centres[i]);
       if (!normals.empty()) gn.push_back(normals[i]);
     }
-  out.plane = fit_mirror_plane(g, s, gn);
+  const MirrorPlane plane = fit_mirror_plane(g, s, gn);
+  if (!plane.found) {
+    MirrorTwins none;
+    none.plane = plane;
+    none.twins.assign(centres.size(), 0);
+    return none;
+  }
+  return twins_below_plane(centres, target, plane, s);
+}
+
+MirrorTwins twins_below_plane(const std::vector<glm::vec3>& centres, const SelectionMask& target,
+                              const MirrorPlane& plane, const MirrorSettings& s) {
+  if (target.size() != centres.size())
+    throw Error("mirror twins", std::to_string(centres.size()) + " Gaussians and " + std::to_string(target.size()) +
+                                    " selection entries");
+  MirrorTwins out;
+  out.twins.assign(centres.size(), 0);
+  out.plane = plane;
   MirrorPlane& pl = out.plane;
   if (!pl.found) return out;
 

@@ -73,6 +73,11 @@ struct MirrorTwins {
 MirrorPlane fit_mirror_plane(const std::vector<glm::vec3>& glossy_centres, const MirrorSettings& settings = {},
                              const std::vector<glm::vec3>& normals = {});
 
+// The twins below a given plane (found = true; its tolerance sets the margins): the part of
+// select_mirror_twins after the fit, for a plane found otherwise (plane_from_masks.h).
+MirrorTwins twins_below_plane(const std::vector<glm::vec3>& centres, const SelectionMask& target,
+                              const MirrorPlane& plane, const MirrorSettings& settings = {});
+
 // centres: every Gaussian's centre; glossy: 1 where a Gaussian belongs to the glossy region; target: the
 // selection; normals: empty or per Gaussian (fit_mirror_plane). Throws goris::Error when the sizes differ.
 MirrorTwins select_mirror_twins(const std::vector<glm::vec3>& centres, const std::vector<std::uint8_t>& glossy,

@@ -12,30 +12,6 @@
 
 namespace goris {
 
-std::vector<std::uint8_t> glossy_from_masks(const std::vector<glm::vec3>& centres, const std::vector<Camera>& cameras,
-                                            const std::vector<const std::vector<float>*>& masks, float share,
-                                            int min_views) {
-  if (masks.size() != cameras.size())
-    throw Error("glossy Gaussians from masks", std::to_string(masks.size()) + " masks for " +
-                                                   std::to_string(cameras.size()) + " views");
-  for (std::size_t v = 0; v < cameras.size(); ++v)
-    if (masks[v] && !masks[v]->empty() && masks[v]->size() != std::size_t(cameras[v].width) * cameras[v].height)
-      throw Error("glossy Gaussians from masks", "view " + std::to_string(v) + "'s glossy mask is not its camera's size");
-  std::vector<std::uint8_t> glossy(centres.size(), 0);
-  for (std::size_t i = 0; i < centres.size(); ++i) {
-    int seen = 0, inside = 0;
-    for (std::size_t v = 0; v < cameras.size(); ++v) {
-      if (!masks[v] || masks[v]->empty()) continue;
-      const long long p = cameras[v].pixel_of(cameras[v].to_camera(centres[i]));
-      if (p < 0) continue;
-      ++seen;
-      inside += (*masks[v])[std::size_t(p)] > 0.5f;
-    }
-    glossy[i] = seen >= min_views && float(inside) >= share * float(seen);
-  }
-  return glossy;
-}
-
 GaussianModel mirrored_through(const GaussianModel& model, const SelectionMask& selected, const MirrorPlane& plane) {
   GaussianModel m = subset_model(model, selected);
   std::vector<float> pos = m.tensor(Param::Position).value.to_host();

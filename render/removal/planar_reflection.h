@@ -8,10 +8,7 @@
 // glossy mask gives that region without tracing and without a crisp mirror twin in the model: the removal
 // inpaints it and turns the photo loss off there, so a blurred reflection on a rough surface (where the
 // mirror world is no copy of the target) goes as well. The coverage is grown to take in the blur.
-//
-// Which Gaussians are glossy, for fitting the plane on a model without a learned region channel: those
-// whose centre falls inside the photos' glossy masks in most views that see it - the surface's own
-// Gaussians and a radiance model's mirror world alike (mirror_twins.h fits the plane to the flat ones).
+// The plane: mirror_twins.h (fitted to an intrinsic model's flat glossy Gaussians) or plane_from_masks.h.
 #include <cstdint>
 #include <vector>
 
@@ -25,13 +22,6 @@
 #include "render/raster/raster_types.h"
 
 namespace goris {
-
-// 1 where a centre projects inside the glossy mask (> 0.5) in at least `share` of the views whose image it
-// projects into, and into at least `min_views` of them. masks[i] is [H][W] of cameras[i]; an empty mask
-// leaves that view out. Throws goris::Error when a mask's size is not its camera's.
-std::vector<std::uint8_t> glossy_from_masks(const std::vector<glm::vec3>& centres, const std::vector<Camera>& cameras,
-                                            const std::vector<const std::vector<float>*>& masks, float share = 0.5f,
-                                            int min_views = 2);
 
 // The Gaussians `selected` of `model` reflected through `plane`: centres mirrored, orientations mirrored
 // (the covariance M S M^T of the mirror M, kept a rotation by flipping one local axis), everything else as

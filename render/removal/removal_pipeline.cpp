@@ -19,6 +19,8 @@
 #include "core/io/npy_write.h"
 #include "core/io/ply.h"
 #include "core/removal/mirror_twins.h"
+#include "core/inpaint/region_fill.h"
+#include "core/removal/plane_from_masks.h"
 #include "render/removal/planar_reflection.h"
 #include "core/removal/selection_file.h"
 #include "core/removal/selection_labels.h"
@@ -125,9 +127,9 @@ Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold
   return m;
 }
 
-// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h). Glossy Gaussians:
-// region < 0.5 on an intrinsic model; on a radiance model those inside the photos' glossy masks
-// (planar_reflection.h), as it has no region channel.
+// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h). On an intrinsic model
+// the plane is fitted to the flat glossy Gaussians (region < 0.5); on a radiance model it comes from the
+// photos' glossy masks.
 MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target, bool intrinsic,
                             const std::vector<Camera>& cameras, const std::vector<TrainView>& views) {
   const std::vector<glm::vec3> centres = selection_points(model).position;
@@ -138,38 +140,12 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
       for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
     return select_mirror_twins(centres, glossy, target, {}, flat_normals(model));
   }
+  // A radiance model of a mirror-like surface has no Gaussians on the surface to fit a plane to (it shows a
+  // mirror world behind it): the plane comes from the photos' glossy masks (plane_from_masks.h).
   std::vector<const std::vector<float>*> masks;
   for (const TrainView& v : views) masks.push_back(&v.glossy_mask);
-  glossy = glossy_from_masks(centres, cameras, masks);
-  // A radiance model's surface is not always made of flat Gaussians (few are flat early in training): with
-  // fewer than min_glossy flat glossy ones the plane is fitted to the glossy centres alone. Either way a
-  // plane counts only when every camera is on one side of it (the photos look at the surface from its front)
-  // and it is level: its normal within 20 degrees of the cameras' mean up direction (photos are taken
-  // upright; tables and floors are level) - without that RANSAC takes a tilted slab through the volume of
-  // glossy centres that a radiance model spreads behind the surface.
-  std::vector<glm::vec3> normals = flat_normals(model);
-  MirrorSettings ms;
-  glm::dvec3 up(0.0);
-  for (const Camera& c : cameras) up -= glm::dvec3(c.R[0][1], c.R[1][1], c.R[2][1]);  // minus the image's down
-  up = glm::length(up) > 0 ? glm::normalize(up) : up;
-  const double min_cos_up = std::cos(20.0 * 3.14159265358979323846 / 180.0);
-  std::size_t flat = 0;
-  for (std::size_t i = 0; i < normals.size(); ++i) flat += glossy[i] && glm::length(normals[i]) > 0.5f;
-  if (flat < ms.min_glossy) {
-    normals.clear();
-    // Without normals the surface's share of the glossy centres is smaller (the mirror world and the
-    // Gaussians still spread through the volume count too); the camera test above rejects the wrong planes.
-    ms.min_inlier_fraction = 0.05;
-  }
-  std::vector<glm::dvec3> eyes;
-  for (const Camera& c : cameras) eyes.push_back(glm::dvec3(c.center()));
-  ms.accept = [eyes, up, min_cos_up](const glm::dvec3& n, double offset) {
-    if (std::abs(glm::dot(n, up)) < min_cos_up) return false;
-    bool above = false, below = false;
-    for (const glm::dvec3& e : eyes) (glm::dot(n, e) > offset ? above : below) = true;
-    return !(above && below);
-  };
-  return select_mirror_twins(centres, glossy, target, ms, normals);
+  const PlaneFromMasks pm = plane_from_glossy_masks(cameras, masks);
+  return twins_below_plane(centres, target, pm.plane);
 }
 
 bool any_glossy_mask(const std::vector<TrainView>& views) {
@@ -225,9 +201,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              "--ablate " + a + " is a stage-1 choice: train the run with " +
                                  (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
                                  " and remove from that run"));
-    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows" && a != "glossfill")
-      throw Error(step_error(RemovalStep::Selection,
-                             "unknown ablation '" + a + "' (expected material, lamask, twins, shadows or glossfill)"));
+    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows" && a != "glossfill" && a != "reflection")
+      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a +
+                                                         "' (expected material, lamask, twins, shadows, glossfill or "
+                                                         "reflection)"));
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config(run_dir);
@@ -356,7 +333,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     }
     // The target mirrored through the glossy plane, on the glossy surface: its reflection, whatever the
     // model made of it (planar_reflection.h). Inpainted and kept out of the photo loss below.
-    if (glossy_plane.found && glossy_masks && !o.ablate.count("lamask") && !cancelled()) {
+    if (glossy_plane.found && glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection") &&
+        !cancelled()) {
       GaussianModel mirrored = mirrored_through(model, target_only, glossy_plane);
       fs::create_directories(out / "reflection_masks");
       for (std::size_t i = 0; i < cameras.size(); ++i) {
@@ -439,6 +417,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     const HarmonicInpainter harmonic;
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
     const std::size_t maps_per_view = materials ? 6 : 2;
+    const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
     const std::size_t total = choice.views.size() * maps_per_view;
     std::size_t done = 0;
     for (std::size_t k = 0; k < choice.views.size(); ++k) {
@@ -474,6 +453,15 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         s.tell(done++, total, name + " " + map);
       };
       m = inpaint_map_set(*inp, maps, holes[v].mask, name, mo);
+      if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)
+        std::vector<float> g = removed_glossy_mask(views[v], holes[v]);
+        if (!g.empty()) {
+          const MapInfo info{name, "rgb", MapKind::Color};
+          m.rgb = refill_inside_region(*inp, maps.rgb, m.rgb, holes[v].mask, g, info);
+          for (float& x : g) x = 1.0f - x;
+          m.rgb = refill_inside_region(*inp, maps.rgb, m.rgb, holes[v].mask, g, info);
+        }
+      }
       for (const MapSlot& slot : map_slots()) {
         const Image& im = m.*slot.member;
         if (im.pixels.size() == 0) continue;

@@ -18,6 +18,11 @@
 
 namespace goris {
 
+// One view's mask filled under hole_view.covered (empty when the view has no glossy mask); `filled`, when
+// given, receives the number of pixels filled.
+std::vector<float> removed_glossy_mask(const TrainView& view, const InpaintMaskView& hole_view,
+                                       std::size_t* filled = nullptr);
+
 // Fills views[i].glossy_mask under holes[i].covered (views without a glossy mask are left alone; a size
 // mismatch throws goris::Error naming the view). Returns the number of pixels filled over all views.
 std::size_t fill_removed_glossy_masks(std::vector<TrainView>& views, const std::vector<InpaintMaskView>& holes);

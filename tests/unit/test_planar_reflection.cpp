@@ -1,12 +1,13 @@
-// The target's reflection in a planar glossy surface from geometry alone: glossy Gaussians from the photos'
-// masks, the target mirrored through the plane (centres and covariances), and its coverage on the glossy
-// surface as the reflection mask.
+// The target's reflection in a planar glossy surface from geometry alone: the target mirrored through the
+// plane (centres and covariances), and its coverage on the glossy surface as the reflection mask; the plane
+// found from the glossy masks of several views.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/quaternion.hpp>
 
 #include "render/raster/raster_types.h"
 #include "core/util/error.h"
+#include "core/removal/plane_from_masks.h"
 #include "render/removal/planar_reflection.h"
 #include "tests/unit/test_selection_scene.h"
 
@@ -32,23 +33,6 @@ glm::mat3 covariance(const float* log_scale, const float* q) {
   return R * S * glm::transpose(R);
 }
 }  // namespace
-
-TEST(PlanarReflection, GlossyGaussiansAreThoseInsideTheMasksOfMostViews) {
-  // Two cameras above the floor; the mask marks the image's left half (the world side x < 0 for both).
-  const std::vector<Camera> cams = {look_at({0, -4, 3}, {0, 0, 0}), look_at({0.5f, -4, 3}, {0, 0, 0})};
-  std::vector<std::vector<float>> masks(2, std::vector<float>(128 * 128, 0.0f));
-  for (auto& m : masks)
-    for (int y = 0; y < 128; ++y)
-      for (int x = 0; x < 64; ++x) m[std::size_t(y) * 128 + x] = 1.0f;
-  const std::vector<glm::vec3> centres = {{-0.5f, 0, 0}, {0.6f, 0, 0}, {0, 0, 50}};  // left, right, out of view
-  const auto g = glossy_from_masks(centres, cams, {&masks[0], &masks[1]});
-  EXPECT_EQ(g, (std::vector<std::uint8_t>{1, 0, 0}));
-  // One view is too few to call a Gaussian glossy (min_views = 2).
-  const auto one = glossy_from_masks(centres, cams, {&masks[0], nullptr});
-  EXPECT_EQ(one[0], 0);
-  std::vector<float> wrong(10);
-  EXPECT_THROW(glossy_from_masks(centres, cams, {&wrong, &masks[1]}), Error);
-}
 
 TEST(PlanarReflection, MirroringReflectsCentresAndCovariances) {
   GaussianModel m = make_model({{{0.3f, -0.2f, 0.5f}, 0.1f}, {{0.0f, 0.0f, 0.2f}, 0.1f}});
@@ -97,4 +81,55 @@ TEST(PlanarReflection, ReflectionMaskIsTheMirroredTargetOnTheGlossySurface) {
   // Growing takes in more pixels, and nothing lies outside the glossy mask.
   EXPECT_GT(count_set(planar_reflection_mask(mirrored, cam, all, raster, {0.2f, 0.05f})), count_set(m));
   EXPECT_EQ(count_set(planar_reflection_mask(mirrored, cam, none, raster)), 0u);
+}
+
+namespace {
+// The glossy mask a camera sees of the disc of radius r at height h (z up): pixels whose ray meets the plane
+// inside the disc.
+std::vector<float> disc_mask(const Camera& c, double h, double r) {
+  std::vector<float> m(std::size_t(c.width) * c.height, 0.0f);
+  const glm::dvec3 eye(c.center());
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) {
+      const glm::dvec3 d(c.ray_direction(x + 0.5f, y + 0.5f));
+      if (d.z >= 0) continue;
+      const double t = (h - eye.z) / d.z;
+      const glm::dvec3 p = eye + t * d;
+      if (std::hypot(p.x, p.y) < r) m[std::size_t(y) * c.width + x] = 1.0f;
+    }
+  return m;
+}
+}  // namespace
+
+TEST(PlaneFromMasks, FindsTheHeightThatMapsTheViewsMasksOntoEachOther) {
+  std::vector<Camera> cams;
+  for (int k = 0; k < 10; ++k) {
+    const float a = 0.6f * float(k);
+    cams.push_back(look_at({4.0f * std::cos(a), 4.0f * std::sin(a), 2.5f + 0.2f * float(k % 3)}, {0, 0, 0.2f}));
+  }
+  EXPECT_NEAR(glm::dot(mean_camera_up(cams), glm::dvec3(0, 0, 1)), 1.0, 1e-3);
+  for (double h : {0.0, 0.35}) {
+    std::vector<std::vector<float>> masks;
+    for (const Camera& c : cams) masks.push_back(disc_mask(c, h, 1.2));
+    std::vector<const std::vector<float>*> ptrs;
+    for (const auto& m : masks) ptrs.push_back(&m);
+    const PlaneFromMasks p = plane_from_glossy_masks(cams, ptrs);
+    ASSERT_TRUE(p.plane.found) << h;
+    EXPECT_GT(p.iou, 0.9);
+    EXPECT_NEAR(p.plane.offset, h, 0.03) << "the disc's height";
+    EXPECT_GT(p.plane.normal.z, 0.99);
+    EXPECT_GT(p.plane.tolerance, 0.0);
+  }
+  // No masks, or masks that agree at no height (noise): no plane.
+  std::vector<const std::vector<float>*> none(cams.size(), nullptr);
+  EXPECT_FALSE(plane_from_glossy_masks(cams, none).plane.found);
+  std::vector<std::vector<float>> noise;
+  for (std::size_t k = 0; k < cams.size(); ++k) {
+    std::vector<float> m(128 * 128);
+    for (std::size_t p = 0; p < m.size(); ++p) m[p] = float(((p * 2654435761u + k * 97u) >> 13) & 1u);
+    noise.push_back(std::move(m));
+  }
+  std::vector<const std::vector<float>*> np;
+  for (const auto& m : noise) np.push_back(&m);
+  EXPECT_FALSE(plane_from_glossy_masks(cams, np).plane.found);
 }

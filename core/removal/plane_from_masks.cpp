@@ -1,0 +1,113 @@
+#include "core/removal/plane_from_masks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace goris {
+
+glm::dvec3 mean_camera_up(const std::vector<Camera>& cameras) {
+  glm::dvec3 up(0.0);
+  for (const Camera& c : cameras) up -= glm::dvec3(c.R[0][1], c.R[1][1], c.R[2][1]);  // rows of R: camera axes
+  return glm::length(up) > 1e-9 ? glm::normalize(up) : glm::dvec3(0.0);
+}
+
+namespace {
+struct Pair {
+  int i, j;
+};
+
+bool glossy_at(const std::vector<float>& m, const Camera& c, glm::vec2 uv) {
+  const int x = int(std::floor(uv.x)), y = int(std::floor(uv.y));
+  return m[std::size_t(y) * c.width + x] > 0.5f;
+}
+
+// Mean IoU over the pairs of view i's mask and view j's mask carried into i by the plane n . x = h.
+double score(const std::vector<Camera>& cams, const std::vector<const std::vector<float>*>& masks,
+             const std::vector<Pair>& pairs, const glm::dvec3& n, double h, int step) {
+  double sum = 0;
+  int used = 0;
+  for (const Pair& p : pairs) {
+    const Camera &ci = cams[p.i], &cj = cams[p.j];
+    const glm::dvec3 eye(ci.center());
+    std::size_t both = 0, either = 0;
+    for (int y = step / 2; y < ci.height; y += step)
+      for (int x = step / 2; x < ci.width; x += step) {
+        const glm::dvec3 d(ci.ray_direction(float(x) + 0.5f, float(y) + 0.5f));
+        const double dn = glm::dot(d, n);
+        if (std::abs(dn) < 1e-6) continue;
+        const double t = (h - glm::dot(eye, n)) / dn;
+        if (!(t > 0)) continue;
+        const glm::vec3 cam_j = cj.to_camera(glm::vec3(eye + t * d));
+        if (!(cam_j.z > 0)) continue;
+        const glm::vec2 uv = cj.project_camera(cam_j);
+        if (!(uv.x >= 0 && uv.y >= 0 && uv.x < float(cj.width) && uv.y < float(cj.height))) continue;
+        const bool a = (*masks[p.i])[std::size_t(y) * ci.width + x] > 0.5f, b = glossy_at(*masks[p.j], cj, uv);
+        both += a && b;
+        either += a || b;
+      }
+    if (either == 0) continue;
+    sum += double(both) / double(either);
+    ++used;
+  }
+  return used ? sum / used : 0.0;
+}
+}  // namespace
+
+PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
+                                       const std::vector<const std::vector<float>*>& masks,
+                                       const PlaneFromMasksSettings& s) {
+  PlaneFromMasks out;
+  const glm::dvec3 up = mean_camera_up(cameras);
+  if (glm::length(up) == 0 || masks.size() != cameras.size()) return out;
+  std::vector<int> usable;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const std::vector<float>* m = masks[i];
+    if (!m || m->size() != std::size_t(cameras[i].width) * cameras[i].height || cameras[i].has_distortion()) continue;
+    const auto on = std::count_if(m->begin(), m->end(), [](float v) { return v > 0.5f; });
+    if (double(on) >= s.min_share * double(m->size())) usable.push_back(int(i));
+  }
+  if (usable.size() < 2) return out;
+  // Reference views spread over the usable ones, each with its nearest neighbours by camera direction.
+  std::vector<Pair> pairs;
+  const int refs = std::min<int>(s.views, int(usable.size()));
+  for (int k = 0; k < refs; ++k) {
+    const int i = usable[std::size_t(k) * usable.size() / std::size_t(refs)];
+    std::vector<std::pair<double, int>> near;
+    for (int j : usable)
+      if (j != i) near.push_back({-glm::dot(cameras[i].forward(), cameras[j].forward()), j});
+    std::sort(near.begin(), near.end());
+    for (int k2 = 0; k2 < s.neighbours && k2 < int(near.size()); ++k2) pairs.push_back({i, near[std::size_t(k2)].second});
+  }
+  // Heights from well below the cameras to the lowest camera: the surface is seen from above.
+  double lo = std::numeric_limits<double>::max(), hi = -lo;
+  glm::dvec3 centre(0.0);
+  for (const Camera& c : cameras) {
+    const double h = glm::dot(glm::dvec3(c.center()), up);
+    lo = std::min(lo, h), hi = std::max(hi, h);
+    centre += glm::dvec3(c.center());
+  }
+  centre /= double(cameras.size());
+  double spread = 0;
+  for (const Camera& c : cameras) spread = std::max(spread, glm::length(glm::dvec3(c.center()) - centre));
+  const double top = lo - 1e-3 * spread, bottom = lo - 2.0 * spread;
+  double best_h = top, best = -1;
+  auto search = [&](double a, double b, int n) {
+    for (int k = 0; k <= n; ++k) {
+      const double h = a + (b - a) * double(k) / double(n);
+      const double sc = score(cameras, masks, pairs, up, h, s.step);
+      if (sc > best) best = sc, best_h = h;
+    }
+  };
+  search(bottom, top, s.coarse);
+  const double cell = (top - bottom) / double(s.coarse);
+  search(best_h - cell, best_h + cell, 32);
+  out.iou = best;
+  out.plane.normal = up;
+  out.plane.offset = best_h;
+  out.plane.tolerance = 0.01 * spread;
+  out.plane.found = best >= s.min_iou;
+  return out;
+}
+
+}  // namespace goris

@@ -1,0 +1,43 @@
+#pragma once
+// The glossy surface's plane from the photos' glossy masks alone: the plane through which the masks of
+// different views map onto each other.
+//
+// A table top or a floor seen from several cameras is one planar region; the plane induces a homography
+// between any two views, and only the true plane maps one view's glossy mask onto the other's. So for a
+// level plane (normal: the cameras' mean up direction, as photos are taken upright and tables and floors
+// are level) each candidate height is scored by the mean IoU between every sampled view's mask and its
+// nearest neighbours' masks carried over by the plane, and the best height is refined by a finer search.
+// Objects standing on the surface hide parts of it in some views, which lowers every candidate's score
+// alike. No model is needed: a radiance model of a mirror-like surface has no Gaussians on the surface
+// (it shows a mirror world behind it), which is why fitting the plane to Gaussians fails there.
+#include <vector>
+
+#include "core/io/camera.h"
+#include "core/removal/mirror_twins.h"
+
+namespace goris {
+
+struct PlaneFromMasksSettings {
+  int views = 12;         // views sampled (evenly) as the reference of a comparison
+  int neighbours = 2;     // each compared with its nearest views by camera direction
+  int step = 2;           // pixels: the comparison's sampling grid
+  int coarse = 96;        // candidate heights of the first search; the second refines around the best
+  float min_iou = 0.5f;   // the best plane's mean IoU must reach this, else found = false
+  float min_share = 0.002f;  // masks covering less of their image are left out (a view missing the surface)
+};
+
+// The plane (normal = the cameras' mean up; the side of the cameras positive) and its mean IoU. masks[i]
+// is [H][W] of cameras[i] in [0, 1] (> 0.5 = glossy), empty where a view has none. found = false with fewer
+// than two usable views, or when no height reaches min_iou. tolerance is 1 % of the cameras' spread.
+struct PlaneFromMasks {
+  MirrorPlane plane;
+  double iou = 0;
+};
+PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
+                                       const std::vector<const std::vector<float>*>& masks,
+                                       const PlaneFromMasksSettings& settings = {});
+
+// The cameras' mean up direction (minus the image's down axis in world space), unit; zero if they cancel.
+glm::dvec3 mean_camera_up(const std::vector<Camera>& cameras);
+
+}  // namespace goris
