@@ -92,18 +92,32 @@ PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
   for (const Camera& c : cameras) spread = std::max(spread, glm::length(glm::dvec3(c.center()) - centre));
   const double top = lo - 1e-3 * spread, bottom = lo - 2.0 * spread;
   double best_h = top, best = -1;
-  auto search = [&](double a, double b, int n) {
-    for (int k = 0; k <= n; ++k) {
-      const double h = a + (b - a) * double(k) / double(n);
-      const double sc = score(cameras, masks, pairs, up, h, s.step);
-      if (sc > best) best = sc, best_h = h;
+  glm::dvec3 best_n = up;
+  auto search = [&](const glm::dvec3& n, double a, double b, int steps) {
+    for (int k = 0; k <= steps; ++k) {
+      const double h = a + (b - a) * double(k) / double(steps);
+      const double sc = score(cameras, masks, pairs, n, h, s.step);
+      if (sc > best) best = sc, best_h = h, best_n = n;
     }
   };
-  search(bottom, top, s.coarse);
+  search(up, bottom, top, s.coarse);
   const double cell = (top - bottom) / double(s.coarse);
-  search(best_h - cell, best_h + cell, 32);
+  search(up, best_h - cell, best_h + cell, 16);
+  // The surface need not be exactly level, nor the cameras exactly upright: tilts of the normal up to
+  // max_tilt_deg, each with its best height near the level one's, then the height once more.
+  const glm::dvec3 a = glm::normalize(glm::cross(up, std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 b = glm::cross(up, a);
+  const double level_h = best_h, rad = 3.14159265358979323846 / 180.0;
+  const int t = std::max(0, s.tilt_steps);
+  for (int i = -t; i <= t; ++i)
+    for (int j = -t; j <= t; ++j) {
+      if (i == 0 && j == 0) continue;
+      const double ti = std::tan(s.max_tilt_deg * rad * i / std::max(1, t)), tj = std::tan(s.max_tilt_deg * rad * j / std::max(1, t));
+      search(glm::normalize(up + ti * a + tj * b), level_h - cell, level_h + cell, 8);
+    }
+  search(best_n, best_h - cell / 4, best_h + cell / 4, 16);
   out.iou = best;
-  out.plane.normal = up;
+  out.plane.normal = best_n;
   out.plane.offset = best_h;
   out.plane.tolerance = 0.01 * spread;
   out.plane.found = best >= s.min_iou;

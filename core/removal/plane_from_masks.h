@@ -6,7 +6,8 @@
 // between any two views, and only the true plane maps one view's glossy mask onto the other's. So for a
 // level plane (normal: the cameras' mean up direction, as photos are taken upright and tables and floors
 // are level) each candidate height is scored by the mean IoU between every sampled view's mask and its
-// nearest neighbours' masks carried over by the plane, and the best height is refined by a finer search.
+// nearest neighbours' masks carried over by the plane; the best height is refined by a finer search and the
+// normal by a small search of tilts around the level one.
 // Objects standing on the surface hide parts of it in some views, which lowers every candidate's score
 // alike. No model is needed: a radiance model of a mirror-like surface has no Gaussians on the surface
 // (it shows a mirror world behind it), which is why fitting the plane to Gaussians fails there.
@@ -24,9 +25,11 @@ struct PlaneFromMasksSettings {
   int coarse = 96;        // candidate heights of the first search; the second refines around the best
   float min_iou = 0.5f;   // the best plane's mean IoU must reach this, else found = false
   float min_share = 0.002f;  // masks covering less of their image are left out (a view missing the surface)
+  float max_tilt_deg = 6.0f;  // the normal is searched this far from the cameras' mean up...
+  int tilt_steps = 3;         // ...on a (2 tilt_steps + 1)^2 grid of tilts
 };
 
-// The plane (normal = the cameras' mean up; the side of the cameras positive) and its mean IoU. masks[i]
+// The plane (normal within max_tilt_deg of the cameras' mean up, towards them) and its mean IoU. masks[i]
 // is [H][W] of cameras[i] in [0, 1] (> 0.5 = glossy), empty where a view has none. found = false with fewer
 // than two usable views, or when no height reaches min_iou. tolerance is 1 % of the cameras' spread.
 struct PlaneFromMasks {

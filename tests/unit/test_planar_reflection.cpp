@@ -133,3 +133,33 @@ TEST(PlaneFromMasks, FindsTheHeightThatMapsTheViewsMasksOntoEachOther) {
   for (const auto& m : noise) np.push_back(&m);
   EXPECT_FALSE(plane_from_glossy_masks(cams, np).plane.found);
 }
+
+TEST(PlaneFromMasks, FindsATiltedSurface) {
+  std::vector<Camera> cams;
+  for (int k = 0; k < 10; ++k) {
+    const float a = 0.6f * float(k);
+    cams.push_back(look_at({4.0f * std::cos(a), 4.0f * std::sin(a), 2.5f}, {0, 0, 0.2f}));
+  }
+  // A disc on the plane through (0, 0, 0.1) tilted 4 degrees about x.
+  const double tilt = 4.0 * 3.14159265358979323846 / 180.0;
+  const glm::dvec3 n(0.0, -std::sin(tilt), std::cos(tilt));
+  std::vector<std::vector<float>> masks;
+  for (const Camera& c : cams) {
+    std::vector<float> m(std::size_t(c.width) * c.height, 0.0f);
+    const glm::dvec3 eye(c.center());
+    for (int y = 0; y < c.height; ++y)
+      for (int x = 0; x < c.width; ++x) {
+        const glm::dvec3 d(c.ray_direction(x + 0.5f, y + 0.5f));
+        const double t = (0.1 * n.z - glm::dot(eye, n)) / glm::dot(d, n);
+        const glm::dvec3 p = eye + t * d - glm::dvec3(0, 0, 0.1);
+        if (t > 0 && glm::length(p) < 1.2) m[std::size_t(y) * c.width + x] = 1.0f;
+      }
+    masks.push_back(std::move(m));
+  }
+  std::vector<const std::vector<float>*> ptrs;
+  for (const auto& m : masks) ptrs.push_back(&m);
+  const PlaneFromMasks p = plane_from_glossy_masks(cams, ptrs);
+  ASSERT_TRUE(p.plane.found);
+  EXPECT_LT(std::acos(std::min(1.0, glm::dot(p.plane.normal, n))) * 180.0 / 3.14159265358979323846, 1.5);
+  EXPECT_NEAR(p.plane.signed_distance({0, 0, 0.1}), 0.0, 0.03);
+}
