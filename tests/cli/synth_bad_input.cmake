@@ -1,5 +1,6 @@
 # `goris synth` bad input: a missing Blender names the apt command, an unknown preset lists the presets, a
-# table roughness out of [0, 1] or for a preset without a table is refused, and nothing is written under
+# table roughness out of [0, 1] or for a preset without a table, an unknown table shape and too many objects
+# are refused, and nothing is written under
 # --out. Needs no Blender.
 file(REMOVE_RECURSE "${WORK}")
 function(expect_fail what)
@@ -16,6 +17,9 @@ expect_fail("sudo apt-get install blender" --out "${WORK}/a" --blender "${WORK}/
 expect_fail("twin-mirrors" --preset nope --out "${WORK}/b")
 expect_fail("--table-roughness" --table-roughness 1.5 --out "${WORK}/c")
 expect_fail("preset 'lambert-room' has no table top" --preset lambert-room --table-roughness 0 --out "${WORK}/d")
-if(EXISTS "${WORK}/a" OR EXISTS "${WORK}/b" OR EXISTS "${WORK}/c" OR EXISTS "${WORK}/d")
+expect_fail("--table-shape: unknown value 'hexagon' (round, rect, floor)" --table-shape hexagon --out "${WORK}/e")
+expect_fail("--objects must be between 0 and 6" --objects 9 --out "${WORK}/f")
+if(EXISTS "${WORK}/a" OR EXISTS "${WORK}/b" OR EXISTS "${WORK}/c" OR EXISTS "${WORK}/d" OR EXISTS "${WORK}/e"
+   OR EXISTS "${WORK}/f")
   message(FATAL_ERROR "a failed goris synth left files under --out")
 endif()
