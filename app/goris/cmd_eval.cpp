@@ -158,9 +158,15 @@ std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& confi
   std::vector<TrainView> tv = glossy_train_views(ds);
   if (tv.empty()) return std::nullopt;
   load_normal_priors(*gt_dir, tv);
-  const IntrinsicAccuracy acc =
-      measure_intrinsic_accuracy(model.view(true), tv, RasterRenderer::settings_for(config), device,
-                                 glossy_reference_from_scene(fs::path(config.data) / "scene.json"));
+  IntrinsicAccuracy acc;
+  try {
+    acc = measure_intrinsic_accuracy(model.view(true), tv, RasterRenderer::settings_for(config), device,
+                                     glossy_reference_from_scene(fs::path(config.data) / "scene.json"));
+  } catch (const Error& e) {  // e.g. a scene whose glossy masks are empty (a Lambertian room): nothing to measure
+    j["intrinsic_ground_truth"] = {{"not_measured", e.what()}};
+    std::printf("intrinsic ground truth: not measured (%s)\n", e.what());
+    return std::nullopt;
+  }
   nlohmann::json ja = {{"views", acc.views},
                        {"pixels", acc.pixels},
                        {"normal_mean_deg", acc.normal_mean_deg},
