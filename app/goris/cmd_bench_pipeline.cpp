@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/goris/bench_child.h"
 #include "app/goris/bench_suite.h"
@@ -61,11 +62,16 @@ const std::vector<ConfigSpec>& ladder() {
       {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask,twins", false,
        "radiance stage 1; RGB-only inpainting, no lighting-aware mask, no mirror twin"},
       {"default", "default", {}, "", false, "`goris train` and `goris remove` with no options: what a user gets"},
+      {"default-noplanar", "default", {}, "twins,reflection", false,
+       "default without what the glossy plane gives a radiance run (no planar reflection mask, no surface-only "
+       "fill, no mirror twin): the removal as it was before them"},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
        "intrinsic stage 1 with the screen-space filter"},
       {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks (reflections and the target's shadow) and the target's mirror twin"},
+      {"planar", "intrinsic_planar", {"--mode", "intrinsic", "--preset", "planar-glossy"}, "", false,
+       "full with `--preset planar-glossy` (the table opaque and held to its plane, exact normals)"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
        "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
       // Modelling no more than a scene needs: each choice against full (and auto against baseline).
@@ -572,6 +578,44 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
     for (const auto& m : missing) std::printf("no successful configuration with a PSNR: no %s.svg/png\n", m.c_str());
 }
 
+// One row per scene from its configurations' contact sheets (goris eval's METRICS_removal.png: rows of
+// full_ | r_ | render | error, the largest changed region first): full_ | r_ | each configuration's render.
+// False when no sheet was there.
+bool write_suite_sheet(const std::vector<goris::bench::SuiteResult>& results, const fs::path& path) {
+  std::vector<std::string> scenes;
+  for (const auto& r : results)
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  const fs::path root = path.parent_path();
+  std::vector<cv::Mat> rows;
+  for (const auto& scene : scenes) {
+    std::vector<cv::Mat> tiles;
+    for (const auto& r : results) {
+      if (r.scene != scene || r.contact_sheet.empty()) continue;
+      const cv::Mat sheet = cv::imread((root / r.contact_sheet).string(), cv::IMREAD_COLOR);
+      const int w = (sheet.cols - 3 * 2) / 4;  // four columns, 2 px gaps
+      if (sheet.empty() || w <= 0 || sheet.rows < w) continue;
+      auto cell = [&](int c) { return sheet(cv::Rect(c * (w + 2), 0, w, w)).clone(); };
+      if (tiles.empty()) tiles = {cell(0), cell(1)};
+      cv::Mat ours = cell(2);
+      cv::putText(ours, r.config, {3, 12}, cv::FONT_HERSHEY_SIMPLEX, 0.35, {255, 255, 255}, 1, cv::LINE_AA);
+      tiles.push_back(ours);
+    }
+    if (tiles.empty()) continue;
+    if (!rows.empty() && (tiles[0].rows != rows[0].rows || int(tiles.size()) * tiles[0].cols != rows[0].cols)) continue;
+    cv::putText(tiles[0], scene, {3, tiles[0].rows - 5}, cv::FONT_HERSHEY_SIMPLEX, 0.3, {255, 255, 255}, 1, cv::LINE_AA);
+    cv::Mat row;
+    cv::hconcat(tiles, row);
+    rows.push_back(row);
+  }
+  if (rows.empty()) return false;
+  cv::Mat all;
+  cv::vconcat(rows, all);
+  std::vector<unsigned char> png;
+  cv::imencode(".png", all, png);
+  goris::write_file_bytes(path, png.data(), png.size());
+  return true;
+}
+
 // suite.md / suite.json: the removal metrics per scene against baseline, the goals, and with --check the
 // regressions against a committed suite.json (each printed; the bench then exits 1).
 void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const {
@@ -588,8 +632,11 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
       if (fs::exists(out_ / sheet)) s.contact_sheet = sheet.string();
       results.push_back(s);
     }
-    const auto sum = goris::bench::summarize_suite(o_.suite, sched, results, "baseline");
+    auto sum = goris::bench::summarize_suite(o_.suite, sched, results, "baseline");
     const std::string stem = o_.schedules.size() == 1 ? "suite" : "suite_" + sched;
+    if (write_suite_sheet(results, out_ / (stem + "_sheet.png")))
+      sum.markdown += "\nEvery scene's test view with the largest changed region: `full_` | `r_` | each configuration's "
+                      "render after removal (" + o_.configs + "): [" + stem + "_sheet.png](" + stem + "_sheet.png)\n";
     write_text(out_ / (stem + ".md"), sum.markdown);
     write_text(out_ / (stem + ".json"), sum.json.dump(2) + "\n");
     std::printf("wrote %s and %s\n", (out_ / (stem + ".md")).c_str(), (out_ / (stem + ".json")).c_str());

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +26,7 @@
 #include "app/goris/command.h"
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
+#include "core/metrics/removal_metrics.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
 
@@ -106,6 +108,49 @@ cv::Mat tile_row(const std::vector<Tile>& parts) {
   return row;
 }
 
+// Where the removal had to change the image (full_ and r_ differ, core/metrics/removal_metrics.h), cropped
+// to the region's bounding box with a margin and enlarged: with the target | ground truth without it | render
+// after removal. Empty when the view has no full_ image or nothing changed.
+cv::Mat region_crop_row(const goris::View& v, const fs::path& render, int scale = 3) {
+  if (!v.full_image || !fs::exists(render)) return {};
+  cv::Mat before = cv::imread(v.full_image->string(), cv::IMREAD_COLOR), after = cv::imread(v.image.string(), cv::IMREAD_COLOR);
+  cv::Mat ours = cv::imread(render.string(), cv::IMREAD_COLOR);
+  if (before.empty() || after.empty() || ours.empty() || before.size() != after.size() || ours.size() != after.size())
+    return {};
+  const int w = after.cols, h = after.rows;
+  auto planar = [&](const cv::Mat& m) {
+    std::vector<float> p(std::size_t(3) * w * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) p[(std::size_t(c) * h + y) * w + x] = m.at<cv::Vec3b>(y, x)[2 - c] / 255.0f;
+    return p;
+  };
+  const goris::ChangedRegion region = goris::changed_region(planar(before).data(), planar(after).data(), w, h);
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (region.mask[std::size_t(y) * w + x]) x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  if (x1 < 0) return {};
+  const int m = std::max(4, (x1 - x0) / 8);
+  const int rx = std::max(0, x0 - m), ry = std::max(0, y0 - m);
+  const cv::Rect roi(rx, ry, std::min(w, x1 + m + 1) - rx, std::min(h, y1 + m + 1) - ry);
+  std::vector<cv::Mat> tiles;
+  for (const auto& [img, label] : {std::pair{before, "with the target"}, {after, "truth without it"}, {ours, "after removal"}}) {
+    cv::Mat t;
+    cv::resize(img(roi), t, {}, scale, scale, cv::INTER_NEAREST);
+    cv::putText(t, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, {255, 255, 255}, 1, cv::LINE_AA);
+    tiles.push_back(t);
+  }
+  cv::Mat row;
+  cv::hconcat(tiles, row);
+  return row;
+}
+
+// j[key] when it is a number, else NaN (metrics.json writes null for undefined means).
+double number(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+
 // A row: ground truth | render | depth | normal.
 cv::Mat comparison_row(const fs::path& gt, const fs::path& renders, const std::string& name) {
   return tile_row({{gt, "ground truth"},
@@ -128,8 +173,9 @@ std::string stage2_rows(const goris::Dataset& ds, const fs::path& removed, const
   const nlohmann::json refs = nlohmann::json::parse(rf, nullptr, false);
   if (!refs.is_array()) return "";
   std::string md = "### Stage 2 in the reference views\n\nEach row: training photo | lighting-aware mask (the target's "
-                   "reflections) | the target's shadow (share of the light it took) | inpainting mask | inpainted "
-                   "colour\n\n";
+                   "reflections, traced) | the target mirrored through the glossy plane on the glossy surface (its "
+                   "planar reflection) | the target's shadow (share of the light it took) | inpainting mask | "
+                   "inpainted colour\n\n";
   for (const nlohmann::json& r : refs) {
     const std::string name = r.value("view", "");
     const auto v = std::find_if(ds.train.begin(), ds.train.end(), [&](const goris::View& d) { return d.name == name; });
@@ -137,6 +183,7 @@ std::string stage2_rows(const goris::Dataset& ds, const fs::path& removed, const
     const std::string file = "stage2_" + name + ".png";
     write_png(out / file, tile_row({{v->image, "photo"},
                                     {removed / "lighting_masks" / (name + ".png"), "reflections", true},
+                                    {removed / "reflection_masks" / (name + ".png"), "planar refl.", true},
                                     {removed / "shadow" / (name + ".png"), "shadow", true},
                                     {removed / "inpaint_masks" / (name + ".png"), "inpaint mask"},
                                     {removed / "inpainted" / (name + "_rgb.png"), "inpainted"}}));
@@ -195,6 +242,26 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
       cv::imencode(".png", row, png);
       goris::write_file_bytes(out / file, png.data(), png.size());
       md += "![" + v.name + " after removal](" + file + ")\n\n";
+    }
+    const nlohmann::json rm = r.value("removal", nlohmann::json::object());
+    if (!rm.empty()) {
+      std::snprintf(line, sizeof line,
+                    "### Where the target and its reflection were\n\nThe changed region (pixels where the views with "
+                    "and without the target differ: the target, its reflection and its shadow; %.1f %% of the "
+                    "image): PSNR %.2f dB, FLIP %.3f, ghost %.2f (what is left of the target's imprint: 1 = all of "
+                    "it, 0 = none).\n\nEach row, cropped to that region: with the target | ground truth without it "
+                    "| render after removal\n\n",
+                    100.0 * number(rm, "region_fraction"), number(rm, "region_psnr"), number(rm, "region_flip"),
+                    number(rm, "ghost_ratio"));
+      md += line;
+      for (int i = 0; i < n; ++i) {
+        const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
+        const cv::Mat row = region_crop_row(v, out / "renders_removed" / (v.name + ".png"));
+        if (row.empty()) continue;
+        const std::string file = "region_" + v.name + ".png";
+        write_png(out / file, row);
+        md += "![" + v.name + " changed region](" + file + ")\n\n";
+      }
     }
     md += stage2_rows(ds, removed, out);
     // Stage 2's own steps, from its report.

@@ -1,5 +1,7 @@
 #include "core/removal/plane_from_masks.h"
 
+#include "core/removal/select_hull.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,9 +9,26 @@
 namespace goris {
 
 glm::dvec3 mean_camera_up(const std::vector<Camera>& cameras) {
-  glm::dvec3 up(0.0);
-  for (const Camera& c : cameras) up -= glm::dvec3(c.R[0][1], c.R[1][1], c.R[2][1]);  // rows of R: camera axes
-  return glm::length(up) > 1e-9 ? glm::normalize(up) : glm::dvec3(0.0);
+  // An upright camera's right axis is level, so world up is the direction most perpendicular to every
+  // camera's right axis: the smallest eigenvector of sum r r^T. The mean of the cameras' up axes would lean
+  // towards the scene when the cameras cover only a sector of directions (they look down at it). The mean
+  // up gives the sign, and is the answer when the right axes do not span a plane (one direction only).
+  glm::dvec3 mean(0.0);
+  glm::dmat3 rr(0.0);
+  for (const Camera& c : cameras) {
+    mean -= glm::dvec3(c.R[0][1], c.R[1][1], c.R[2][1]);  // rows of R are the camera's axes in world space
+    const glm::dvec3 r(c.R[0][0], c.R[1][0], c.R[2][0]);
+    rr += glm::outerProduct(r, r);
+  }
+  if (!(glm::length(mean) > 1e-9)) return glm::dvec3(0.0);
+  mean = glm::normalize(mean);
+  glm::dvec3 values;
+  glm::dmat3 vectors;
+  symmetric_eigen(rr / double(cameras.size()), values, vectors);
+  // values descending (select_hull.h): the last is the smallest; a plane spanned needs the middle one > 0.
+  if (!(values[1] > 1e-3)) return mean;
+  glm::dvec3 up = glm::normalize(vectors[2]);
+  return glm::dot(up, mean) < 0 ? -up : up;
 }
 
 namespace {
@@ -30,9 +49,10 @@ double score(const std::vector<Camera>& cams, const std::vector<const std::vecto
   for (const Pair& p : pairs) {
     const Camera &ci = cams[p.i], &cj = cams[p.j];
     const glm::dvec3 eye(ci.center());
-    std::size_t both = 0, either = 0;
+    std::size_t both = 0, either = 0, samples = 0, mapped = 0;
     for (int y = step / 2; y < ci.height; y += step)
       for (int x = step / 2; x < ci.width; x += step) {
+        ++samples;
         const glm::dvec3 d(ci.ray_direction(float(x) + 0.5f, float(y) + 0.5f));
         const double dn = glm::dot(d, n);
         if (std::abs(dn) < 1e-6) continue;
@@ -42,13 +62,16 @@ double score(const std::vector<Camera>& cams, const std::vector<const std::vecto
         if (!(cam_j.z > 0)) continue;
         const glm::vec2 uv = cj.project_camera(cam_j);
         if (!(uv.x >= 0 && uv.y >= 0 && uv.x < float(cj.width) && uv.y < float(cj.height))) continue;
+        ++mapped;
         const bool a = (*masks[p.i])[std::size_t(y) * ci.width + x] > 0.5f, b = glossy_at(*masks[p.j], cj, uv);
         both += a && b;
         either += a || b;
       }
-    if (either == 0) continue;
-    sum += double(both) / double(either);
+    // A height at which the views barely overlap (a plane just below the cameras) scores nothing for the
+    // pair: a few samples landing in one patch of the other view would agree by chance.
     ++used;
+    if (either == 0 || mapped * 4 < samples) continue;
+    sum += double(both) / double(either);
   }
   return used ? sum / used : 0.0;
 }
@@ -56,7 +79,8 @@ double score(const std::vector<Camera>& cams, const std::vector<const std::vecto
 
 PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
                                        const std::vector<const std::vector<float>*>& masks,
-                                       const PlaneFromMasksSettings& s) {
+                                       const PlaneFromMasksSettings& s,
+                                       std::optional<PlaneHeights> heights) {
   PlaneFromMasks out;
   const glm::dvec3 up = mean_camera_up(cameras);
   if (glm::length(up) == 0 || masks.size() != cameras.size()) return out;
@@ -90,14 +114,23 @@ PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
   centre /= double(cameras.size());
   double spread = 0;
   for (const Camera& c : cameras) spread = std::max(spread, glm::length(glm::dvec3(c.center()) - centre));
-  const double top = lo - 1e-3 * spread, bottom = lo - 2.0 * spread;
+  const double top = heights ? heights->high : lo - 1e-3 * spread;
+  const double bottom = heights ? heights->low : lo - 2.0 * spread;
+  if (!(top > bottom)) return out;
+  // Near-ties (within tie_iou) go to the level plane nearest the preferred height: a surface that fills
+  // every view scores alike at many heights and tilts.
+  const double prefer = heights && heights->preferred ? *heights->preferred : 0.0;
   double best_h = top, best = -1;
   glm::dvec3 best_n = up;
+  auto cost = [&](const glm::dvec3& n, double h) { return std::abs(h - prefer) + (1.0 - glm::dot(n, up)) * spread; };
   auto search = [&](const glm::dvec3& n, double a, double b, int steps) {
     for (int k = 0; k <= steps; ++k) {
       const double h = a + (b - a) * double(k) / double(steps);
       const double sc = score(cameras, masks, pairs, n, h, s.step);
-      if (sc > best) best = sc, best_h = h, best_n = n;
+      const bool tie = heights && heights->preferred && std::abs(sc - best) <= s.tie_iou;
+      if ((sc > best && !tie) || (tie && cost(n, h) < cost(best_n, best_h))) {
+        best = std::max(best, sc), best_h = h, best_n = n;
+      }
     }
   };
   search(up, bottom, top, s.coarse);

@@ -11,6 +11,7 @@
 // Objects standing on the surface hide parts of it in some views, which lowers every candidate's score
 // alike. No model is needed: a radiance model of a mirror-like surface has no Gaussians on the surface
 // (it shows a mirror world behind it), which is why fitting the plane to Gaussians fails there.
+#include <optional>
 #include <vector>
 
 #include "core/io/camera.h"
@@ -27,6 +28,7 @@ struct PlaneFromMasksSettings {
   float min_share = 0.002f;  // masks covering less of their image are left out (a view missing the surface)
   float max_tilt_deg = 6.0f;  // the normal is searched this far from the cameras' mean up...
   int tilt_steps = 3;         // ...on a (2 tilt_steps + 1)^2 grid of tilts
+  float tie_iou = 0.01f;      // scores this close are a tie (see PlaneHeights)
 };
 
 // The plane (normal within max_tilt_deg of the cameras' mean up, towards them) and its mean IoU. masks[i]
@@ -36,9 +38,18 @@ struct PlaneFromMasks {
   MirrorPlane plane;
   double iou = 0;
 };
+// Where to search, as heights up . x (up = mean_camera_up). A surface that fills every view (a floor reaching
+// past the images' edges) maps onto itself at nearly any height, so the caller narrows the search to where
+// the target rests and prefers that height on near-ties (removal_pipeline.cpp). Absent: from twice the
+// cameras' spread below the lowest camera up to it, and the best score wins.
+struct PlaneHeights {
+  double low = 0, high = 0;
+  std::optional<double> preferred;
+};
 PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
                                        const std::vector<const std::vector<float>*>& masks,
-                                       const PlaneFromMasksSettings& settings = {});
+                                       const PlaneFromMasksSettings& settings = {},
+                                       std::optional<PlaneHeights> heights = std::nullopt);
 
 // The cameras' mean up direction (minus the image's down axis in world space), unit; zero if they cancel.
 glm::dvec3 mean_camera_up(const std::vector<Camera>& cameras);

@@ -144,7 +144,19 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   // mirror world behind it): the plane comes from the photos' glossy masks (plane_from_masks.h).
   std::vector<const std::vector<float>*> masks;
   for (const TrainView& v : views) masks.push_back(&v.glossy_mask);
-  const PlaneFromMasks pm = plane_from_glossy_masks(cameras, masks);
+  // The target rests on the surface: its height is searched around the target's bottom (5th percentile of
+  // the target's centres along up), from half the target's height below it to a sixth above.
+  const glm::dvec3 up = mean_camera_up(cameras);
+  std::vector<double> h;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+    if (target[i]) h.push_back(glm::dot(up, glm::dvec3(centres[i])));
+  std::optional<PlaneHeights> band;
+  if (h.size() >= 10) {
+    std::sort(h.begin(), h.end());
+    const double bottom = h[h.size() / 20], span = std::max(h[h.size() * 19 / 20] - bottom, 1e-6);
+    band = PlaneHeights{bottom - 0.5 * span, bottom + span / 6.0, bottom};
+  }
+  const PlaneFromMasks pm = plane_from_glossy_masks(cameras, masks, {}, band);
   return twins_below_plane(centres, target, pm.plane);
 }
 
