@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "core/util/error.h"
 
 namespace goris {
@@ -37,6 +40,23 @@ std::vector<Camera> cameras_of(const std::vector<View>& views) {
 
 SceneBounds Dataset::camera_bounds() const { return goris::camera_bounds(train.empty() ? test : train); }
 
+Image undistort_image(const Image& image, const Camera& pinhole, const Distortion& lens) {
+  // For each pixel of the pinhole image, where the distorted image holds it (OpenCV's model, the camera's
+  // own): the same intrinsics before and after, so the image keeps its size and its centre.
+  const cv::Matx33d k(pinhole.fx, 0, pinhole.cx, 0, pinhole.fy, pinhole.cy, 0, 0, 1);
+  const cv::Vec<double, 5> d(lens.k1, lens.k2, lens.p1, lens.p2, lens.k3);
+  cv::Mat map1, map2;
+  cv::initUndistortRectifyMap(k, d, cv::Matx33d::eye(), k, cv::Size(image.width, image.height), CV_32FC1, map1, map2);
+  const std::vector<float> px = image.pixels.to_host();
+  const cv::Mat src(image.height, image.width, CV_32FC(image.channels), const_cast<float*>(px.data()));
+  cv::Mat dst;
+  // Pixels the distorted image does not reach (corners under barrel distortion) repeat its border.
+  cv::remap(src, dst, map1, map2, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  Image out(image.width, image.height, image.channels, Device::CPU);
+  std::copy(dst.ptr<float>(), dst.ptr<float>() + px.size(), out.pixels.data());
+  return out;
+}
+
 namespace {
 
 // The file must still be the size the data set was loaded with; then it is resampled to the camera's size.
@@ -46,6 +66,7 @@ Image fit_to_view(Image im, const std::filesystem::path& file, const View& v, De
                                    std::to_string(v.source_width) + "x" + std::to_string(v.source_height) +
                                    " (did the file change after the data set was loaded?)");
   Image out = resize_image(im, v.camera.width, v.camera.height);
+  if (v.lens.any()) out = undistort_image(out, v.camera, v.lens);
   if (device != Device::CPU) out.pixels = out.pixels.copy_to(device);
   return out;
 }

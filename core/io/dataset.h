@@ -35,6 +35,9 @@ struct View {
   std::optional<std::filesystem::path> object_mask;  // target object (white = object)
   std::optional<std::filesystem::path> glossy_mask;  // glossy surfaces (the paper's M_gt)
   std::optional<std::filesystem::path> full_image;   // GOR-IS test views: the same view WITH the target
+  // With DatasetOptions::undistort: the lens distortion the images are undistorted by when they are loaded
+  // (camera is then the pinhole camera of the undistorted images); zero otherwise.
+  Distortion lens;
 };
 
 struct SfmPoints {
@@ -57,6 +60,10 @@ struct DatasetOptions {
   // Formats without their own split (instant-ngp, COLMAP, LLFF) hold out every N-th view (index % N == 0,
   // in file-name order for COLMAP and LLFF, frame order for instant-ngp) as the test split; 0 = no test views.
   int test_every = 8;
+  // Undistort the photos and masks of cameras with lens distortion as they are loaded, onto the same pinhole
+  // intrinsics (View::lens keeps what was removed): the renderers model pinhole cameras only. Off, the
+  // cameras keep their distortion as the files give it (`goris info`, the loaders' tests).
+  bool undistort = false;
 };
 
 struct Dataset {
@@ -89,6 +96,10 @@ Image load_view_object_mask(const View& view, Device device = Device::CPU);
 Image load_view_glossy_mask(const View& view, Device device = Device::CPU);
 // GOR-IS test views: the render with the target, at view.camera's size.
 Image load_view_full_image(const View& view, const DatasetOptions& options, Device device = Device::CPU);
+
+// `image` (HWC, any channels, on the CPU) undistorted by `lens` onto `pinhole` (its size and intrinsics):
+// what the loaders do to every image and mask of a view with View::lens set.
+Image undistort_image(const Image& image, const Camera& pinhole, const Distortion& lens);
 
 // The size images of (width, height) are loaded at under `options` (at least 1x1).
 ImageSize scaled_size(int width, int height, const DatasetOptions& options);

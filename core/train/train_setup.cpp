@@ -10,6 +10,7 @@ DatasetOptions dataset_options(const TrainConfig& config) {
   o.background = config.background;
   o.downscale = config.downscale;
   o.target_width = config.resolution;
+  o.undistort = true;
   return o;
 }
 

@@ -1,6 +1,9 @@
 // Format detection, options, scene bounds: what all loaders share.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "core/io/dataset.h"
@@ -77,3 +80,29 @@ TEST(DatasetCommon, ViewImagesLandOnTheRequestedDevice) {
 
 }  // namespace
 }  // namespace goris
+
+TEST(DatasetCommon, UndistortImageMovesPixelsWhereThePinholeCameraSeesThem) {
+  // A bright dot where the lens puts the ray of pinhole pixel (110, 100); undistorted, it lands there.
+  goris::Camera pin;
+  pin.width = pin.height = 128;
+  pin.fx = pin.fy = 100;
+  pin.cx = pin.cy = 64;
+  goris::Distortion lens;
+  lens.k1 = 0.5f, lens.p1 = 0.01f;
+  const double x = (110.5 - 64) / 100, y = (100.5 - 64) / 100, r2 = x * x + y * y;
+  const double radial = 1 + lens.k1 * r2;
+  const double xd = x * radial + 2 * lens.p1 * x * y, yd = y * radial + lens.p1 * (r2 + 2 * y * y);
+  const int u = int(std::floor(xd * 100 + 64)), v = int(std::floor(yd * 100 + 64));
+  goris::Image distorted(128, 128, 1);
+  for (std::size_t p = 0; p < distorted.pixel_count(); ++p) distorted.pixels[p] = 0.0f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) distorted.pixels[std::size_t(v + dy) * 128 + std::size_t(u + dx)] = 1.0f;
+  ASSERT_GT(std::hypot(u - 110, v - 100), 3.0) << "the lens moves the dot";
+  const goris::Image out = goris::undistort_image(distorted, pin, lens);
+  const std::vector<float> px = out.pixels.to_host();
+  const auto peak = std::max_element(px.begin(), px.end()) - px.begin();
+  EXPECT_NEAR(double(peak % 128), 110.0, 1.0);
+  EXPECT_NEAR(double(peak / 128), 100.0, 1.0);
+  EXPECT_EQ(out.width, 128);
+  EXPECT_EQ(out.channels, 1);
+}

@@ -167,3 +167,17 @@ TEST(PlaneFromMasks, FindsATiltedSurface) {
   EXPECT_LT(std::acos(std::min(1.0, glm::dot(p.plane.normal, n))) * 180.0 / 3.14159265358979323846, 1.5);
   EXPECT_NEAR(p.plane.signed_distance({0, 0, 0.1}), 0.0, 0.03);
 }
+
+TEST(PlaneFromMasks, WorldUpFromCamerasOnASector) {
+  // Upright cameras on a 90-degree sector looking down at the scene: their up axes lean towards it, their
+  // right axes are level.
+  std::vector<Camera> cams;
+  for (int k = 0; k < 6; ++k) {
+    const float a = -2.4f + 0.3f * float(k);
+    cams.push_back(look_at({5.0f * std::cos(a), 5.0f * std::sin(a), 3.0f}, {0, 0, 0}));
+  }
+  glm::dvec3 naive(0.0);
+  for (const Camera& c : cams) naive -= glm::dvec3(c.R[0][1], c.R[1][1], c.R[2][1]);
+  EXPECT_LT(glm::normalize(naive).z, 0.97) << "the mean of the up axes leans";
+  EXPECT_GT(mean_camera_up(cams).z, 0.9999);
+}

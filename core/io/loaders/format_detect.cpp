@@ -75,10 +75,15 @@ Dataset load_dataset(const fs::path& path, const DatasetOptions& options) {
   if (options.target_width < 0) throw Error("invalid target width " + std::to_string(options.target_width));
   if (options.test_every < 0) throw Error("invalid test hold-out " + std::to_string(options.test_every) + " (must be >= 0)");
   const Detected d = detect(path);
-  if (d.format == "nerf-synthetic") return loaders::load_nerf_synthetic(d.root, options);
-  if (d.format == "instant-ngp") return loaders::load_instant_ngp(d.source, options);
-  if (d.format == "llff") return loaders::load_llff(d.root, options);
-  return loaders::load_colmap(d.root, d.source, options);
+  Dataset ds = d.format == "nerf-synthetic" ? loaders::load_nerf_synthetic(d.root, options)
+               : d.format == "instant-ngp"  ? loaders::load_instant_ngp(d.source, options)
+               : d.format == "llff"         ? loaders::load_llff(d.root, options)
+                                            : loaders::load_colmap(d.root, d.source, options);
+  if (options.undistort)
+    for (auto* views : {&ds.train, &ds.test})
+      for (View& v : *views)
+        if (v.camera.has_distortion()) v.lens = v.camera.dist, v.camera.dist = Distortion{};
+  return ds;
 }
 
 }  // namespace goris
