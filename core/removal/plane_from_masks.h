@@ -28,7 +28,7 @@ struct PlaneFromMasksSettings {
   float min_share = 0.002f;  // masks covering less of their image are left out (a view missing the surface)
   float max_tilt_deg = 6.0f;  // the normal is searched this far from the cameras' mean up...
   int tilt_steps = 3;         // ...on a (2 tilt_steps + 1)^2 grid of tilts
-  float tie_iou = 0.01f;      // scores this close are a tie (see PlaneHeights)
+  float tie_iou = 0.002f;     // scores this close are a tie (see PlaneHeights)
 };
 
 // The plane (normal within max_tilt_deg of the cameras' mean up, towards them) and its mean IoU. masks[i]

@@ -144,8 +144,8 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   // mirror world behind it): the plane comes from the photos' glossy masks (plane_from_masks.h).
   std::vector<const std::vector<float>*> masks;
   for (const TrainView& v : views) masks.push_back(&v.glossy_mask);
-  // The target rests on the surface: its height is searched around the target's bottom (5th percentile of
-  // the target's centres along up), from half the target's height below it to a sixth above.
+  // The target rests on the surface: its height is searched below the target's bottom (5th percentile of the
+  // target's centres along up, which lie above the surface), down to half the target's height.
   const glm::dvec3 up = mean_camera_up(cameras);
   std::vector<double> h;
   for (std::size_t i = 0; i < centres.size(); ++i)
@@ -154,7 +154,7 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   if (h.size() >= 10) {
     std::sort(h.begin(), h.end());
     const double bottom = h[h.size() / 20], span = std::max(h[h.size() * 19 / 20] - bottom, 1e-6);
-    band = PlaneHeights{bottom - 0.5 * span, bottom + span / 6.0, bottom};
+    band = PlaneHeights{bottom - 0.5 * span, bottom, bottom};
   }
   const PlaneFromMasks pm = plane_from_glossy_masks(cameras, masks, {}, band);
   return twins_below_plane(centres, target, pm.plane);
