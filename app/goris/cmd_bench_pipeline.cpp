@@ -17,6 +17,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,8 @@
 #include "core/io/file_bytes.h"
 #include "core/report/chart.h"
 #include "core/report/pareto.h"
+#include "core/train/train_config.h"
+#include "core/util/fnv1a.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
 
@@ -97,6 +100,7 @@ struct Options {
   std::string scene_cache;  // where the suite's scenes are rendered and kept ("" = OUT/scenes)
   std::string check;        // a committed suite.json to compare with; a regression fails the bench
   double tolerance_db = 0.5;  // the changed-region PSNR drop --check accepts (the suite's seed-to-seed noise)
+  std::string publish;        // also write the suite's summary, self-contained, into this folder (docs/results)
   std::string configs = "baseline,+elt,+ssf,full,distilled";
   std::string out;
   std::vector<std::string> schedules = {"short"};
@@ -172,14 +176,14 @@ std::string device_mib(const Row& r, const std::string& none = "") {
   return r.peak_device_mib > 0 ? fmt(r.peak_device_mib, "%.0f") : none;
 }
 
-// This executable's size and modification time: a build's identity for the results of `default`.
-std::string binary_fingerprint() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) return "unknown";
-  const auto size = fs::file_size(exe, ec);
-  const auto time = fs::last_write_time(exe, ec).time_since_epoch().count();
-  return std::to_string(size) + "-" + std::to_string(time);
+// What `goris train` does with no options: its default configuration. A result of `default` is reused only
+// when the defaults it was trained with are today's (other code changes are the --out folder's business,
+// as for every configuration).
+std::string defaults_fingerprint() {
+  nlohmann::json j;
+  to_json(j, goris::TrainConfig{});
+  j.erase("data");
+  return std::to_string(goris::fnv1a(j.dump()));
 }
 
 // Stage 1 of a scene under a schedule, trained once per stage-1 kind and shared by the configurations.
@@ -201,6 +205,7 @@ class Bench {
   void evaluate(Row& r, const fs::path& run_dir, const fs::path& logs);
   void write_outputs(const std::vector<Row>& rows, bool final) const;
   void write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const;
+  void publish_suite(std::vector<goris::bench::SuiteResult> results, const std::string& schedule) const;
   std::string stage1_notes(const std::vector<Row>& rows) const;
   bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem,
                    const TimeAxis& axis) const;
@@ -208,6 +213,7 @@ class Bench {
 
   Options o_;
   fs::path out_;
+  mutable bool time_axis_is_cpu_ = false;  // what write_suite used, for publish_suite's header
   std::map<std::string, Stage1> stage1_;
 };
 
@@ -222,9 +228,8 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   if (o_.resolution > 0) args.insert(args.end(), {"--resolution", std::to_string(o_.resolution)});
   if (o_.init_points > 0) args.insert(args.end(), {"--init-points", std::to_string(o_.init_points)});
   json options = {{"args", args}};
-  // `default` means whatever goris train does with no options: that changes with the binary, so a result
-  // is reused only from the same build.
-  if (c.train_args.empty()) options["binary"] = binary_fingerprint();
+  // `default` means whatever goris train does with no options: reused only under the same defaults.
+  if (c.train_args.empty()) options["defaults"] = defaults_fingerprint();
   Stage1 st{dir / "run", {}};
   // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
   if (fs::exists(dir / "stage1.json")) {
@@ -275,7 +280,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                         {"resolution", o_.resolution},
                         {"device", o_.device}};
   if (o_.init_points > 0) options["init_points"] = o_.init_points;  // absent by default: older results stay reusable
-  if (c.train_args.empty()) options["binary"] = binary_fingerprint();
+  if (c.train_args.empty()) options["defaults"] = defaults_fingerprint();
   if (const auto row = goris::bench::reusable_row(dir, options)) {
     Row old = row_from_json(*row);
     old.reused = true;
@@ -620,6 +625,7 @@ bool write_suite_sheet(const std::vector<goris::bench::SuiteResult>& results, co
 // regressions against a committed suite.json (each printed; the bench then exits 1).
 void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const {
   const TimeAxis axis = time_axis(rows);
+  time_axis_is_cpu_ = axis.cpu;
   for (const auto& sched : o_.schedules) {
     std::vector<goris::bench::SuiteResult> results;
     for (const Row& r : rows) {
@@ -640,6 +646,7 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
     write_text(out_ / (stem + ".md"), sum.markdown);
     write_text(out_ / (stem + ".json"), sum.json.dump(2) + "\n");
     std::printf("wrote %s and %s\n", (out_ / (stem + ".md")).c_str(), (out_ / (stem + ".json")).c_str());
+    if (!o_.publish.empty()) publish_suite(results, sched);
     if (o_.check.empty()) continue;
     const json committed = read_json_object(o_.check);
     if (committed.value("schedule", "") != sched) continue;
@@ -652,6 +659,40 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
     for (const auto& b : bad) std::printf("  %s\n", b.c_str());
     goris::cli::set_exit_code(1);
   }
+}
+
+// --publish DIR: DIR/suite_SUITE_SCHEDULE.md / .json / _sheet.png, self-contained (no links into the bench
+// folder), headed by the command that reproduces them and the machine they ran on.
+void Bench::publish_suite(std::vector<goris::bench::SuiteResult> results, const std::string& schedule) const {
+  const fs::path dir = fs::absolute(o_.publish);
+  fs::create_directories(dir);
+  const std::string stem = "suite_" + o_.suite + "_" + schedule;
+  const bool sheet = write_suite_sheet(results, dir / (stem + "_sheet.png"));  // reads the bench folder's sheets
+  for (auto& r : results) r.contact_sheet.clear();
+  auto sum = goris::bench::summarize_suite(o_.suite, schedule, results, "baseline");
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);)
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  std::string cmd = "goris bench pipeline --suite " + o_.suite + " --configs " + o_.configs + " --schedule " + schedule;
+  if (o_.init_points != 30000) cmd += " --init-points " + std::to_string(o_.init_points);
+  if (o_.resolution > 0) cmd += " --resolution " + std::to_string(o_.resolution);
+  cmd += " --device " + o_.device + " --out DIR --publish " + o_.publish;
+  std::string head = "Reproduce with `" + cmd + "` (scenes: `goris synth`, rendered once into DIR/scenes or "
+                     "--scene-cache). Machine: " + cpu + ", " + std::to_string(std::thread::hardware_concurrency()) +
+                     " threads; times are " + (time_axis_is_cpu_ ? "CPU" : "wall") + " seconds of train + select + remove.\n\n";
+  const auto at = sum.markdown.find("\n\n");
+  sum.markdown.insert(at == std::string::npos ? 0 : at + 2, head);
+  if (sheet)
+    sum.markdown += "\n![Every scene's test view with the largest changed region: full_ | r_ | each configuration's "
+                    "render after removal](" + stem + "_sheet.png)\n";
+  sum.json["command"] = cmd;
+  write_text(dir / (stem + ".md"), sum.markdown);
+  write_text(dir / (stem + ".json"), sum.json.dump(2) + "\n");
+  std::printf("published %s\n", (dir / (stem + ".md")).c_str());
 }
 
 TimeAxis Bench::time_axis(const std::vector<Row>& rows) const {
@@ -753,6 +794,8 @@ void setup_bench_pipeline(CLI::App& root) {
   c->add_option("--check", o->check,
                 "A committed suite.json: exit 1 when a scene's changed-region PSNR fell by more than --tolerance");
   c->add_option("--tolerance", o->tolerance_db, "dB of changed-region PSNR that --check accepts")->capture_default_str();
+  c->add_option("--publish", o->publish,
+                "With --suite: also write suite_SUITE_SCHEDULE.md/.json/_sheet.png, self-contained, into this folder");
   c->add_option("--configs", o->configs, "Comma-separated: " + config_names() + " or all")->capture_default_str();
   c->add_option("--resolution", o->resolution, "Train and evaluate at this image width (0 = the data set's)")
       ->capture_default_str()
