@@ -154,7 +154,7 @@ Schedule schedule_of(const std::string& name) {
     return {name, 30, 10, 10,
             {"--resolution", "64", "--init-points", "3000", "--set", "intrinsic_env_resolution=8", "--set",
              "random_init_box_ratio=0.15"}};
-  const int iters = name == "short" ? 500 : name == "medium" ? 2000 : 30000;
+  const int iters = name == "short" ? 500 : name == "medium" ? 2000 : name == "long" ? 8000 : 30000;
   // The distillation fits SH to the shaded renders from scratch, so it needs a few hundred iterations even
   // after a short stage 1 (lambert_room at 2K: 133 iterations reached 12 dB fidelity, 8.9 dB vs the test views).
   return {name, iters, std::max(10, iters * 4000 / 30000), std::min(2000, std::max(500, iters * 2000 / 30000)), {}};

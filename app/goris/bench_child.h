@@ -50,7 +50,7 @@ StepRun run_eval(const std::filesystem::path& run_dir, const std::string& device
                  Metrics& out, const std::string& gt = "after");
 
 // Stage-1, fine-tune and distillation iterations of a named schedule: short (500 stage-1 iterations),
-// medium (2000), full (30000) and the hidden `tiny` of the CLI tests (30, seconds long, with extra options
+// medium (2000), long (8000), full (30000) and the hidden `tiny` of the CLI tests (30, seconds long, with extra options
 // that shrink the model). Stage 2 scales with stage 1 like `goris remove` does (4000 at 30K); the
 // distillation too (2000 at 30K) but never below 500 iterations.
 struct Schedule {

@@ -98,6 +98,7 @@ struct Options {
   std::vector<std::string> data;
   std::string suite;       // a generalization suite (bench_suite.h) instead of, or besides, --data
   std::string scene_cache;  // where the suite's scenes are rendered and kept ("" = OUT/scenes)
+  std::set<std::string> suite_scenes;  // only these of the suite (empty: all)
   std::string check;        // a committed suite.json to compare with; a regression fails the bench
   double tolerance_db = 0.5;  // the changed-region PSNR drop --check accepts (the suite's seed-to-seed noise)
   std::string publish;        // also write the suite's summary, self-contained, into this folder (docs/results)
@@ -740,8 +741,12 @@ void Bench::run() {
   if (!o_.suite.empty()) {
     const auto& suite = goris::bench::suite_scenes(o_.suite);
     const fs::path cache = o_.scene_cache.empty() ? out_ / "scenes" : fs::absolute(o_.scene_cache);
+    for (const auto& name : o_.suite_scenes)
+      if (std::none_of(suite.begin(), suite.end(), [&](const auto& sc) { return sc.name == name; }))
+        throw Error("--scenes", "suite '" + o_.suite + "' has no scene '" + name + "'");
     std::printf("suite %s: %zu scenes in %s\n", o_.suite.c_str(), suite.size(), cache.c_str());
     for (const auto& sc : suite) {
+      if (!o_.suite_scenes.empty() && !o_.suite_scenes.count(sc.name)) continue;
       const fs::path dir =
           goris::bench::ensure_suite_scene(sc, cache, fs::path(GORIS_RESOURCE_DIR) / "synth" / "render_scene.py");
       scenes.push_back({sc.name, dir.string()});
@@ -791,6 +796,7 @@ void setup_bench_pipeline(CLI::App& root) {
   c->add_option("--suite", o->suite,
                               "A generalization suite of `goris synth` scenes (" + suites + "; rendered once, cached)");
   c->add_option("--scene-cache", o->scene_cache, "Where the suite's scenes are kept (default OUT/scenes)");
+  c->add_option("--scenes", o->suite_scenes, "Only these scenes of the suite (names as in suite.md)")->delimiter(',');
   c->add_option("--check", o->check,
                 "A committed suite.json: exit 1 when a scene's changed-region PSNR fell by more than --tolerance");
   c->add_option("--tolerance", o->tolerance_db, "dB of changed-region PSNR that --check accepts")->capture_default_str();
@@ -804,15 +810,15 @@ void setup_bench_pipeline(CLI::App& root) {
       ->capture_default_str()
       ->check(CLI::Range(0, 100000000));
   c->add_option("--out", o->out, "Output folder (results.csv, results.md, chart*.svg/png, runs/)")->required();
-  c->add_option("--schedule", o->schedules, "short (500 iterations), medium (2000), full (30000); repeatable")
+  c->add_option("--schedule", o->schedules, "short (500 iterations), medium (2000), long (8000), full (30000); repeatable")
       ->capture_default_str()
       ->expected(1, -1)
       ->check(CLI::Validator(
           [](std::string& s) {  // "tiny" is the CLI test's schedule, left out of the help
-            return s == "short" || s == "medium" || s == "full" || s == "tiny" ? std::string()
+            return s == "short" || s == "medium" || s == "long" || s == "full" || s == "tiny" ? std::string()
                                                                                  : "unknown schedule '" + s + "'";
           },
-          "short|medium|full"));
+          "short|medium|long|full"));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->add_option("--time-axis", o->time_axis,
                  "Time of the chart and the ratios: wall, cpu (the steps' CPU seconds: fairer on a shared machine) or "
