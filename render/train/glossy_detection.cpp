@@ -411,6 +411,10 @@ GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views,
   out.fraction = out.covered > 0 ? double(out.detected) / double(out.covered) : 0.0;
   out.glossy = out.detected > 0 && out.fraction >= s.min_fraction;
   if (s.grow_planes && out.glossy) grow_on_planes(views, out, s);  // masks of a Lambertian scene stay the evidence
+  // The method's case is a planar reflector (a table, a floor, a mirror): view-dependent pixels spread over
+  // no plane - a varnished frame, fur or foliage that a warmed-up model has not settled - are left to the
+  // radiance model, which shows them as well at a fraction of the cost.
+  if (s.grow_planes && s.require_plane && out.glossy && out.planes == 0) out.glossy = false;
   for (const auto& m : out.masks) out.in_masks += std::size_t(std::accumulate(m.begin(), m.end(), std::size_t(0)));
   return out;
 }

@@ -28,7 +28,8 @@
 // the pixels whose surface point lies on such a plane, and those whose point lies behind it, seen through
 // the plane's extent (the area the views see on the plane, holes filled): a radiance model shows a mirror's
 // reflections of objects as geometry behind the mirror, and those reflections are what a removal must find.
-// The decision uses the detections before growing, and only a glossy scene's masks are grown.
+// The decision uses the detections before growing, and only a glossy scene's masks are grown; a scene whose
+// detections lie on no plane stays radiance (require_plane).
 //
 // A radiance model explains mirror reflections by virtual geometry behind the surface, which is
 // photo-consistent; the detection relies on the reflections the model has not (yet) turned into geometry.
@@ -67,6 +68,7 @@ struct GlossyDetectionSettings {
   float plane_min_share = 0.5f;   // a plane must hold this share of the detected points left (a further one
                                   // also a tenth of all)
   int plane_min_points = 50;      // fewer detected points: no growing
+  bool require_plane = true;      // glossy only when the detections lie on a plane (with grow_planes)
 
   // The settings of a run (IntrinsicSettings::detect_*).
   static GlossyDetectionSettings from_config(const TrainConfig& config);

@@ -191,6 +191,19 @@ TEST(GlossyDetection, TheDepthWindowAbsorbsMisregisteredGeometry) {
   EXPECT_GT(glossy.fraction, 0.3);
 }
 
+TEST(GlossyDetection, DetectionsOnNoPlaneStayRadiance) {
+  // The view-dependent plane, with plane fitting unable to find it (too few points asked for): the
+  // detections lie on no plane, so the scene is left to the radiance model - unless a plane is not required.
+  GlossyDetectionSettings s;
+  s.plane_min_points = 1 << 30;
+  const GlossyDetection d = detect(ring_views({/*view_dependent=*/true, false}), s);
+  EXPECT_GT(d.fraction, 0.3);
+  EXPECT_EQ(d.planes, 0);
+  EXPECT_FALSE(d.glossy);
+  s.require_plane = false;
+  EXPECT_TRUE(detect(ring_views({true, false}), s).glossy);
+}
+
 TEST(GlossyDetection, MasksGrowOverThePlaneOfTheDetections) {
   // The plane is glossy only where x > 0 (the reflection); the grown masks cover all of it but not the
   // Lambertian square floating above it.
