@@ -68,6 +68,8 @@ const std::vector<ConfigSpec>& ladder() {
       {"default-noplanar", "default", {}, "twins,reflection", false,
        "default without what the glossy plane gives a radiance run (no planar reflection mask, no surface-only "
        "fill, no mirror twin): the removal as it was before them"},
+      {"default-keeptwins", "default", {}, "twins", false,
+       "default keeping the target's mirror twin (the planar reflection mask and the surface-only fill stay)"},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
@@ -585,13 +587,14 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
 }
 
 // One row per scene from its configurations' contact sheets (goris eval's METRICS_removal.png: rows of
-// full_ | r_ | render | error, the largest changed region first): full_ | r_ | each configuration's render.
+// full_ | r_ | render | error, the largest changed region first; paths relative to `root`): full_ | r_ |
+// each configuration's render.
 // False when no sheet was there.
-bool write_suite_sheet(const std::vector<goris::bench::SuiteResult>& results, const fs::path& path) {
+bool write_suite_sheet(const std::vector<goris::bench::SuiteResult>& results, const fs::path& root,
+                       const fs::path& path) {
   std::vector<std::string> scenes;
   for (const auto& r : results)
     if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-  const fs::path root = path.parent_path();
   std::vector<cv::Mat> rows;
   for (const auto& scene : scenes) {
     std::vector<cv::Mat> tiles;
@@ -641,7 +644,7 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
     }
     auto sum = goris::bench::summarize_suite(o_.suite, sched, results, "baseline");
     const std::string stem = o_.schedules.size() == 1 ? "suite" : "suite_" + sched;
-    if (write_suite_sheet(results, out_ / (stem + "_sheet.png")))
+    if (write_suite_sheet(results, out_, out_ / (stem + "_sheet.png")))
       sum.markdown += "\nEvery scene's test view with the largest changed region: `full_` | `r_` | each configuration's "
                       "render after removal (" + o_.configs + "): [" + stem + "_sheet.png](" + stem + "_sheet.png)\n";
     write_text(out_ / (stem + ".md"), sum.markdown);
@@ -668,7 +671,7 @@ void Bench::publish_suite(std::vector<goris::bench::SuiteResult> results, const 
   const fs::path dir = fs::absolute(o_.publish);
   fs::create_directories(dir);
   const std::string stem = "suite_" + o_.suite + "_" + schedule;
-  const bool sheet = write_suite_sheet(results, dir / (stem + "_sheet.png"));  // reads the bench folder's sheets
+  const bool sheet = write_suite_sheet(results, out_, dir / (stem + "_sheet.png"));
   for (auto& r : results) r.contact_sheet.clear();
   auto sum = goris::bench::summarize_suite(o_.suite, schedule, results, "baseline");
   std::string cpu = "unknown CPU";

@@ -272,12 +272,16 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                  "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
     std::string twin_note;
     target_only = selected;
-    if ((intrinsic || glossy_masks) && !o.ablate.count("twins")) {
-      const MirrorTwins t = mirror_twins_of(model, selected, intrinsic, cameras, views);
-      for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
-      twins = t.twins;
+    // The glossy plane serves the twin and the planar reflection (and the shadow's support plane): it is
+    // found unless both are switched off.
+    const bool want_plane = !o.ablate.count("twins") || !o.ablate.count("reflection");
+    if ((intrinsic || glossy_masks) && want_plane) {
+      MirrorTwins t = mirror_twins_of(model, selected, intrinsic, cameras, views);
       glossy_plane = t.plane;
       report.glossy_plane = t.plane;
+      if (o.ablate.count("twins")) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
+      for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
+      twins = t.twins;
       report.mirror_twins = t.count;
       report.selected += t.count;
       record.parameters["mirror_twins"] = t.count;
