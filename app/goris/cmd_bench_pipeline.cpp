@@ -67,9 +67,7 @@ const std::vector<ConfigSpec>& ladder() {
       {"default", "default", {}, "", false, "`goris train` and `goris remove` with no options: what a user gets"},
       {"default-noplanar", "default", {}, "twins,reflection", false,
        "default without what the glossy plane gives a radiance run (no planar reflection mask, no surface-only "
-       "fill, no mirror twin): the removal as it was before them"},
-      {"default-keeptwins", "default", {}, "twins", false,
-       "default keeping the target's mirror twin (the planar reflection mask and the surface-only fill stay)"},
+       "fill): the removal as it was before them"},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
