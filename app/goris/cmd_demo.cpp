@@ -245,7 +245,8 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
     }
     const nlohmann::json rm = r.value("removal", nlohmann::json::object());
     if (!rm.empty()) {
-      std::snprintf(line, sizeof line,
+      char text[768];
+      std::snprintf(text, sizeof text,
                     "### Where the target and its reflection were\n\nThe changed region (pixels where the views with "
                     "and without the target differ: the target, its reflection and its shadow; %.1f %% of the "
                     "image): PSNR %.2f dB, FLIP %.3f, ghost %.2f (what is left of the target's imprint: 1 = all of "
@@ -253,7 +254,7 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
                     "| render after removal\n\n",
                     100.0 * number(rm, "region_fraction"), number(rm, "region_psnr"), number(rm, "region_flip"),
                     number(rm, "ghost_ratio"));
-      md += line;
+      md += text;
       for (int i = 0; i < n; ++i) {
         const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
         const cv::Mat row = region_crop_row(v, out / "renders_removed" / (v.name + ".png"));
