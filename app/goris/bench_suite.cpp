@@ -7,6 +7,9 @@
 #include <set>
 
 #include "app/goris/bench_child.h"
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "core/io/file_bytes.h"
 #include "core/synth/synth.h"
 #include "core/util/error.h"
@@ -258,6 +261,42 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
   out.json = j;
   return out;
 }
+
+bool write_suite_sheet(const std::vector<SuiteResult>& results, const fs::path& root,
+                       const fs::path& path) {
+  std::vector<std::string> scenes;
+  for (const auto& r : results)
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  std::vector<cv::Mat> rows;
+  for (const auto& scene : scenes) {
+    std::vector<cv::Mat> tiles;
+    for (const auto& r : results) {
+      if (r.scene != scene || r.contact_sheet.empty()) continue;
+      const cv::Mat sheet = cv::imread((root / r.contact_sheet).string(), cv::IMREAD_COLOR);
+      const int w = (sheet.cols - 3 * 2) / 4;  // four columns, 2 px gaps
+      if (sheet.empty() || w <= 0 || sheet.rows < w) continue;
+      auto cell = [&](int c) { return sheet(cv::Rect(c * (w + 2), 0, w, w)).clone(); };
+      if (tiles.empty()) tiles = {cell(0), cell(1)};
+      cv::Mat ours = cell(2);
+      cv::putText(ours, r.config, {3, 12}, cv::FONT_HERSHEY_SIMPLEX, 0.35, {255, 255, 255}, 1, cv::LINE_AA);
+      tiles.push_back(ours);
+    }
+    if (tiles.empty()) continue;
+    if (!rows.empty() && (tiles[0].rows != rows[0].rows || int(tiles.size()) * tiles[0].cols != rows[0].cols)) continue;
+    cv::putText(tiles[0], scene, {3, tiles[0].rows - 5}, cv::FONT_HERSHEY_SIMPLEX, 0.3, {255, 255, 255}, 1, cv::LINE_AA);
+    cv::Mat row;
+    cv::hconcat(tiles, row);
+    rows.push_back(row);
+  }
+  if (rows.empty()) return false;
+  cv::Mat all;
+  cv::vconcat(rows, all);
+  std::vector<unsigned char> png;
+  cv::imencode(".png", all, png);
+  write_file_bytes(path, png.data(), png.size());
+  return true;
+}
+
 
 std::vector<std::string> suite_regressions(const json& committed, const json& current, double tolerance_db) {
   std::vector<std::string> bad;

@@ -48,6 +48,13 @@ struct SuiteSummary {
 SuiteSummary summarize_suite(const std::string& suite, const std::string& schedule,
                              const std::vector<SuiteResult>& results, const std::string& reference);
 
+// One row per scene from its configurations' contact sheets (goris eval's METRICS_removal.png: rows of
+// full_ | r_ | render | error, the largest changed region first; paths relative to `root`): full_ | r_ |
+// each configuration's render.
+// False when no sheet was there.
+bool write_suite_sheet(const std::vector<SuiteResult>& results, const std::filesystem::path& root,
+                       const std::filesystem::path& path);
+
 // Compares `current` with a committed suite.json: a configuration whose changed-region PSNR on any scene
 // fell by more than `tolerance_db` (or that failed where it succeeded) is a regression. Returns the
 // regressions, one line each (empty: none).

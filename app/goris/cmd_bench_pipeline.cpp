@@ -584,45 +584,6 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
     for (const auto& m : missing) std::printf("no successful configuration with a PSNR: no %s.svg/png\n", m.c_str());
 }
 
-// One row per scene from its configurations' contact sheets (goris eval's METRICS_removal.png: rows of
-// full_ | r_ | render | error, the largest changed region first; paths relative to `root`): full_ | r_ |
-// each configuration's render.
-// False when no sheet was there.
-bool write_suite_sheet(const std::vector<goris::bench::SuiteResult>& results, const fs::path& root,
-                       const fs::path& path) {
-  std::vector<std::string> scenes;
-  for (const auto& r : results)
-    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
-  std::vector<cv::Mat> rows;
-  for (const auto& scene : scenes) {
-    std::vector<cv::Mat> tiles;
-    for (const auto& r : results) {
-      if (r.scene != scene || r.contact_sheet.empty()) continue;
-      const cv::Mat sheet = cv::imread((root / r.contact_sheet).string(), cv::IMREAD_COLOR);
-      const int w = (sheet.cols - 3 * 2) / 4;  // four columns, 2 px gaps
-      if (sheet.empty() || w <= 0 || sheet.rows < w) continue;
-      auto cell = [&](int c) { return sheet(cv::Rect(c * (w + 2), 0, w, w)).clone(); };
-      if (tiles.empty()) tiles = {cell(0), cell(1)};
-      cv::Mat ours = cell(2);
-      cv::putText(ours, r.config, {3, 12}, cv::FONT_HERSHEY_SIMPLEX, 0.35, {255, 255, 255}, 1, cv::LINE_AA);
-      tiles.push_back(ours);
-    }
-    if (tiles.empty()) continue;
-    if (!rows.empty() && (tiles[0].rows != rows[0].rows || int(tiles.size()) * tiles[0].cols != rows[0].cols)) continue;
-    cv::putText(tiles[0], scene, {3, tiles[0].rows - 5}, cv::FONT_HERSHEY_SIMPLEX, 0.3, {255, 255, 255}, 1, cv::LINE_AA);
-    cv::Mat row;
-    cv::hconcat(tiles, row);
-    rows.push_back(row);
-  }
-  if (rows.empty()) return false;
-  cv::Mat all;
-  cv::vconcat(rows, all);
-  std::vector<unsigned char> png;
-  cv::imencode(".png", all, png);
-  goris::write_file_bytes(path, png.data(), png.size());
-  return true;
-}
-
 // suite.md / suite.json: the removal metrics per scene against baseline, the goals, and with --check the
 // regressions against a committed suite.json (each printed; the bench then exits 1).
 void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const {
@@ -642,7 +603,7 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
     }
     auto sum = goris::bench::summarize_suite(o_.suite, sched, results, "baseline");
     const std::string stem = o_.schedules.size() == 1 ? "suite" : "suite_" + sched;
-    if (write_suite_sheet(results, out_, out_ / (stem + "_sheet.png")))
+    if (goris::bench::write_suite_sheet(results, out_, out_ / (stem + "_sheet.png")))
       sum.markdown += "\nEvery scene's test view with the largest changed region: `full_` | `r_` | each configuration's "
                       "render after removal (" + o_.configs + "): [" + stem + "_sheet.png](" + stem + "_sheet.png)\n";
     write_text(out_ / (stem + ".md"), sum.markdown);
@@ -669,7 +630,7 @@ void Bench::publish_suite(std::vector<goris::bench::SuiteResult> results, const 
   const fs::path dir = fs::absolute(o_.publish);
   fs::create_directories(dir);
   const std::string stem = "suite_" + o_.suite + "_" + schedule;
-  const bool sheet = write_suite_sheet(results, out_, dir / (stem + "_sheet.png"));
+  const bool sheet = goris::bench::write_suite_sheet(results, out_, dir / (stem + "_sheet.png"));
   for (auto& r : results) r.contact_sheet.clear();
   auto sum = goris::bench::summarize_suite(o_.suite, schedule, results, "baseline");
   std::string cpu = "unknown CPU";

@@ -23,6 +23,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "app/goris/bench_child.h"
 #include "app/goris/command.h"
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
@@ -146,11 +147,6 @@ cv::Mat region_crop_row(const goris::View& v, const fs::path& render, int scale 
   return row;
 }
 
-// j[key] when it is a number, else NaN (metrics.json writes null for undefined means).
-double number(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
-}
-
 // A row: ground truth | render | depth | normal.
 cv::Mat comparison_row(const fs::path& gt, const fs::path& renders, const std::string& name) {
   return tile_row({{gt, "ground truth"},
@@ -252,8 +248,8 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
                     "image): PSNR %.2f dB, FLIP %.3f, ghost %.2f (what is left of the target's imprint: 1 = all of "
                     "it, 0 = none).\n\nEach row, cropped to that region: with the target | ground truth without it "
                     "| render after removal\n\n",
-                    100.0 * number(rm, "region_fraction"), number(rm, "region_psnr"), number(rm, "region_flip"),
-                    number(rm, "ghost_ratio"));
+                    100.0 * goris::bench::json_number(rm, "region_fraction"), goris::bench::json_number(rm, "region_psnr"),
+                    goris::bench::json_number(rm, "region_flip"), goris::bench::json_number(rm, "ghost_ratio"));
       md += text;
       for (int i = 0; i < n; ++i) {
         const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
