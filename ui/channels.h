@@ -1,9 +1,9 @@
 #pragma once
-// The channels a viewport can show (DESIGN.md §9). Most come from the rasterizer's G-buffer with the
-// material extras; the glossy term, light and visibility come from the intrinsic renderer (intrinsic runs
-// only), the two masks of the removal from the files stage 2 leaves in RUN/removal/ (for the training
-// camera the view is snapped to). Whether a channel can be shown depends on what is open: see
-// channel_unavailable().
+// The channels a viewport can show (docs/user/editor.md, What the viewports show). Most come from the
+// rasterizer's G-buffer with the material extras; the glossy term, light and visibility come from the
+// intrinsic renderer (intrinsic runs only), the two masks of the removal from the files stage 2 leaves in
+// RUN/removal/ (for the training camera the view is snapped to). Whether a channel can be shown depends on
+// what is open: see channel_unavailable().
 #include <optional>
 #include <span>
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
-// The editor's selection as a short list of edits over one model (DESIGN.md §9), evaluated with the
-// library's selection rules (core/removal, render/removal/selection.h):
+// The editor's selection as a short list of edits over one model (docs/design/architecture.md, The editor),
+// evaluated with the library's selection rules (core/removal, render/removal/selection.h):
 //
 //   click        the Gaussian under the cursor; with the slider g > 0 grown over similar neighbours
 //                (grow_selection) and closed (close_selection), as `goris select --click --grow g`

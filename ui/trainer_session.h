@@ -1,8 +1,8 @@
 #pragma once
-// Stage-1 training on its own thread for the editor (DESIGN.md §9), set up as `goris train` does
-// (render/train/training_setup.h: modes radiance / intrinsic / auto, normal priors, make_renderer) with the same
-// run folder (config.json, checkpoints/, log.csv, point_cloud.ply, environment.png; an existing run is
-// resumed from its latest checkpoint). A small state machine:
+// Stage-1 training on its own thread for the editor (docs/design/architecture.md, The editor), set up as
+// `goris train` does (render/train/training_setup.h: modes radiance / intrinsic / auto, normal priors,
+// make_renderer) with the same run folder (config.json, checkpoints/, log.csv, point_cloud.ply,
+// environment.png; an existing run is resumed from its latest checkpoint). A small state machine:
 //
 //   Idle --start--> Running --pause--> Paused --resume--> Running
 //   Running/Paused --stop--> Stopping --(checkpoint written)--> Done

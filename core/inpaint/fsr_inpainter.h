@@ -8,7 +8,8 @@
 // the output). So each channel is cropped to the hole's bounding box plus a 32-pixel margin (FSR's
 // block context; also much faster than the whole image), stretched to 0..255 by the known pixels'
 // range inside that crop (keeping precision for smooth maps such as depth), filled, and stretched back.
-// FSR_FAST takes seconds and FSR_BEST minutes on a 512x512 hole (DESIGN.md §11).
+// FSR_FAST takes seconds and FSR_BEST minutes on a 512x512 hole (docs/design/architecture.md,
+// Toolchain notes).
 #include "core/inpaint/inpainter.h"
 
 namespace goris {

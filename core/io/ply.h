@@ -1,5 +1,6 @@
 #pragma once
-// 3D Gaussian PLY files in the layout every 3DGS viewer reads (DESIGN.md §7): one `vertex` element with
+// 3D Gaussian PLY files in the layout every 3DGS viewer reads (docs/design/conventions.md, PLY
+// files): one `vertex` element with
 //   x y z nx ny nz f_dc_0..2 f_rest_0..M-1 opacity scale_0..2 rot_0..3 [extra float properties...]
 // values stored before activation (logit opacity, log scales, unnormalised w,x,y,z quaternions), f_rest
 // channel-major per Gaussian: f_rest[c * (K-1) + (k-1)] is coefficient k >= 1 of colour channel c, with

@@ -1,8 +1,8 @@
 #pragma once
-// The volume a selection is closed with (DESIGN.md §6 stage 2: "plus those inside the hull of the selected
-// centres"): the 3D convex hull of the selected centres (Quickhull, in double precision), or, when the
-// centres are degenerate (fewer than 4, collinear or flat), an oriented bounding box around them padded by
-// a thickness, because a hull of a flat set has no inside.
+// The volume a selection is closed with (docs/design/maths.md, Stage 2: "plus those inside the hull of the
+// selected centres"): the 3D convex hull of the selected centres (Quickhull, in double precision), or, when
+// the centres are degenerate (fewer than 4, collinear or flat), an oriented bounding box around them padded
+// by a thickness, because a hull of a flat set has no inside.
 #include <cstddef>
 #include <vector>
 

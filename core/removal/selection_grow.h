@@ -1,6 +1,6 @@
 #pragma once
 // Growing and shrinking a selection over the k-nearest-neighbour graph of the Gaussian centres (the
-// editor's click -> grow slider, DESIGN.md §9; `goris select --grow`).
+// editor's click -> grow slider, docs/design/architecture.md, The editor; `goris select --grow`).
 //
 // Growing takes the connected component of the seeds through the Gaussians that pass a node test, along
 // graph edges that pass a distance test. A neighbour j reached from region member i is admitted when all of

@@ -1,5 +1,5 @@
 #pragma once
-// Selecting the target from the learned object label (DESIGN.md §6 stage 2, paper Sec. 3.3): every
+// Selecting the target from the learned object label (docs/design/maths.md, Stage 2; paper Sec. 3.3): every
 // Gaussian with label > 0.3, closed by every Gaussian whose centre lies inside the convex hull of the
 // selected centres (outliers left out of the hull first, so that stray labels cannot inflate it). The
 // closing step is shared with the other selection rules (masks, click + grow): close_selection().

@@ -1,7 +1,7 @@
 #pragma once
-// What target selection (DESIGN.md §6 stage 2, paper Sec. 3.3) reads of a Gaussian scene: a host copy of
-// the per-Gaussian quantities the selection rules compare, activated, from a GaussianModel on any device.
-// A selection itself is a per-Gaussian 0/1 mask in the model's order (SelectionMask).
+// What target selection (docs/design/maths.md, Stage 2; paper Sec. 3.3) reads of a Gaussian scene: a host
+// copy of the per-Gaussian quantities the selection rules compare, activated, from a GaussianModel on any
+// device. A selection itself is a per-Gaussian 0/1 mask in the model's order (SelectionMask).
 #include <cstddef>
 #include <cstdint>
 #include <vector>

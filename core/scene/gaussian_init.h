@@ -1,6 +1,6 @@
 #pragma once
 // Initial Gaussian scenes: from SfM points (with colours) or from random points in a box, with scales from
-// the distances to the nearest neighbours (DESIGN.md §4).
+// the distances to the nearest neighbours (docs/design/conventions.md, Gaussian parameters and activations).
 #include <cstdint>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Non-owning view of a Gaussian scene's per-Gaussian parameters, as renderers read them. All pointers
-// live on one device. Values are stored BEFORE activation (DESIGN.md §4), except `extras`, which the
-// scene model activates (sigmoid) before rendering so that renderers blend plain values.
+// live on one device. Values are stored BEFORE activation (docs/design/conventions.md), except `extras`,
+// which the scene model activates (sigmoid) before rendering so that renderers blend plain values.
 //
 // Layouts (row-major, N = count):
 //   positions       [N][3]

@@ -1,7 +1,7 @@
 #pragma once
 // The trainable Gaussian scene: a structure of arrays on one device, every parameter stored BEFORE
-// activation (DESIGN.md §4), each with its gradient and Adam moments beside it. Renderers read it through
-// GaussianView / write gradients through GaussianGradView (core/scene/gaussian_view.h); the extra
+// activation (docs/design/conventions.md), each with its gradient and Adam moments beside it. Renderers read
+// it through GaussianView / write gradients through GaussianGradView (core/scene/gaussian_view.h); the extra
 // material channels are stored as logits here and handed to renderers activated (sigmoid) from a scratch
 // buffer, with the chain rule back applied by backprop_extras().
 #include <array>
@@ -39,7 +39,7 @@ struct ParamTensor {
   Buffer<float> value, grad, adam_m, adam_v;
 };
 
-// Initial values before activation (DESIGN.md §4).
+// Initial values before activation (docs/design/conventions.md, Gaussian parameters and activations).
 struct GaussianInit {
   float opacity = 0.1f;
   float diffuse = 0.5f, fresnel = 0.5f, roughness = 0.5f, region = 0.9f, label = 0.5f;

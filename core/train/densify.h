@@ -1,8 +1,8 @@
 #pragma once
-// Adaptive density control (3DGS, DESIGN.md §6): accumulate each Gaussian's screen-space mean gradient over
-// the views that see it; every `interval` iterations clone small Gaussians and split large ones whose
-// average exceeds the threshold, prune transparent (and, after the first opacity reset, oversized) ones,
-// and periodically reset opacities. Parameters and Adam moments stay row-aligned through every change:
+// Adaptive density control (3DGS; docs/design/maths.md, Stage 1): accumulate each Gaussian's screen-space
+// mean gradient over the views that see it; every `interval` iterations clone small Gaussians and split large
+// ones whose average exceeds the threshold, prune transparent (and, after the first opacity reset, oversized)
+// ones, and periodically reset opacities. Parameters and Adam moments stay row-aligned through every change:
 // surviving rows keep their moments, new rows start with zero moments (as 3DGS's optimizer surgery does).
 #include <cstddef>
 #include <cstdint>
@@ -16,12 +16,12 @@ namespace goris {
 
 struct DensifySettings {
   int from_iter = 500;      // first densification at this iteration
-  int until_iter = 12000;   // none after this iteration (DESIGN.md §6)
+  int until_iter = 12000;   // none after this iteration (the paper's 12K)
   int interval = 500;
   float grad_threshold = 2e-4f;  // on the view-averaged |dL/dmean2d| in 3DGS's NDC units
   float percent_dense = 0.01f;   // clone when max scale <= percent_dense * extent, else split
   int split_count = 2;           // children per split Gaussian, scale / (0.8 * split_count)
-  float min_opacity = 0.05f;     // prune below (DESIGN.md §6; 3DGS uses 0.005)
+  float min_opacity = 0.05f;     // prune below (the paper's; 3DGS uses 0.005)
   int opacity_reset_interval = 3000;
   float reset_opacity = 0.01f;      // opacities are clamped to this at a reset
   float max_screen_radius = 20.0f;  // pixels; prune above after the first reset (0 = never)

@@ -211,7 +211,7 @@ std::size_t GlossyPlaneConstraint::align_normals(GaussianModel& model) const {
     const double c = glm::dot(a, target);
     if (c > 1.0 - 1e-12) continue;
     // The shortest rotation taking a to target, (1 + a.t, a x t) normalised, applied before the stored one;
-    // the stored quaternion's length is kept (it is stored unnormalised, DESIGN.md §4).
+    // the stored quaternion's length is kept (it is stored unnormalised, docs/design/conventions.md).
     const glm::dvec3 axis = glm::cross(a, target);
     const glm::dquat turn = glm::normalize(glm::dquat(1.0 + c, axis.x, axis.y, axis.z));
     float* r = &rot[4 * i];

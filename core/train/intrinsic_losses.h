@@ -1,8 +1,8 @@
 #pragma once
-// Stage-1 losses of the intrinsic decomposition (paper Sec. 3.2, supplementary S1.5; DESIGN.md §6), on
-// planar images [C][H][W]. Each returns the loss and ADDS weight * dL/d(input) into the gradient buffers
-// (null = not wanted). Masks and targets are constants. Every loss is a mean over the H*W pixels, so its
-// scale does not depend on the resolution. T = float in training, double in the gradient tests.
+// Stage-1 losses of the intrinsic decomposition (paper Sec. 3.2, supplementary S1.5; docs/design/maths.md,
+// Stage 1), on planar images [C][H][W]. Each returns the loss and ADDS weight * dL/d(input) into the gradient
+// buffers (null = not wanted). Masks and targets are constants. Every loss is a mean over the H*W pixels, so
+// its scale does not depend on the resolution. T = float in training, double in the gradient tests.
 namespace goris {
 
 // Normal prior L_n = (1/HW) sum_p m_p sum_c |N_pc - Ngt_pc|, N = n / |n| the normalised rendered normal

@@ -1,7 +1,7 @@
 #pragma once
 // Optimiser parameter groups: each is a column range of one of the model's tensors with its own learning
-// rate (DESIGN.md §4). SH is split into the DC coefficient and the rest; the extras into materials
-// (diffuse, F0, roughness), region and label.
+// rate (docs/design/conventions.md, Learning rates). SH is split into the DC coefficient and the rest; the
+// extras into materials (diffuse, F0, roughness), region and label.
 #include <array>
 
 #include "core/scene/gaussians.h"

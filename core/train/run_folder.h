@@ -1,7 +1,8 @@
 #pragma once
-// A training run's folder (DESIGN.md §1): config.json (the TrainConfig, with the data set path so other
-// commands find the data), checkpoints/, log.csv, point_cloud.ply (the final model in the standard 3DGS
-// layout). Shared by `goris train | render | eval` and the editor.
+// A training run's folder (docs/design/architecture.md, The workflow and run folders): config.json (the
+// TrainConfig, with the data set path so other commands find the data), checkpoints/, log.csv,
+// point_cloud.ply (the final model in the standard 3DGS layout). Shared by `goris train | render | eval` and
+// the editor.
 #include <filesystem>
 #include <string>
 

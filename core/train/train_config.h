@@ -1,6 +1,7 @@
 #pragma once
-// Everything that defines a training run (DESIGN.md §4 and §6 numbers as defaults). Stored as config.json
-// in the run folder and inside every checkpoint, so a run can be resumed or repeated exactly.
+// Everything that defines a training run (the numbers of docs/design/conventions.md and docs/design/maths.md
+// as defaults). Stored as config.json in the run folder and inside every checkpoint, so a run can be resumed
+// or repeated exactly.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,7 +29,7 @@ struct LearningRates {
   float label = 0.01f;
 };
 
-// Stage 1 in intrinsic mode (DESIGN.md §5-§6, paper S1.5). Iteration numbers are those of a full 30K
+// Stage 1 in intrinsic mode (docs/design/maths.md; paper S1.5). Iteration numbers are those of a full 30K
 // schedule; shorter runs scale them by iterations / 30000 (see TrainConfig::scaled_iteration), except the
 // warm-up: a short run keeps warmup_min_fraction of itself in radiance mode (TrainConfig::shading_from), and the
 // shading phase's own schedule points follow it (TrainConfig::shading_phase_iteration).
@@ -49,7 +50,7 @@ struct IntrinsicSettings {
   float env_distance = 1.0f;
   glm::vec3 env_center{0.0f};
   float env_radius = 0.0f;
-  float init_roughness = 0.5f;     // every Gaussian's roughness and F0 at the start (DESIGN.md §4: 0.5)
+  float init_roughness = 0.5f;     // every Gaussian's roughness and F0 at the start (the paper's 0.5)
   float init_fresnel = 0.5f;
   float lr_env = 0.03f;            // environment map: 0.03 -> 0.003 exponentially over the shading phase
   float lr_env_final = 0.003f;
@@ -140,7 +141,7 @@ struct IntrinsicSettings {
 };
 
 struct TrainConfig {
-  // "radiance": SH colour only (also the stage-1 warm-up of DESIGN.md §6); "intrinsic": stage 1 with
+  // "radiance": SH colour only (also the warm-up of intrinsic stage 1); "intrinsic": stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss).
   std::string mode = "radiance";
   int iterations = 30000;

@@ -1,8 +1,9 @@
 #pragma once
-// The training loop (stage 1, radiance mode: DESIGN.md §6), usable from the CLI and from a GUI thread:
-// step() runs one iteration; run() loops with periodic checkpoints, a CSV log and a progress callback, and
-// stops cleanly (checkpoint written) when a stop flag is raised. A NaN/Inf loss, gradient or parameter
-// throws goris::Error naming the iteration and the parameter group; the checkpoints on disk stay intact.
+// The training loop (stage 1, radiance mode: docs/design/maths.md, Stage 1), usable from the CLI and from a
+// GUI thread: step() runs one iteration; run() loops with periodic checkpoints, a CSV log and a progress
+// callback, and stops cleanly (checkpoint written) when a stop flag is raised. A NaN/Inf loss, gradient or
+// parameter throws goris::Error naming the iteration and the parameter group; the checkpoints on disk stay
+// intact.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>

@@ -1,7 +1,8 @@
 #pragma once
-// The learnable environment light (DESIGN.md section 5): a cube map of 6 x R x R RGB texels stored as log
-// radiance (texel = exp(parameter), see cube_map_ops.h for why), prefiltered into a roughness-indexed mip
-// chain (split-sum style) that shading kernels sample with cube_lookup (cube_map_math.h).
+// The learnable environment light (docs/design/conventions.md, Environment map): a cube map of 6 x R x R RGB
+// texels stored as log radiance (texel = exp(parameter), see cube_map_ops.h for why), prefiltered into a
+// roughness-indexed mip chain (split-sum style) that shading kernels sample with cube_lookup
+// (cube_map_math.h).
 //
 //   EnvironmentMap env(256, Device::CPU);
 //   env.update();                               // after every change of params(): rebuild the mip chain

@@ -1,5 +1,5 @@
 #pragma once
-// Exports of a run folder (DESIGN.md §1 step 5, §7): `goris export` and the editor call these. Works on a
+// Exports of a run folder (docs/user/export.md): `goris export` and the editor call these. Works on a
 // stage-1 run (RUN) and a stage-2 result (RUN/removal) alike, both being run folders.
 //
 //   write_ply      the model in the standard 3DGS layout with the intrinsic attributes as extra properties,

@@ -1,6 +1,6 @@
 #pragma once
-// Stage 1 in intrinsic mode behind the trainer's DifferentiableRenderer interface (DESIGN.md §5-§6, paper
-// Sec. 3.2 and S1.1-S1.5). One forward pass:
+// Stage 1 in intrinsic mode behind the trainer's DifferentiableRenderer interface (docs/design/maths.md,
+// paper Sec. 3.2 and S1.1-S1.5). One forward pass:
 //
 //   G-buffer (rasterize with the material extras)
 //   -> reflection rays of the glossy pixels (make_reflection_rays)

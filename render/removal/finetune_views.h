@@ -1,5 +1,5 @@
 #pragma once
-// The training views of the stage-2 fine-tune (paper Sec. 3.4 and S1.4-S1.5, DESIGN.md §6 stage 2):
+// The training views of the stage-2 fine-tune (paper Sec. 3.4 and S1.4-S1.5; docs/design/maths.md, Stage 2):
 //  - every view keeps its photo, but the photo losses only count outside its `exclude` mask (object mask,
 //    and the lighting-aware mask under the paper's rule; by default the photo is dereflected there instead,
 //    dereflect.h): TrainView::loss_weight = 0 there;

@@ -1,9 +1,9 @@
 #pragma once
-// The lighting-aware mask (paper Sec. 3.3, DESIGN.md §5): where the target shows up in reflections. The
-// intrinsic renderer traces each glossy pixel's reflection ray carrying the object label, filters it like
-// the glossy term and weights it by (1 - M) F (IntrinsicRenderer::reflected_label: E_obj); pixels with
-// E_obj > tau (0.1) are the target's reflections, dilated a little so the soft edge of a blurred
-// reflection is covered too.
+// The lighting-aware mask (paper Sec. 3.3; docs/design/maths.md, Lighting-aware mask): where the target shows
+// up in reflections. The intrinsic renderer traces each glossy pixel's reflection ray carrying the object
+// label, filters it like the glossy term and weights it by (1 - M) F (IntrinsicRenderer::reflected_label:
+// E_obj); pixels with E_obj > tau (0.1) are the target's reflections, dilated a little so the soft edge of a
+// blurred reflection is covered too.
 //
 // Why F is taken relative to the scene's own F0 (our change to the paper, default of `goris remove`;
 // `--lighting-fresnel absolute` restores the paper's weighting): stage 1 learns F0 and the environment's

@@ -1,7 +1,7 @@
 #pragma once
-// Stage 2 end to end (paper Sec. 3.3-3.4, S1.4-S1.6; DESIGN.md §6): `goris remove RUN` and the editor's
-// Remove button call run_removal(). Every step reports progress and writes what it made into RUN/removal/
-// so a person can look at it:
+// Stage 2 end to end (paper Sec. 3.3-3.4, S1.4-S1.6; docs/design/maths.md, Stage 2): `goris remove RUN` and
+// the editor's Remove button call run_removal(). Every step reports progress and writes what it made into
+// RUN/removal/ so a person can look at it:
 //
 //   selection        RUN/selection.json if present (goris select / the editor), else label > 0.3 closed by
 //                    the hull of the selected centres, and the target's mirror twin below a planar glossy

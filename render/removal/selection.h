@@ -1,6 +1,7 @@
 #pragma once
-// Target selection for object removal (DESIGN.md §6 stage 2, paper Sec. 3.3): the one header the editor and
-// the CLI include. A selection is a SelectionMask, one byte per Gaussian of the model (1 = target).
+// Target selection for object removal (docs/design/maths.md, Stage 2; paper Sec. 3.3): the one header the
+// editor and the CLI include. A selection is a SelectionMask, one byte per Gaussian of the model
+// (1 = target).
 //
 // Seeds (pick one of):
 //   select_by_label(pts, {threshold})      learned label > 0.3, closed by the hull of the selected centres

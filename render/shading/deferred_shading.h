@@ -1,6 +1,6 @@
 #pragma once
-// Deferred shading of the intrinsic model (DESIGN.md section 5; paper Sec. 3.2, supplementary S1.1-S1.2),
-// forward and backward, per pixel on the G-buffer:
+// Deferred shading of the intrinsic model (docs/design/maths.md, Shading; paper Sec. 3.2, supplementary
+// S1.1-S1.2), forward and backward, per pixel on the G-buffer:
 //
 //   C = D + (1 - M) G,   G = F (L_ind' + L_dir' V'),   F = F0 + (1 - F0)(1 - n . omega_r)^5
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Types of the deferred shading stage (DESIGN.md section 5, "Shading"), templated on the scalar type like
+// Types of the deferred shading stage (docs/design/maths.md, Shading), templated on the scalar type like
 // the rasterizer's (float in production, double in the gradient tests). Images are planar [C][H][W] as the
 // G-buffer stores them; every pointer lives on the device the stage runs on.
 #include <cstddef>

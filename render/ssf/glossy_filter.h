@@ -1,11 +1,12 @@
 #pragma once
-// Screen-space glossy filter (DESIGN.md §5, paper S1.3): a pyramid of an image X ([C][H][W] planar, e.g.
-// L_ind rgb and V) where each level is a normal-weighted blur of the previous one then x1/2 (odd sizes round
-// up), sampled per pixel at the continuous level l = R_s (L - 1) with bilinear upsampling and a linear blend
-// of the two nearest levels. Differentiable in X and R_s; the camera-space normals ([3][H][W], any length,
-// zero where empty) only steer the blur weights and are treated as constants (no gradient). An optional
-// mass image ([H][W], >= 0) makes it a weighted pyramid (normalised convolution, see pyramid_kernels.h):
-// pixels of mass 0 (coarse tracing's untraced pixels) do not enter any level; the masses are constants.
+// Screen-space glossy filter (docs/design/maths.md, Screen-space glossy filter; paper S1.3): a pyramid of an
+// image X ([C][H][W] planar, e.g. L_ind rgb and V) where each level is a normal-weighted blur of the previous
+// one then x1/2 (odd sizes round up), sampled per pixel at the continuous level l = R_s (L - 1) with bilinear
+// upsampling and a linear blend of the two nearest levels. Differentiable in X and R_s; the camera-space
+// normals ([3][H][W], any length, zero where empty) only steer the blur weights and are treated as constants
+// (no gradient). An optional mass image ([H][W], >= 0) makes it a weighted pyramid (normalised convolution,
+// see pyramid_kernels.h): pixels of mass 0 (coarse tracing's untraced pixels) do not enter any level; the
+// masses are constants.
 //
 // T = float on CPU or CUDA; T = double on the CPU (gradient tests). Maths: pyramid_kernels.h.
 #include <vector>

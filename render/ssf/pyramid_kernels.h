@@ -1,6 +1,7 @@
 #pragma once
-// Per-pixel maths of the screen-space glossy filter (DESIGN.md §5, paper S1.3), written once for the CPU
-// driver and its CUDA twin and templated on the scalar so that the gradient tests run it in double.
+// Per-pixel maths of the screen-space glossy filter (docs/design/maths.md, Screen-space glossy filter; paper
+// S1.3), written once for the CPU driver and its CUDA twin and templated on the scalar so that the gradient
+// tests run it in double.
 //
 // Level k+1 pixel (i, j) is a normal-weighted 4x4 gather of level k around its centre, which lies at level-k
 // coordinate (2i + 0.5, 2j + 0.5): separable taps g = [1 3 3 1] (a [1 2 1] blur followed by a 2x2 box,

@@ -1,5 +1,5 @@
 #pragma once
-// Differentiable ray tracing through 3D Gaussians (DESIGN.md section 5, "Tracing Gaussians"):
+// Differentiable ray tracing through 3D Gaussians (docs/design/maths.md, Tracing Gaussians):
 //
 //   GaussianTracer tracer(Device::CPU);
 //   tracer.build(view, emit);                        // after every change of the Gaussians

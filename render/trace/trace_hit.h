@@ -3,7 +3,7 @@
 // brute force) and templated on the scalar type (float in production, double in the gradient tests).
 //
 // A Gaussian (mean mu, rotation R from an unnormalised (w,x,y,z) quaternion, axis scales s, opacity o) is
-// hit by the ray o_r + t d at its point of maximum response (DESIGN.md section 5):
+// hit by the ray o_r + t d at its point of maximum response (docs/design/maths.md, Tracing Gaussians):
 //   M = S^-1 R^T,  a = M (o_r - mu),  b = M d,  t* = -(a.b)/(b.b),  p = a + t* b,
 //   G = exp(-|p|^2 / 2),  alpha = min(0.99, o G);  a hit when o G >= 1/255 and t* > t_min.
 // With Mip-Splatting's 3D filter the axis variances are s^2 + f and o is scaled by the compensation.
