@@ -3,7 +3,7 @@
 // as the mouse and the panels. Blank lines and lines starting with # are ignored.
 //
 //   open PATH                  open a data set or a run folder (waits until loaded)
-//   out PATH                   run folder for the next `train` (default: a new folder, see the README)
+//   out PATH                   run folder for the next `train` (default: a new folder, docs/user/editor.md)
 //   set KEY VALUE              a training setting for a new run (a config.json key, VALUE as JSON or text)
 //   train N                    train N more iterations with the session of the Training panel; waits
 //   grid N                     N small viewports under the main one (0..8)

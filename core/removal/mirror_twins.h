@@ -45,10 +45,10 @@ struct MirrorSettings {
   int ransac_iterations = 256;
   std::uint64_t seed = 1;
   double hull_growth = 1.15;  // mirrored centres are spread about their centroid by this before the hull
-  // A mirror world copies the target: its twin holds a good share of the target's Gaussians (56-63 % on
-  // steel_snowman). A few Gaussians in the mirrored hull (9-15 % on marble_monkey, whose table is a dim
-  // reflector) are the surface's own underside or noise; removing them cost 0.19 dB there (3 seeds), so
-  // fewer than this share of the target's Gaussians above the plane selects nothing.
+  // A mirror world copies the target: its twin holds a good share of the target's Gaussians (more than half
+  // on a mirror-like table). A few Gaussians in the mirrored hull of a dim reflector are the surface's own
+  // underside or noise, and removing them made the result worse (docs/lab/bench/NOTES.md, 2026-11-22, "the
+  // twin-share rule"), so fewer than this share of the target's Gaussians above the plane selects nothing.
   double min_twin_share = 0.25;
   // With per-point normals (fit_mirror_plane's `normals`): a point is an inlier only when its normal is
   // within this angle of the plane's, and points with a zero normal never are. A glossy surface is made of

@@ -53,9 +53,9 @@ struct ShadowSettings {
   double min_plane_fraction = 0.1;
   double gamma = 2.2;           // display colour -> linear radiance (shadows scale radiance)
   double min_strength = 0.15;   // luminance k below this: no shadow
-  // R^2 of the luminance fit below this: no shadow. Marble_monkey's true shadow fits at 0.20 - 0.24; the
-  // wrong lights fitted elsewhere (steel's reflections, a detected-mask marble run) at 0.02 - 0.09, and
-  // relighting by them cost up to 0.06 dB.
+  // R^2 of the luminance fit below this: no shadow. A true shadow fits clearly above it and the wrong lights
+  // fitted to reflections or noise clearly below, and relighting by a wrong light costs quality
+  // (docs/lab/bench/NOTES.md, 2026-11-21, "the target's cast shadow").
   double min_r2 = 0.15;
   double min_shadowed = 0.02;   // share of the samples' weight with a_i > 0.5 for a direction to be scored
   double max_strength = 0.9;    // k is capped here, so a gain never exceeds 1 / (1 - 0.9)

@@ -39,8 +39,9 @@ struct Box {
 Box box_from_cameras(const std::vector<Camera>& cameras, float half_size_ratio = 0.33f);
 
 // n uniform random points in the box, deterministic for a seed, with 3DGS's synthetic-scene colours: SH DC
-// coefficients in [0, 1/255], i.e. mid grey. (Until session 24 the colours themselves were drawn in
-// [0, 1/255], near-black: 0.7-1.6 dB lower on novel views at 4K iterations, docs/bench/NOTES.md.)
+// coefficients in [0, 1/255], i.e. mid grey. (Colours drawn in [0, 1/255] themselves, a near-black start,
+// scored lower on novel views in both modes: docs/lab/bench/NOTES.md, 2026-11-28, "the random start was
+// near-black".)
 void random_points(const Box& box, size_t n, std::uint64_t seed, std::vector<glm::vec3>& points,
                    std::vector<glm::vec3>& colors);
 

@@ -27,14 +27,14 @@ struct DensifySettings {
   float max_screen_radius = 20.0f;  // pixels; prune above after the first reset (0 = never)
   float max_world_scale = 0.1f;     // x extent; prune above after the first reset (0 = never)
 
-  // When to stop adding Gaussians (issue 8: model no more than a scene needs). "fixed": at the end of the
+  // When to stop adding Gaussians (model no more than a scene needs). "fixed": at the end of the
   // window (Trainer::densify_until). "adaptive": every holdout_every-th training view (at least one) is
   // left out of the sampler while densification runs; their PSNR is measured every stop_check_interval
   // iterations (a full-schedule number, scaled with the run) and at each densification step, and once the
   // best of the last stop_window checks beats the best before them by less than stop_min_gain dB, density
   // control only prunes and the held-out views rejoin training (core/train/densify_stop.h). Holding views
   // out costs training signal, so "adaptive" acts only when at least stop_min_steps densification steps
-  // lie after the earliest possible stop (not in a 2K run: 0.8-1 dB lost for nothing, see the README).
+  // lie after the earliest possible stop (not in a 2K run, where it only cost quality: docs/lab/history.md).
   std::string stop = "fixed";
   int holdout_every = 8;
   int stop_check_interval = 500;

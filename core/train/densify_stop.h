@@ -1,6 +1,6 @@
 #pragma once
-// The adaptive Gaussian budget (DensifySettings::stop = "adaptive", issue 8 "model no more than a scene
-// needs"): stop densifying once the PSNR of a few held-out training views stops improving. Here: the
+// The adaptive Gaussian budget (DensifySettings::stop = "adaptive": model no more than a scene
+// needs): stop densifying once the PSNR of a few held-out training views stops improving. Here: the
 // schedule of one run (which iterations hold views out, which measure them), the stop rule, and the record
 // that every checkpoint keeps so a resumed run decides exactly as an uninterrupted one. The views
 // themselves are chosen and rendered in core/train/held_out_views.h.

@@ -3,8 +3,8 @@
 // learns. The radiance warm-up explains a mirror's reflections by virtual geometry behind it, seen through
 // it (core/train/mirror_world.h). Pruning it once at the end of the warm-up is not enough: on steel_snowman
 // the optimiser moved Gaussians back under the table top after the shading started and rebuilt the mirror
-// snowman there (z -0.18 to -0.22, opacity 0.94, tilted 50-81 degrees: docs/bench/NOTES.md, session 28), and
-// the reflected rays then hit the table's own tilted Gaussians.
+// snowman there (opaque Gaussians just under the table top, tilted 50-81 degrees: docs/lab/bench/NOTES.md,
+// 2026-11-29), and the reflected rays then hit the table's own tilted Gaussians.
 //
 // `intrinsic_glossy_plane` (off by default) fits the plane the centres on glossy pixels lie on at the last
 // warm-up iteration (RANSAC over flat Gaussians' normals, core/removal/mirror_twins.h), removes the Gaussians
@@ -13,12 +13,12 @@
 // Which Gaussians lie over glossy pixels, and the footprint, are refreshed every `kRefreshInterval`
 // iterations and whenever the count changes. A Gaussian put back keeps the colour it took on beyond the
 // plane; on steel_snowman (8K, with alpha_weight) those painted the snowman's reflection into the table's
-// D, which the removal then left behind as a white smear (NOTES, session 29).
-// `intrinsic_glossy_plane_prune_sinkers` removes such Gaussians at the next refresh instead. Real geometry
-// under the surface that the cameras see directly lies over non-glossy pixels (a table's legs) or outside
-// the footprint (its own side) and is left alone. Alone the constraint cost steel 4.7 dB: over the black
-// background the table stays half transparent. With `alpha_weight` (the images' alpha) it is opaque and G
-// carries the reflections (README, "An opaque table, held to its plane").
+// D, which the removal then left behind as a white smear (docs/lab/bench/NOTES.md, 2026-11-29).
+// `intrinsic_glossy_plane_prune_sinkers` removes such Gaussians at the next refresh instead. Real
+// geometry under the surface that the cameras see directly lies over non-glossy pixels (a table's legs) or
+// outside the footprint (its own side) and is left alone. Alone the constraint costs more than it gains: over
+// the black background the table stays half transparent. With `alpha_weight` (the images' alpha) it is opaque
+// and G carries the reflections (docs/design/deviations.md, The glossy surface held to its plane).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -46,7 +46,7 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
 // centres' extent, or their mean spacing when coarser) that hold a flagged centre within the plane's
 // tolerance, closed over kClose cells, with its holes filled, less a margin of kMargin cells along the
 // outline. On steel_snowman the table's own side, 0.11 deep, lies beyond the plane over glossy pixels too;
-// without the footprint the constraint cut it off (NOTES, session 30).
+// without the footprint the constraint cut it off (docs/lab/bench/NOTES.md, 2026-11-29).
 class PlaneFootprint {
  public:
   static constexpr double kCells = 48;
@@ -83,7 +83,8 @@ class GlossyPlaneConstraint {
   // After apply(): turns the flagged flat Gaussians in the plane's inlier band so that their shortest axis
   // (their rendered normal) is the plane's normal, keeping their shape and in-plane orientation. A mirror's
   // reflected ray is off by twice its normal's error: 1-2 degrees left on steel's table move a reflection by
-  // pixels (`intrinsic_glossy_plane_align`, NOTES session 30). Returns how many were turned.
+  // pixels (`intrinsic_glossy_plane_align`; docs/lab/bench/NOTES.md, 2026-11-29 and 2026-12-01). Returns how
+  // many were turned.
   std::size_t align_normals(GaussianModel& model) const;
 
   bool started() const { return started_; }

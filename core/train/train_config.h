@@ -23,7 +23,7 @@ struct LearningRates {
   float scale = 5e-3f;
   float rotation = 1e-3f;
   // F0, roughness, diffuse. 4x the SH colour's rate: at 2K-4K iterations the colour's rate left steel at
-  // roughness ~0.5 and the table's look in D (README "learning rates of the materials").
+  // roughness ~0.5 and the table's look in D (docs/design/deviations.md, Learning rates of the materials).
   float materials = 0.01f;
   float region = 5e-3f;
   float label = 0.01f;
@@ -36,7 +36,8 @@ struct LearningRates {
 struct IntrinsicSettings {
   int warmup = 4000;               // radiance-only iterations before shading with tracing starts
   // ... but at least this fraction of a shorter run (never longer than `warmup` itself). The paper's 13 %
-  // leaves a 2K run 267 radiance iterations: too few for the geometry the shading needs (README, "warm-up").
+  // leaves a 2K run 267 radiance iterations: too few for the geometry the shading needs
+  // (docs/design/deviations.md, The warm-up of short runs).
   float warmup_min_fraction = 0.5f;
   int env_resolution = 64;         // cube map face size (paper 256; 64 suffices at the data sets' 256 px)
   float env_initial = 0.5f;        // initial radiance of every texel
@@ -44,9 +45,10 @@ struct IntrinsicSettings {
   // point the training cameras look at, of radius env_distance x their mean distance to it; the trainer
   // resolves it into env_center / env_radius (world units), which the run's config keeps, so every later
   // render reads the same sphere. 0 (the paper): at infinity. Default 1, for bounded captures (an object on a
-  // table in a room): with emit = mask and the repeated prune it is the stage-1 setting that beats radiance by
-  // over 1 dB on both data sets (session 25); set 0 for an outdoor capture whose light is at infinity. With
-  // the table's normals held flat (glossy_plane_align) 1.4 places the area light's reflection (session 31).
+  // table in a room), with emit = mask and the repeated prune (docs/design/deviations.md, The environment on
+  // a sphere); set 0 for an outdoor capture whose light is at infinity. With the table's normals held flat
+  // (glossy_plane_align) 1.4 places the area light's reflection (docs/design/deviations.md, The glossy
+  // surface held to its plane).
   float env_distance = 1.0f;
   glm::vec3 env_center{0.0f};
   float env_radius = 0.0f;
@@ -70,9 +72,9 @@ struct IntrinsicSettings {
   bool divide_opaque = true;       // the authors' L = colour / alpha on opaque rays
   // > 0: at the last warm-up iteration remove the Gaussians seen only behind glossy surfaces (the warm-up's
   // mirror world, core/train/mirror_world.h); the value is the depth tolerance (x the rendered depth). Part
-  // of the default stage-1 setting since session 26 (emit = mask, this, repeat, env_distance 1: README
-  // "Status"); it was off after costing steel_snowman's removal 0.77 dB in session 11 (black start), which
-  // the removal's twin plane from flat normals (session 26) answers.
+  // of the default stage-1 setting (emit = mask, this, repeat, env_distance 1; docs/design/deviations.md, The
+  // warm-up's mirror world is pruned). With it the removal needs the twin plane fitted to the flat Gaussians
+  // (core/removal/mirror_twins.h): fitted by distance, the plane missed the mirror twin.
   float prune_mirror_world = 0.05f;
   // With prune_mirror_world on: prune again after every densification of the shading phase, so the mirror
   // world cannot grow back while the glossy term learns to carry the reflections.
@@ -83,8 +85,9 @@ struct IntrinsicSettings {
   // With glossy_plane: remove the Gaussians it had to put back, at its next refresh (glossy_plane.h).
   bool glossy_plane_prune_sinkers = false;
   // With glossy_plane: turn the flat Gaussians in the plane so that their normal is the plane's (glossy_plane.h).
-  // Needs the environment's sphere where the light is: at env_distance 1 it cost steel 1 dB, at 1.4 (with
-  // trace_glossy_transparent) it gains 1.4 dB; off by default (README, "The table's normals held to the plane").
+  // Needs the environment's sphere where the light is (env_distance 1.4 with trace_glossy_transparent; at 1
+  // it misplaces the light's reflection); off by default (docs/design/deviations.md, The glossy surface held
+  // to its plane).
   bool glossy_plane_align = false;
   // Coarse tracing (render/intrinsic/coarse_tracing.h): with the filter on, one reflection ray per aligned
   // 2^k x 2^k block of glossy pixels whose blur level is k or coarser (k <= coarse_max_level).
@@ -97,27 +100,29 @@ struct IntrinsicSettings {
   float smoothness = 0.05f;        // edge-aware smoothness of F0, roughness and the normal on the glossy mask
   // Whether the region losses and the smoothness also run in the radiance warm-up (the paper applies every
   // loss from iteration 1). On the half-transparent warm-up geometry they drive F0 and roughness to ~0
-  // before any shading can say otherwise; starting them with the shading did not gain on the mean (README,
-  // "Emission from the glossy masks"; docs/bench/NOTES.md, session 27).
+  // before any shading can say otherwise; starting them with the shading did not gain on the mean alone
+  // (docs/design/deviations.md, Material losses in the warm-up).
   bool material_losses_in_warmup = true;
   float region = 1.0f;             // mean(M_gt M)
   float region_rough = 0.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition,
-                                   // off: it did not help on steel_snowman, see README)
+                                   // off: it did not help on steel_snowman, docs/design/deviations.md)
   float roughness_rough = 0.0f;    // mean((1 - M_gt)(alpha - R)): the same for the roughness R (our addition,
-                                   // off: it cost steel 2 dB, README "Optional two-sided region loss")
+                                   // off: it drove the glossy table's roughness to ~1 too;
+                                   // docs/design/deviations.md, Optional two-sided region and
+                                   // roughness losses)
   // mean(M (alpha - R)), M the rendered region weight held constant: where the model itself shades a
   // surface as rough (no glossy term), its roughness goes to 1. Nothing in the image sets the roughness
   // there, so without it the objects keep whatever the start and the glossy pixels' gradients left them.
-  // Needs no glossy mask (our addition, off: on steel it cost 1.8 dB and raised the table's roughness to ~1
-  // too, README "Roughness that follows the region").
+  // Needs no glossy mask (our addition, off: it raised the glossy table's roughness to ~1 too and lost
+  // quality; docs/design/deviations.md, Optional two-sided region and roughness losses).
   float roughness_follows_region = 0.0f;
   float label = 1.0f;              // BCE of the rendered label against the object masks
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed
   // every 25 iterations; needs glossy masks) or "max" (the larger of the two; M keeps its tracer gradient
   // where it is the larger). Renders of a trained run recompute "mask" weights from the same masks
-  // (load_run_renderer); before session 12 they fell back to M, so eval scored another model than trained.
-  // Default "mask" since session 26 (with the prune and the sphere above).
+  // (load_run_renderer), so eval, render, export and the removal see the model that was trained. Default
+  // "mask", with the prune and the sphere above (docs/design/deviations.md, Emission from the glossy masks).
   std::string emit = "mask";
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction
@@ -125,7 +130,7 @@ struct IntrinsicSettings {
   // (render/train/glossy_detection.h): a pixel is glossy when its colour lies more than detect_threshold
   // (mean over RGB) outside what the detect_neighbours nearest views show around the same surface point,
   // and the scene is when detect_fraction of the covered pixels are. Tuned on ../shared/datasets at 128 px
-  // (README "--mode auto").
+  // (docs/design/maths.md, Glossy detection).
   float auto_mask_fraction = 0.005f;
   int detect_neighbours = 2;
   float detect_threshold = 0.03f;
@@ -180,9 +185,9 @@ struct TrainConfig {
   float alpha_weight = 0.0f;
   float depth_normal_weight = 0.05f;   // RaDe-GS depth-normal consistency ...
   // ... from this iteration (0 weight = off). Deliberately NOT scaled with the run length like the other
-  // schedule points: runs shorter than 7K never use it. Scaled (from 933 of a 4K run at 128 px) it cost
-  // steel_snowman 1.38 dB in radiance mode and 1.30 dB in intrinsic mode, marble_monkey 0.10 dB; from the
-  // start of shading (2000) 0.18 dB (docs/bench/NOTES.md, session 12).
+  // schedule points: runs shorter than 7K never use it. Scaled into a short run, or started with the
+  // shading, it cost both modes on the glossy scenes (docs/design/deviations.md, Depth-normal consistency
+  // from an absolute iteration).
   int depth_normal_from = 7000;
   // Depth distortion (2DGS; the paper's stage 1 at 1000 for bounded scenes, on after 3K of 30K iterations,
   // here scaled to the run's length): core/train/depth_distortion.h. 0 = off.
@@ -191,15 +196,17 @@ struct TrainConfig {
   int depth_distortion_until = 0;  // last iteration with the distortion (of the full schedule, scaled); 0 = to the end
   // The distortion's weight on glossy-mask pixels relative to the rest (1 = the paper). Behind a planar
   // mirror a radiance field needs a second, virtual surface (the mirror world) until the traced term
-  // carries the reflection; at 0 the loss leaves those pixels alone (README, "depth distortion").
+  // carries the reflection; at 0 the loss leaves those pixels alone (docs/design/deviations.md, Depth
+  // distortion off by default).
   float depth_distortion_glossy = 1.0f;
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
   int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
   int max_sh_degree = 3;
   DensifySettings densify;
   // Density control also stops at this fraction of the run, so that a shortened schedule ends with pure
-  // optimisation: see Trainer::densify_until. 3DGS's proportion (15K of 30K) was 0.5; 0.75 scores 1.1-1.5 dB
-  // higher in both modes at 4K iterations (README, "Densification window"); full runs stop at until_iter.
+  // optimisation: see Trainer::densify_until. 3DGS's proportion (15K of 30K) is 0.5; 0.75 lets short runs of
+  // both modes densify while they learn (docs/design/deviations.md, Densification window of short runs); full
+  // runs stop at until_iter.
   float densify_until_fraction = 0.75f;
   bool filter_3d = true;               // Mip-Splatting 3D filter
   int filter_3d_interval = 100;        // recomputed this often after densification ends
@@ -252,9 +259,9 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
 
 // Named groups of `--set` overrides (`goris train --preset NAME`, applied before --set). "planar-glossy":
 // the stage-1 setting for one planar glossy surface with glossy masks (an opaque table held to its plane
-// with exact normals, reflection rays that skip it, the environment's sphere beyond the light) that beats
-// radiance by +2.46 dB on steel_snowman and +1.54 on marble_monkey (README, "The table's normals held to
-// the plane"). Throws goris::Error listing the names for an unknown one.
+// with exact normals, reflection rays that skip it, the environment's sphere beyond the light;
+// docs/design/deviations.md, The glossy surface held to its plane, with its evidence). Throws goris::Error
+// listing the names for an unknown one.
 std::vector<std::string> config_preset(const std::string& name);
 
 }  // namespace goris

@@ -5,11 +5,12 @@
 // The paper's environment lies at infinity: the radiance a surface point x receives from direction w is
 // E(w), whatever x is. A light near the scene (the data sets' area light, a window of a room) then sits in
 // a different direction from every point of the glossy surface, and one cube map cannot place its
-// reflection consistently across views: the loss settles on a blur (docs/bench/NOTES.md, session 16).
-// Here the environment lies on a sphere of radius R around a centre c instead: the ray x + t w meets the
-// sphere at q = x + t w (t > 0), and the map is read in the direction of q from c. A light on the sphere
-// is then seen at one texel from every surface point. As R grows the lookup tends to the paper's (w).
-// Points outside the sphere (none in a scene the cameras surround, c and R chosen by the trainer) read E(w).
+// reflection consistently across views: the loss settles on a blur (docs/design/deviations.md, The
+// environment on a sphere). Here the environment lies on a sphere of radius R around a centre c instead: the
+// ray x + t w meets the sphere at q = x + t w (t > 0), and the map is read in the direction of q from c. A
+// light on the sphere is then seen at one texel from every surface point. As R grows the lookup tends to the
+// paper's (w). Points outside the sphere (none in a scene the cameras surround, c and R chosen by the
+// trainer) read E(w).
 #include <cmath>
 
 #include <glm/glm.hpp>

@@ -34,9 +34,9 @@ struct DistillSettings {
   int extra_views = -1;            // interpolated cameras; -1 = as many as the training cameras
   float geometry_lr_scale = 0.0f;  // x the run's position / scale / rotation / opacity rates (0 = frozen)
   // x the run's SH rates. The run's rates suit 30K iterations of joint training; distillation fits colour
-  // alone on frozen geometry and must move far from the start (SH that rendered D, not C): on a 2K
-  // marble_monkey intrinsic run, 300 iterations reach 8.2 dB fidelity at x1, 21.3 at x5, 24.9 at x20,
-  // 24.8 at x50 (1000 iterations at x20: 25.9 dB).
+  // alone on frozen geometry and must move far from the start (SH that rendered D, not C): at x1 a few
+  // hundred iterations barely move, x20 is where the fidelity stops rising (docs/lab/bench/NOTES.md,
+  // 2026-11-21, "baked export").
   float sh_lr_scale = 20.0f;
   std::uint64_t seed = 0;          // view order and interpolated cameras
   int progress_every = 10;         // training iterations between progress reports

@@ -4,9 +4,10 @@
 //
 // The paper switches the photo loss off where the target shows up in reflections, so that the photos do
 // not teach the removed scene the target's reflection again. Those pixels then learn nothing: they drift
-// with the neighbouring Gaussians that other pixels train. Measured on steel_snowman (docs/bench/NOTES.md),
-// supervising them with the unchanged photos (`--ablate lamask`) even scored a little higher than leaving
-// them out. Here they keep a target: the photo minus what stage 1 itself says the target added there,
+// with the neighbouring Gaussians that other pixels train. Measured on steel_snowman
+// (docs/lab/bench/NOTES.md, 2026-11-22), supervising them with the unchanged photos (`--ablate lamask`) even
+// scored a little higher than leaving them out. Here they keep a target: the photo minus what stage 1 itself
+// says the target added there,
 //
 //     photo' = photo - (C_with_target - C_removed)  =  C_removed + (photo - C_with_target),
 //

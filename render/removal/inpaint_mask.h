@@ -1,5 +1,5 @@
 #pragma once
-// The inpainting mask of stage 2 (issue 6 item 3; the paper's S1.4 after 3DGIC): per view, the pixels
+// The inpainting mask of stage 2 (the paper's S1.4 after 3DGIC): per view, the pixels
 // whose surface behind the removed object is seen by NO training view once the object is gone, i.e.
 // what 2D inpainting has to invent. Pixels whose surface some other view does see are not in the mask:
 // the fine-tune recovers them from that view's photo.

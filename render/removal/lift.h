@@ -1,5 +1,5 @@
 #pragma once
-// Lifting the inpainted reference views into 3D (issue 6 item 6, first half; the paper's S1.4 "scene
+// Lifting the inpainted reference views into 3D (the paper's S1.4 "scene
 // inpainting initialization" after 3DGIC): new Gaussians at the back-projected inpainted depth, and the
 // reference point cloud the fine-tune projects into the other views.
 //

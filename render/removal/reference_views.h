@@ -1,5 +1,5 @@
 #pragma once
-// Reference views of stage 2 (issue 6 item 4; the paper's S1.4 after 3DGIC: the three views with the
+// Reference views of stage 2 (the paper's S1.4 after 3DGIC: the three views with the
 // largest inpainting masks), here also required to see the hole from different directions, and the
 // maps of the removed scene that get inpainted in them.
 //

@@ -280,8 +280,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       glossy_plane = t.plane;
       report.glossy_plane = t.plane;
       // On a radiance model the twin stays: removing it opened see-through holes in the mirror world that the
-      // fill did not close (the suite's worst scene lost 0.6 dB with it, docs/results/), while the planar
-      // reflection mask below repaints the reflection wherever the model keeps it.
+      // fill did not close (on the generalization suite, docs/lab/2026-12-02-generalization-suite.md), while
+      // the planar reflection mask below repaints the reflection wherever the model keeps it.
       if (o.ablate.count("twins") || !intrinsic) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
       twins = t.twins;

@@ -2,10 +2,11 @@
 // The glossy masks of the scene without the target, for the fine-tune and every later render of the
 // removal. The photos' masks mark the target's pixels as not glossy (0), but after the removal the lifted,
 // inpainted surface is seen there. With intrinsic_emit = mask | max a Gaussian emits by its mean mask vote
-// (core/train/emit_weights.h), so the Gaussians the lift places on the table where the target stood took
-// the target's vote and emitted into the table's own traced rays: a bright ghost where the target stood
-// (session 12, steel_snowman: -1.08 dB). The region loss and the smoothness terms, which are restricted to
-// the glossy mask, also skipped that surface.
+// (core/train/emit_weights.h), so the Gaussians the lift places on the table where the target stood would
+// take the target's vote and emit into the table's own traced rays. The region loss and the smoothness
+// terms, which are restricted to the glossy mask, would also skip that surface. (A ghost once seen after
+// removal with emit = mask was suspected to come from the votes; filling the masks did not change it, so
+// that ghost has another cause: docs/lab/bench/NOTES.md, 2026-11-22, "emit = mask after removal".)
 //
 // Under the target's (and its mirror twin's) coverage, dilated by soft_edge_radius for its soft edges, each
 // view's mask is filled from the surrounding pixels with the harmonic fill (a Unit map: exact on linear

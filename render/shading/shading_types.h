@@ -48,7 +48,7 @@ struct ShadingSettings {
   // Ray origins start at x + ray_offset * omega_r + normal_offset * n (world units); see default_ray_offset().
   // Along the ray a grazing ray barely leaves the surface's own Gaussians yet skips whatever stands within
   // ray_offset of the point (an object's foot and its reflection); along the normal every ray gets the same
-  // clearance and skips nothing (pbrt's practice; NOTES, session 30).
+  // clearance and skips nothing (pbrt's practice; measured in docs/lab/bench/NOTES.md, 2026-11-29).
   float ray_offset = 0.1f;
   float normal_offset = 0.0f;
   // Divide M, F0 and roughness by alpha (per-surface values instead of coverage-weighted sums), the way

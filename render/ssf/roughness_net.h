@@ -23,8 +23,8 @@ struct NetConfig {
   // (the roughness) in logit space, with its output layer starting at zero so that R_s = R at first. The
   // paper's plain net starts as a random function of its inputs; at lr 1e-5 it hardly moves in a short
   // run, so the screen roughness stayed near its random start and the material roughness, which reaches
-  // the image only through it and the environment map, stayed near 0.5 on mirror tables (README,
-  // "residual screen roughness"). -1 = the paper's net.
+  // the image only through it and the environment map, stayed near 0.5 on mirror tables
+  // (docs/design/deviations.md, The roughness CNN's inputs). -1 = the paper's net.
   int residual_channel = -1;
 };
 

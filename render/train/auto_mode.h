@@ -51,20 +51,19 @@ int planned_shading_start(const TrainConfig& config);
 
 // The iteration after which the detection runs: the planned shading start, but not before
 // intrinsic_detect_settled iterations (4000; capped at the run's end). While the geometry is still
-// settling its misregistration reads as view dependence. lambert_room (no glossy surface; threshold
-// 0.08 %, 128 px, 30K points) showed 0.88 % at iteration 1000 of a 2K run, more than marble_monkey's 0.37 %;
-// at iteration 2000 of 4K runs 0.03 / 0.12 / 0.08 % over seeds 0-2, at their end 0.00 %, while
-// marble_monkey keeps 0.19 % (docs/bench/NOTES.md, session 13).
+// settling its misregistration reads as view dependence: before a radiance phase of 4000 iterations has run
+// to its end, a Lambertian scene can show more evidence than a glossy one, and only after it do the two
+// separate with a margin (docs/lab/bench/NOTES.md, 2026-11-22, "--mode auto over seeds").
 int auto_detection_iteration(const TrainConfig& config);
 
 // A glossy decision later than planned (a run shorter than 2 x intrinsic_detect_settled) keeps the shading
 // phase the planned run would have had: iterations = decided_at + (iterations - planned start). The
 // schedules scale with the new length, so the position learning rate rises again for the shading phase,
-// as it is there in a planned run: keeping the radiance run's decay (the learning rate at its final value
-// for the whole shading phase) cost steel_snowman's removal 4.3 dB on the medium schedule (17.63 vs 21.93
-// dB; docs/bench/NOTES.md, session 13). A Lambertian scene's run keeps its length, so it still costs what
-// the radiance baseline costs; a glossy one trains longer than `--mode intrinsic` would. Returns the config
-// unchanged when not late.
+// as it is there in a planned run: with the radiance run's decay kept (the learning rate at its final value
+// for the whole shading phase) the geometry could not follow the shading, and the removal left the target's
+// reflection behind (docs/lab/bench/NOTES.md, 2026-11-22). A Lambertian scene's run keeps its length, so it
+// still costs what the radiance baseline costs; a glossy one trains longer than `--mode intrinsic` would.
+// Returns the config unchanged when not late.
 TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_at);
 
 // Glossy masks of a folder written by the detection: gloss_<view name>.png at each view's size, into the

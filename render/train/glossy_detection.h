@@ -33,7 +33,8 @@
 //
 // A radiance model explains mirror reflections by virtual geometry behind the surface, which is
 // photo-consistent; the detection relies on the reflections the model has not (yet) turned into geometry.
-// Thresholds are in IntrinsicSettings (detect_*), tuned on ../shared/datasets (README: "--mode auto").
+// Thresholds are in IntrinsicSettings (detect_*), tuned on the GOR-IS-style data sets
+// (docs/lab/bench/NOTES.md, 2026-11-22).
 #include <cstddef>
 #include <cstdint>
 #include <vector>

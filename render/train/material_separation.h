@@ -1,6 +1,6 @@
 #pragma once
-// Do a run's materials tell the glossy surface from the rest of the scene? (issue 5: "the roughness map
-// separates table and objects"). Needs no intrinsic ground truth, only the data set's glossy masks: every
+// Do a run's materials tell the glossy surface from the rest of the scene? (Does the roughness map separate
+// table and objects?) Needs no intrinsic ground truth, only the data set's glossy masks: every
 // training view is rasterized with its material channels, and the opaque pixels (alpha >= 0.5) are split
 // into glossy (mask >= 0.5) and the rest (mask < 0.5: the objects and any rough surface). Per side: median
 // and mean of the alpha-normalised roughness, F0 (mean over RGB) and region weight M. The separation is

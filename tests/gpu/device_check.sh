@@ -10,19 +10,20 @@
 #   bench     the raster (512 px, 200K Gaussians), trace (512 px) and compute benchmarks
 #   big       the pipeline bench on CUDA over device-bundle/big/* at the data's own resolution (BIG_CONFIGS,
 #             default full; BIG_SCHEDULE, default medium), then the intrinsic benchmark on its `full` run:
-#             issue 8's 512 px, 100-view glossy-table scene end to end (make it here with `goris synth
+#             a 512 px, 100-view glossy-table scene end to end (make it here with `goris synth
 #             --preset glossy-table --res 512 --train 100 --test 20 --spp 32 --no-gt --out
-#             device-bundle/big/glossy_table_512`; the bundle, data/ and big/ took 63 MiB of the 64 MiB
-#             carry in session 20: carry bundle.tar.xz with one of them if it grows)
+#             device-bundle/big/glossy_table_512`; the bundle, data/ and big/ together come close to the
+#             64 MiB a device call may carry: carry bundle.tar.xz with one of them if it grows)
 #   pipeline  the pipeline bench on CUDA over device-bundle/data/* (PIPELINE_CONFIGS, default
 #             baseline,full,auto; medium schedule), then the intrinsic benchmark on a `full` run at its
 #             resolution and at 512 px, its parallel_for launch sites (--kernels) and, where ncu exists,
 #             a table of every kernel of one 512 px iteration
 #
-# Durations seen on an H200 (session 19), for planning a 15-minute device budget: machine start and carry
-# about 35 s; tests 2 s (side by side); bench 90 s (trace 85 of it); pipeline with baseline, full, auto and
-# distilled on the three 128 px scenes 221 s, with all configurations about 600 s. Ask for everything in
-# one call: the machine is handed back after 30 s idle, so a second call usually pays for a new start.
+# Durations seen on an H200 (docs/lab/bench/cuda_h200.md), for planning a 15-minute device budget: machine
+# start and carry about 35 s; tests 2 s (side by side); bench 90 s (trace 85 of it); pipeline with baseline,
+# full, auto and distilled on the three 128 px scenes 221 s, with all configurations about 600 s. Ask for
+# everything in one call: the machine is handed back after 30 s idle, so a second call usually pays for a new
+# start.
 #
 # Every step gets its own time limit, cut to what is left before DEADLINE, and a failed step does not stop
 # the next. The device returns at most 8 files from $OUT, so the logs go to a work folder that is packed
