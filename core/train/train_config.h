@@ -129,8 +129,8 @@ struct IntrinsicSettings {
   // of their pixels are glossy. Without: glossy regions detected by multi-view photo-consistency
   // (render/train/glossy_detection.h): a pixel is glossy when its colour lies more than detect_threshold
   // (mean over RGB) outside what the detect_neighbours nearest views show around the same surface point,
-  // and the scene is when detect_fraction of the covered pixels are. Tuned on ../shared/datasets at 128 px
-  // (docs/design/maths.md, Glossy detection).
+  // and the scene is when detect_fraction of the covered pixels are. Tuned on the GOR-IS-style data sets at
+  // 128 px (docs/design/maths.md, Glossy detection).
   float auto_mask_fraction = 0.005f;
   int detect_neighbours = 2;
   float detect_threshold = 0.03f;

@@ -7,7 +7,7 @@
 //  - Data without glossy masks (or use_glossy_masks false): radiance with config.auto_detect_glossy set.
 //    Once the geometry has settled (auto_detection_iteration: the end of the warm-up, TrainConfig::
 //    shading_from, but not before intrinsic_detect_after iterations or half the run, whichever comes first,
-//    nor before intrinsic_detect_settled iterations - on ../shared/datasets/lambert_room a 4K-iteration
+//    nor before intrinsic_detect_settled iterations - on a Lambertian room (lambert_room) a 4K-iteration
 //    run's geometry at the paper's scaled warm-up, 533, is a blur that makes every edge look
 //    view-dependent; a late glossy decision lengthens the run, see lengthened_for_late_decision) and
 //    apply_auto_mode, called before every step and once at the end of the iterations, detects

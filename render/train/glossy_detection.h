@@ -48,7 +48,7 @@
 
 namespace goris {
 
-// Defaults: those of IntrinsicSettings (detect_*), tuned on ../shared/datasets at 128 px.
+// Defaults: those of IntrinsicSettings (detect_*), tuned on the GOR-IS-style data sets at 128 px.
 struct GlossyDetectionSettings {
   int neighbours = 2;             // views each view is compared with (nearest camera directions)
   float threshold = 0.03f;        // per-pixel score above which a pixel is glossy (colour in [0, 1])
