@@ -15,6 +15,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
 #include "core/util/error.h"
+#include "core/util/fnv1a.h"
 
 extern char** environ;
 
@@ -160,15 +161,25 @@ Schedule schedule_of(const std::string& name) {
   return {name, iters, std::max(10, iters * 4000 / 30000), std::min(2000, std::max(500, iters * 2000 / 30000)), {}};
 }
 
-std::optional<json> reusable_row(const fs::path& dir, const json& options) {
+std::string binary_fingerprint() {
+  static const std::string fp = [] {
+    const std::vector<uint8_t> b = read_file_bytes("/proc/self/exe");
+    return std::to_string(fnv1a(std::string_view(reinterpret_cast<const char*>(b.data()), b.size())));
+  }();
+  return fp;
+}
+
+std::optional<json> reusable_row(const fs::path& dir, const json& options, bool any_binary) {
   if (!fs::exists(dir / "result.json")) return std::nullopt;
   const json j = read_json_object(dir / "result.json");
-  if (j.value("options", json()) != options || j.value("row", json()).value("status", "") != "ok") return std::nullopt;
+  if (j.value("options", json()) != options || (!any_binary && j.value("binary", std::string()) != binary_fingerprint()) ||
+      j.value("row", json()).value("status", "") != "ok")
+    return std::nullopt;
   return j["row"];
 }
 
 void write_result(const fs::path& dir, const json& options, const json& row) {
-  write_json_file(dir / "result.json", {{"options", options}, {"row", row}});
+  write_json_file(dir / "result.json", {{"options", options}, {"binary", binary_fingerprint()}, {"row", row}});
 }
 
 json read_json_object(const fs::path& path) {

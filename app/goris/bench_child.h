@@ -60,9 +60,14 @@ struct Schedule {
 };
 Schedule schedule_of(const std::string& name);
 
-// Results kept per run in DIR/result.json ({"options": ..., "row": ...}) so that a rerun with the same
-// options reuses them: the row when the file was written with `options` and the row's status is "ok".
-std::optional<nlohmann::json> reusable_row(const std::filesystem::path& dir, const nlohmann::json& options);
+// Results kept per run in DIR/result.json ({"options": ..., "binary": ..., "row": ...}) so that a rerun with
+// the same options reuses them: the row when the file was written with `options` by this very binary
+// (binary_fingerprint) and the row's status is "ok". A rebuilt goris recomputes every row: a result made by
+// other code is never mixed into a table.
+std::string binary_fingerprint();
+// any_binary: accept a row written by another build too (reports of results already made, --report-only).
+std::optional<nlohmann::json> reusable_row(const std::filesystem::path& dir, const nlohmann::json& options,
+                                           bool any_binary = false);
 void write_result(const std::filesystem::path& dir, const nlohmann::json& options, const nlohmann::json& row);
 
 // A JSON object read from `path`; goris::Error naming the file when it is missing or not an object.

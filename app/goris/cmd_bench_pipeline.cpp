@@ -109,6 +109,7 @@ struct Options {
   int resolution = 0;  // training width, 0 = the data set's
   int init_points = 0;  // random initial points, 0 = goris train's default
   bool report_only = false;  // tables and charts from the results in DIR; nothing runs
+  bool keep_stage1 = false;  // reuse stage-1 runs another build trained (same arguments and defaults)
   std::string time_axis = "auto";  // wall | cpu | auto (cpu on the CPU when every row has it, else wall)
 };
 
@@ -232,10 +233,13 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   // `default` means whatever goris train does with no options: reused only under the same defaults.
   if (c.train_args.empty()) options["defaults"] = defaults_fingerprint();
   Stage1 st{dir / "run", {}};
-  // A finished stage 1 with the same arguments (from an earlier bench) is reused with its recorded time.
+  // A finished stage 1 with the same arguments, trained by this very binary, is reused with its recorded
+  // time; --keep-stage1 also takes one another build trained (to measure a change of the removal alone).
   if (fs::exists(dir / "stage1.json")) {
     const json j = read_json_object(dir / "stage1.json");
-    if (j.value("options", json()) == options && j.value("ok", false)) {
+    const bool same_binary = j.value("binary", std::string()) == goris::bench::binary_fingerprint();
+    if (j.value("options", json()) == options && j.value("ok", false) && (same_binary || o_.keep_stage1)) {
+      if (!same_binary) std::printf("    train    --keep-stage1: trained by another build of goris\n");
       st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), j.value("peak_device_mib", 0.0), "",
                   json_number(j, "cpu_seconds")};
       std::printf("    train    reused %s\n", st.run.string().c_str());
@@ -246,6 +250,7 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   fs::create_directories(dir);
   st.train = run_child("train", args, dir / "train.log");
   write_text(dir / "stage1.json", json{{"options", options},
+                                       {"binary", goris::bench::binary_fingerprint()},
                                        {"ok", st.train.ok},
                                        {"seconds", st.train.seconds},
                                        {"cpu_seconds", st.train.cpu_seconds},
@@ -282,7 +287,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                         {"device", o_.device}};
   if (o_.init_points > 0) options["init_points"] = o_.init_points;  // absent by default: older results stay reusable
   if (c.train_args.empty()) options["defaults"] = defaults_fingerprint();
-  if (const auto row = goris::bench::reusable_row(dir, options)) {
+  if (const auto row = goris::bench::reusable_row(dir, options, o_.report_only)) {
     Row old = row_from_json(*row);
     old.reused = true;
     std::printf("  %s / %s / %s: reused the result in %s\n", scene.c_str(), s.name.c_str(), c.name, dir.c_str());
@@ -787,6 +792,9 @@ void setup_bench_pipeline(CLI::App& root) {
                  "auto (cpu when every result ran on the CPU and has it)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "wall", "cpu"}));
+  c->add_flag("--keep-stage1", o->keep_stage1,
+              "Reuse stage-1 runs in --out that another build of goris trained with the same arguments (to "
+              "measure a change of the removal alone); without it only this binary's own runs are reused");
   c->add_flag("--report-only", o->report_only,
               "Write the tables and charts from the results already in --out; configurations without one are "
               "listed as not run");
