@@ -5,13 +5,13 @@
 
 namespace goris::splat_detail {
 
-void check_encodable(const GaussianPly& g, const std::string& name) {
-  g.check_consistent(name);
+namespace {
+// Throws Error(name, prefix + "<attribute> of Gaussian <i> is not a finite number") for the first one.
+void check_finite(const GaussianPly& g, const std::string& name, const std::string& prefix) {
   auto finite = [&](const std::vector<float>& v, size_t per, const char* what) {
     for (size_t k = 0; k < v.size(); ++k)
       if (!std::isfinite(v[k]))
-        throw Error(name, std::string("cannot encode: ") + what + " of Gaussian " + std::to_string(k / per) +
-                              " is not a finite number");
+        throw Error(name, prefix + what + " of Gaussian " + std::to_string(k / per) + " is not a finite number");
   };
   finite(g.positions, 3, "position");
   finite(g.f_dc, 3, "f_dc");
@@ -20,6 +20,14 @@ void check_encodable(const GaussianPly& g, const std::string& name) {
   finite(g.scales, 3, "scale");
   finite(g.rotations, 4, "rotation");
 }
+}  // namespace
+
+void check_encodable(const GaussianPly& g, const std::string& name) {
+  g.check_consistent(name);
+  check_finite(g, name, "cannot encode: ");
+}
+
+void check_decoded(const GaussianPly& g, const std::string& name) { check_finite(g, name, "decodes to values out of range: "); }
 
 void unit_quaternion(const GaussianPly& g, size_t i, float q[4]) {
   const float* r = &g.rotations[i * 4];

@@ -64,6 +64,8 @@ inline GaussianPly sized_model(size_t count, int degree) {
 
 // Checks `g` can be encoded: consistent arrays and finite standard values (the first bad one named).
 void check_encodable(const GaussianPly& g, const std::string& name);
+// Checks a decoded model's values are finite (a file's ranges can overflow a float when expanded).
+void check_decoded(const GaussianPly& g, const std::string& name);
 // The normalised w x y z quaternion of Gaussian i (identity when it is zero).
 void unit_quaternion(const GaussianPly& g, size_t i, float q[4]);
 

@@ -281,9 +281,7 @@ GaussianPly decode_compressed_ply(const uint8_t* data, size_t size, const std::s
     for (size_t i = 0; i < n; ++i)
       for (size_t k = 0; k < rest; ++k) g.f_rest[i * rest + k] = unquantize_sh(sbase[i * sstride + sc[k].offset]);
   }
-  for (size_t k = 0; k < g.positions.size(); ++k)
-    if (!std::isfinite(g.positions[k]) || !std::isfinite(g.scales[k]))
-      throw Error(name, "compressed PLY: Gaussian " + std::to_string(k / 3) + " decodes to a non-finite value");
+  check_decoded(g, name);
   return g;
 }
 

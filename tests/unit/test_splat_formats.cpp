@@ -250,6 +250,10 @@ TEST(SplatFormats, CompressedPlyBadInput) {
   const float q = NAN;
   std::memcpy(&nan[data_at + 4], &q, 4);  // min_y of chunk 0
   expect_read_error(nan, "nan.compressed.ply", "chunk 0 property 'min_y' is not a finite number");
+  std::vector<uint8_t> huge = good;
+  const float big = 3e38f;
+  std::memcpy(&huge[data_at + 15 * 4], &big, 4);  // max_r of chunk 0: colours beyond a float once decoded
+  expect_read_error(huge, "huge.compressed.ply", "f_dc of Gaussian");
 }
 
 TEST(SplatFormats, AntimatterSplatBadInput) {
