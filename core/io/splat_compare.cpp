@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 
 #include "core/util/error.h"
@@ -50,11 +51,16 @@ ModelDiff compare_models(const GaussianPly& ref, const GaussianPly& got, const s
     if (v > e.max) e.max = v, e.worst = i;
     e.mean += v;
   };
-  auto unit = [](const float* q, double out[4]) {
+  // The rotation matrix of a quaternion w x y z (normalised here).
+  auto matrix = [](const float* q, double m[3][3]) {
     double n = 0;
     for (int k = 0; k < 4; ++k) n += double(q[k]) * q[k];
     n = n > 0 ? std::sqrt(n) : 1;
-    for (int k = 0; k < 4; ++k) out[k] = q[k] / n;
+    const double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+    std::memcpy(m, r, sizeof r);
   };
   for (size_t i = 0; i < got.count; ++i) {
     const size_t j = order.empty() ? i : order[i];
@@ -65,12 +71,15 @@ ModelDiff compare_models(const GaussianPly& ref, const GaussianPly& got, const s
       ds = std::max(ds, std::abs(double(got.scales[i * 3 + a]) - ref.scales[j * 3 + a]));
       dc = std::max(dc, std::abs(double(got.f_dc[i * 3 + a]) - ref.f_dc[j * 3 + a]));
     }
-    double qa[4], qb[4];
-    unit(&got.rotations[i * 4], qa);
-    unit(&ref.rotations[j * 4], qb);
-    double dot = 0;
-    for (int k = 0; k < 4; ++k) dot += qa[k] * qb[k];
-    const double angle = 2.0 * std::acos(std::min(1.0, std::abs(dot))) * 180.0 / M_PI;
+    // Each principal axis (a column of the rotation) against its counterpart, up to sign: q and -q, and
+    // half-turns about an axis (which leave the ellipsoid as it is) are the same Gaussian.
+    double ma[3][3], mb[3][3], angle = 0;
+    matrix(&got.rotations[i * 4], ma);
+    matrix(&ref.rotations[j * 4], mb);
+    for (int axis = 0; axis < 3; ++axis) {
+      const double dot = ma[0][axis] * mb[0][axis] + ma[1][axis] * mb[1][axis] + ma[2][axis] * mb[2][axis];
+      angle = std::max(angle, std::acos(std::min(1.0, std::abs(dot))) * 180.0 / M_PI);
+    }
     for (int c = 0; c < 3; ++c)
       for (size_t k = 0; k < common; ++k)
         dr = std::max(dr, std::abs(double(got.f_rest[i * gr * 3 + c * gr + k]) - ref.f_rest[j * rr * 3 + c * rr + k]));

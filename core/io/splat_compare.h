@@ -19,7 +19,9 @@ struct ModelDiff {
   size_t count = 0;
   AttributeError position;  // Euclidean distance, world units
   AttributeError scale;     // largest |difference| of the three log scales
-  AttributeError rotation;  // angle between the two rotations, degrees (q and -q are the same rotation)
+  // Largest angle between corresponding principal axes, degrees, each axis up to sign: q and -q, and the
+  // half-turns about an axis that leave the ellipsoid unchanged, count as the same rotation.
+  AttributeError rotation;
   AttributeError opacity;   // |difference| after the sigmoid
   AttributeError f_dc;      // largest |difference| of the three DC coefficients
   AttributeError f_rest;    // largest |difference| of the SH rest coefficients present in both (0 when none)
