@@ -1,7 +1,7 @@
 // `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--spz OUT.spz] [--compressed-ply OUT.compressed.ply]
-// [--splat OUT.splat] [--renders DIR [--path test|train|orbit] [--frames N]] [--iters N] [--device D]`: the
+// [--splat OUT.splat] [--glb OUT.glb] [--renders DIR [--path test|train|orbit] [--frames N]] [--iters N] [--device D]`: the
 // exports of a run folder (RUN or RUN/removal), see render/export/run_export.h. The standard formats (SPZ,
-// compressed PLY, .splat: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
+// compressed PLY, .splat, GLB: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
 // run the distilled one (one distillation serves --baked and all of them).
 // Every output path is checked before any work starts; Ctrl-C during the distillation ends it early and the
 // baked model so far is still written (marked "stopped" in its json).
@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, ply, baked, spz, compressed_ply, splat, renders, path = "test", device = "auto";
+  std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, path = "test", device = "auto";
   int frames = 0, iters = 2000, extra_views = -1;
   float geometry_lr_scale = 0.0f;
   float sh_lr_scale = 20.0f;  // DistillSettings' default
@@ -62,6 +62,7 @@ std::vector<FormatOutput> format_outputs(const Options& o) {
   if (!o.spz.empty()) out.push_back({o.spz, SplatFormat::Spz, "--spz"});
   if (!o.compressed_ply.empty()) out.push_back({o.compressed_ply, SplatFormat::CompressedPly, "--compressed-ply"});
   if (!o.splat.empty()) out.push_back({o.splat, SplatFormat::Antimatter, "--splat"});
+  if (!o.glb.empty()) out.push_back({o.glb, SplatFormat::Glb, "--glb"});
   return out;
 }
 
@@ -70,7 +71,7 @@ void run_export(const Options& o) {
   if (o.ply.empty() && o.baked.empty() && o.renders.empty() && formats.empty())
     throw Error("goris export", "nothing to export: give at least one of --ply OUT.ply (intrinsic PLY), --baked OUT.ply "
                                 "(distilled standard 3DGS PLY), --spz OUT.spz, --compressed-ply OUT.compressed.ply, "
-                                "--splat OUT.splat (the baked model in those formats), --renders DIR (PNG frames)");
+                                "--splat OUT.splat, --glb OUT.glb (the baked model in those formats), --renders DIR (PNG frames)");
   std::vector<std::pair<std::string, const char*>> files;
   if (!o.ply.empty()) files.emplace_back(o.ply, "--ply");
   if (!o.baked.empty()) files.emplace_back(o.baked, "--baked");
@@ -82,7 +83,10 @@ void run_export(const Options& o) {
   for (const FormatOutput& f : formats)
     if (splat_format_from_name(f.path) != f.format)
       throw Error(f.path, std::string(f.option) + " needs a file name ending in " +
-                              (f.format == SplatFormat::Spz ? ".spz" : f.format == SplatFormat::CompressedPly ? ".compressed.ply" : ".splat"));
+                              (f.format == SplatFormat::Spz             ? ".spz"
+                               : f.format == SplatFormat::CompressedPly ? ".compressed.ply"
+                               : f.format == SplatFormat::Glb           ? ".glb"
+                                                                        : ".splat"));
   const RenderPath path = parse_render_path(o.path);
   // Fail on a bad path now, not after a distillation.
   for (const auto& f : files) check_output_file(f.first);
@@ -141,8 +145,9 @@ void run_export(const Options& o) {
   }
   for (const FormatOutput& f : formats) {
     ex.write_model(f.path, plain);
+    const int degree = f.format == SplatFormat::Antimatter ? 0 : plain.sh_degree;  // .splat holds no higher SH
     std::printf("%s: wrote %s (%s, %zu Gaussians, SH degree %d, %ju bytes)\n", f.option + 2, f.path.c_str(),
-                splat_format_name(f.format), plain.count, plain.sh_degree, std::uintmax_t(fs::file_size(f.path)));
+                splat_format_name(f.format), plain.count, degree, std::uintmax_t(fs::file_size(f.path)));
     std::fflush(stdout);
   }
   if (!o.renders.empty()) {
@@ -174,6 +179,8 @@ void setup_export(CLI::App& root) {
   c->add_option("--splat", o->splat,
                 "Write the baked model (as --baked) in the antimatter15 .splat layout of web viewers (32 bytes per "
                 "Gaussian, no higher SH)");
+  c->add_option("--glb", o->glb,
+                "Write the baked model (as --baked) as glTF binary with KHR_gaussian_splatting (float32, lossless)");
   auto* renders = c->add_option("--renders", o->renders,
                                 "Write one PNG per frame from the run's renderer, contact_sheet.png and cameras.json");
   c->add_option("--path", o->path,

@@ -1,4 +1,4 @@
-// `goris info PATH [--against REF]`: what a data set or a model file (.ply, .compressed.ply, .spz, .splat)
+// `goris info PATH [--against REF]`: what a data set or a model file (.ply, .compressed.ply, .spz, .splat, .glb)
 // contains, without decoding any image (headers only). With --against, how far the model is from another
 // model file, attribute by attribute (core/io/splat_compare.h): what an export's quantization changed.
 #include <algorithm>
@@ -104,7 +104,7 @@ void print_dataset(const goris::Dataset& d, const goris::DatasetOptions& o) {
 
 void setup_info(CLI::App& root) {
   auto* c = root.add_subcommand(
-      "info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF) or a model file (.ply, .compressed.ply, .spz, .splat)");
+      "info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF) or a model file (.ply, .compressed.ply, .spz, .splat, .glb)");
   static std::string path, against, match = "position";
   static int resolution = 0;
   static float downscale = 1.0f;

@@ -1,6 +1,6 @@
 // `goris render RUN --split test --out DIR [--maps] [--model FILE]`: renders a trained run from the data set's
 // cameras (at the training resolution). With --maps every G-buffer channel is written as a viewable PNG too.
-// --model renders a model file (.ply, .compressed.ply, .spz, .splat: core/io/splat_formats.h) in place of the
+// --model renders a model file (.ply, .compressed.ply, .spz, .splat, .glb: core/io/splat_formats.h) in place of the
 // run's own, with the run's cameras and renderer (say, an export read back).
 #include <chrono>
 #include <cstdio>
@@ -123,7 +123,7 @@ void setup_render(CLI::App& root) {
               "sh_color (D), glossy (G), indirect (L_ind'), visibility (V'), env_light (L_dir'), screen_roughness, "
               "indirect_traced and visibility_traced (L_ind and V as traced, before the screen-space filter)");
   c->add_option("--model", o->model,
-                "Render this model file (.ply, .compressed.ply, .spz or .splat) instead of the run's own model");
+                "Render this model file (.ply, .compressed.ply, .spz, .splat or .glb) instead of the run's own model");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_render(*o); });
 }

@@ -29,13 +29,14 @@ const char* splat_format_name(SplatFormat f) {
     case SplatFormat::CompressedPly: return "PlayCanvas compressed PLY";
     case SplatFormat::Spz: return "Niantic SPZ";
     case SplatFormat::Antimatter: return "antimatter15 .splat";
+    case SplatFormat::Glb: return "glTF GLB (KHR_gaussian_splatting)";
   }
   return "?";
 }
 
 bool is_splat_file_name(const fs::path& path) {
   const std::string n = lower_name(path);
-  return ends_with(n, ".ply") || ends_with(n, ".spz") || ends_with(n, ".splat");
+  return ends_with(n, ".ply") || ends_with(n, ".spz") || ends_with(n, ".splat") || ends_with(n, ".glb");
 }
 
 SplatFormat splat_format_from_name(const fs::path& path) {
@@ -44,12 +45,14 @@ SplatFormat splat_format_from_name(const fs::path& path) {
   if (ends_with(n, ".ply")) return SplatFormat::Ply;
   if (ends_with(n, ".spz")) return SplatFormat::Spz;
   if (ends_with(n, ".splat")) return SplatFormat::Antimatter;
-  throw Error(path.string(), "unknown model file type: expected .ply, .compressed.ply, .spz or .splat");
+  if (ends_with(n, ".glb")) return SplatFormat::Glb;
+  throw Error(path.string(), "unknown model file type: expected .ply, .compressed.ply, .spz, .splat or .glb");
 }
 
 SplatFormat detect_splat_format(const uint8_t* data, size_t size, const fs::path& path) {
   if (size >= 2 && data[0] == 0x1f && data[1] == 0x8b) return SplatFormat::Spz;
   if (size >= 4 && splat_detail::get_u32(data) == 0x5053474e) return SplatFormat::Spz;  // SPZ 4: refused by the decoder
+  if (size >= 4 && std::memcmp(data, "glTF", 4) == 0) return SplatFormat::Glb;
   if (size >= 4 && std::memcmp(data, "ply", 3) == 0 && (data[3] == '\n' || data[3] == '\r')) {
     // A header with a `chunk` element is PlayCanvas' compressed layout; anything else is read as 3DGS.
     const ply_detail::PlyHeader h = ply_detail::parse_header(data, size, path.string());
@@ -61,7 +64,8 @@ SplatFormat detect_splat_format(const uint8_t* data, size_t size, const fs::path
   if (ends_with(n, ".splat")) return SplatFormat::Antimatter;
   if (ends_with(n, ".spz")) return SplatFormat::Spz;  // the decoder says what is wrong with it
   if (ends_with(n, ".ply")) return SplatFormat::Ply;
-  throw Error(path.string(), "not a model file: neither PLY, SPZ nor (by its name) .splat");
+  if (ends_with(n, ".glb")) return SplatFormat::Glb;
+  throw Error(path.string(), "not a model file: neither PLY, SPZ, GLB nor (by its name) .splat");
 }
 
 GaussianPly parse_gaussians_any(const uint8_t* data, size_t size, const fs::path& path) {
@@ -71,6 +75,7 @@ GaussianPly parse_gaussians_any(const uint8_t* data, size_t size, const fs::path
     case SplatFormat::CompressedPly: return decode_compressed_ply(data, size, name);
     case SplatFormat::Spz: return decode_spz(data, size, name);
     case SplatFormat::Antimatter: return decode_antimatter_splat(data, size, name);
+    case SplatFormat::Glb: return decode_glb(data, size, name);
   }
   throw Error(name, "unknown model format");
 }
@@ -88,6 +93,7 @@ void write_gaussians(const fs::path& path, const GaussianPly& g) {
     case SplatFormat::CompressedPly: bytes = encode_compressed_ply(g, name); break;
     case SplatFormat::Spz: bytes = encode_spz(g, name); break;
     case SplatFormat::Antimatter: bytes = encode_antimatter_splat(g, name); break;
+    case SplatFormat::Glb: bytes = encode_glb(g, name); break;
   }
   write_file_bytes(path, bytes.data(), bytes.size());
 }

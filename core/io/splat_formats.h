@@ -18,13 +18,13 @@
 
 namespace goris {
 
-enum class SplatFormat { Ply, CompressedPly, Spz, Antimatter };
+enum class SplatFormat { Ply, CompressedPly, Spz, Antimatter, Glb };
 
 // For writing: from the file name alone. "*.compressed.ply" is CompressedPly, "*.spz" Spz, "*.splat"
-// Antimatter, "*.ply" Ply; any other name is a goris::Error listing them.
+// Antimatter, "*.glb" Glb, "*.ply" Ply; any other name is a goris::Error listing them.
 SplatFormat splat_format_from_name(const std::filesystem::path& path);
-// For reading: from the content (gzip magic: SPZ; a PLY header with a `chunk` element: compressed PLY;
-// other PLY: 3DGS PLY), the name only for .splat, which has no magic number.
+// For reading: from the content (gzip magic: SPZ; "glTF": GLB; a PLY header with a `chunk` element:
+// compressed PLY; other PLY: 3DGS PLY), the name only for .splat, which has no magic number.
 SplatFormat detect_splat_format(const uint8_t* data, size_t size, const std::filesystem::path& path);
 const char* splat_format_name(SplatFormat format);
 // True when the name ends in one of the extensions above (a model file rather than a data set).
@@ -66,6 +66,18 @@ std::vector<uint32_t> compressed_ply_order(const GaussianPly& g);
 // rotation w x y z of the normalised quaternion as 4 bytes of q * 128 + 128. No SH above degree 0.
 std::vector<uint8_t> encode_antimatter_splat(const GaussianPly& g, const std::string& name_for_errors);
 GaussianPly decode_antimatter_splat(const uint8_t* data, size_t size, const std::string& name_for_errors);
+
+// --- glTF 2.0 binary (GLB) with KHR_gaussian_splatting (Khronos, release candidate) ----------------------
+// One mesh primitive of mode POINTS (0) with float32 accessors, as PlayCanvas' splat-transform writes them:
+// POSITION (VEC3, with min/max), KHR_gaussian_splatting:ROTATION (VEC4 x y z w, unit), :SCALE (VEC3,
+// linear: exp of the log scale), :OPACITY (SCALAR, after the sigmoid), :SH_DEGREE_0_COEF_0 (VEC3, f_dc as
+// is) and :SH_DEGREE_<l>_COEF_<c> (VEC3, r g b of each higher coefficient). Lossless but for float
+// rounding in exp/log and sigmoid/logit. glTF's axes are left-up-front (LUF), the PLY's right-down-front:
+// x and y (and the matching rotation components and SH coefficients) change sign. The reader takes float
+// or normalised-byte accessors at any stride, falls back to COLOR_0 for colour and opacity, and takes the
+// SH degree from the coefficients present.
+std::vector<uint8_t> encode_glb(const GaussianPly& g, const std::string& name_for_errors);
+GaussianPly decode_glb(const uint8_t* data, size_t size, const std::string& name_for_errors);
 
 // --- any of them -------------------------------------------------------------------------------------
 // Reads a model file in any of the formats above (detect_splat_format); errors name the file.

@@ -8,7 +8,7 @@
 //                  (render/export/distill.h; for a radiance run the model itself), and OUT.json beside it
 //                  with the distillation fidelity (PSNR against the run's renderer on held-out cameras:
 //                  the test split, or an orbit when the data set has none), iterations and time;
-//   write_model    a plain SH model (write_baked's, or a radiance run's own) as SPZ, compressed PLY or .splat
+//   write_model    a plain SH model (write_baked's, or a radiance run's own) as SPZ, compressed PLY, .splat or GLB
 //                  for viewers and engines that read those (core/io/splat_formats.h);
 //   write_renders  one PNG per frame from the run's renderer (test or train cameras, or an orbit: see
 //                  render/export/camera_path.h), contact_sheet.png with all frames and cameras.json.
@@ -85,7 +85,7 @@ class RunExport {
   // A radiance run's model as plain SH for the standard formats: the 3D filter baked in, no extra
   // properties (what write_baked bakes for such a run). Throws for an intrinsic run, whose colours need bake().
   GaussianPly radiance_model() const;
-  // Writes a plain SH model in the format out's name says: .spz, .compressed.ply, .splat or .ply
+  // Writes a plain SH model in the format out's name says: .spz, .compressed.ply, .splat, .glb or .ply
   // (core/io/splat_formats.h), through a temporary file.
   void write_model(const std::filesystem::path& out, const GaussianPly& model) const;
   // frames: orbit frame count (0 = kDefaultOrbitFrames), or for test / train an evenly spaced subset of

@@ -1,4 +1,4 @@
-# `goris export --spz --compressed-ply --splat` on tiny runs of the embedded scene: an intrinsic run (the
+# `goris export --spz --compressed-ply --splat --glb` on tiny runs of the embedded scene: an intrinsic run (the
 # formats hold the distilled model, one distillation shared with --baked) and a radiance run (the model
 # itself); `goris info` names each format and its count, `info --against` measures the quantization against
 # the baked PLY, `goris render --model` renders an export with the run's cameras; a bad name or a damaged
@@ -14,15 +14,16 @@ goris_fails("needs a file name ending in .compressed.ply" export "${WORK}/no_suc
 goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode intrinsic --iters 30 --resolution 48 --device cpu
          --init-points 2000 --checkpoint-every 0 --set intrinsic_env_resolution=8)
 goris_ok(export "${RUN}" --baked "${OUTD}/baked.ply" --spz "${OUTD}/m.spz" --compressed-ply "${OUTD}/m.compressed.ply"
-         --splat "${OUTD}/m.splat" --iters 10 --device cpu)
+         --splat "${OUTD}/m.splat" --glb "${OUTD}/m.glb" --iters 10 --device cpu)
 expect_text("${OUT}" "spz: wrote ${OUTD}/m.spz (Niantic SPZ")
 expect_text("${OUT}" "compressed-ply: wrote")
 expect_text("${OUT}" "splat: wrote")
+expect_text("${OUT}" "glb: wrote")
 
 goris_ok(info "${OUTD}/baked.ply")
 string(REGEX MATCH "([0-9]+) Gaussians" m "${OUT}")
 set(count "${CMAKE_MATCH_1}")
-foreach(f m.spz m.compressed.ply m.splat)
+foreach(f m.spz m.compressed.ply m.splat m.glb)
   goris_ok(info "${OUTD}/${f}" --against "${OUTD}/baked.ply")
   expect_text("${OUT}" "${count} Gaussians")
   expect_text("${OUT}" "against ${OUTD}/baked.ply")

@@ -1,8 +1,8 @@
 // Cross-check of our splat formats with other software: PlayCanvas' splat-transform (npm, installed by
 // ./dev setup into tools/node_modules). Both directions, on a random model of SH degree 3:
-//   - each of our exports (SPZ, compressed PLY, .splat) converted back to PLY by splat-transform must agree
+//   - each of our exports (SPZ, compressed PLY, .splat; it reads no GLB) converted back to PLY by splat-transform must agree
 //     with the source within the format's quantization, and with what our own reader makes of the file;
-//   - splat-transform's SPZ (version 3) and compressed PLY written from our PLY must open in our readers
+//   - splat-transform's SPZ (version 3), compressed PLY and GLB written from our PLY must open in our readers
 //     and agree with the source within the quantization; its default SPZ (version 4, zstd) must be refused
 //     with a message saying so.
 // Exits 77 (ctest: skipped) with GORIS_TEST_SKIPPED and the reason when node or splat-transform is absent;
@@ -42,6 +42,8 @@ constexpr Bounds kCompressedPly{std::sqrt(3.0) * 0.5 * 10.0 / 1023 + 1e-5, 0.5 *
 // v / 127.5 - 1, which turns a rotation by up to about a degree more.
 constexpr Bounds kSplat{1e-6, 1e-5, 2.0, 0.5 / 255 + 1e-5, 0.5 / 255 / splat_detail::kShC0 + 1e-5, INFINITY};
 constexpr Bounds kSameSplatFile{1e-6, 1e-5, 1.2, 1e-4, 1e-4, INFINITY};
+// GLB: float32 throughout.
+constexpr Bounds kGlb{1e-5, 1e-5, 0.05, 1e-5, 1e-5, 1e-5};
 // Two decoders of the same file: float rounding only (the rotation angle of nearly equal unit quaternions
 // is ill-conditioned in float, hence its larger bound).
 constexpr Bounds kSameFile{1e-5, 1e-4, 0.05, 1e-4, 1e-4, 1e-4};
@@ -129,7 +131,8 @@ int main(int argc, char** argv) {
     const char* options;
     Bounds bounds;
   };
-  for (const Theirs& t : {Theirs{"theirs.spz", "--spz-version 3 ", kSpz}, Theirs{"theirs.compressed.ply", "", kCompressedPly}}) {
+  for (const Theirs& t : {Theirs{"theirs.spz", "--spz-version 3 ", kSpz}, Theirs{"theirs.compressed.ply", "", kCompressedPly},
+                          Theirs{"theirs.glb", "", kGlb}}) {
     const fs::path file = dir / t.file;
     if (!run("node " + quoted(tool) + " -q -w " + t.options + quoted(source_ply) + " " + quoted(file),
              dir / (std::string(t.file) + ".log")))

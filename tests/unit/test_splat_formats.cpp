@@ -27,6 +27,7 @@ std::vector<uint8_t> encode(SplatFormat f, const GaussianPly& g) {
     case SplatFormat::Spz: return encode_spz(g, "test.spz");
     case SplatFormat::CompressedPly: return encode_compressed_ply(g, "test.compressed.ply");
     case SplatFormat::Antimatter: return encode_antimatter_splat(g, "test.splat");
+    case SplatFormat::Glb: return encode_glb(g, "test.glb");
     case SplatFormat::Ply: break;
   }
   ADD_FAILURE() << "no encoder";
@@ -139,13 +140,30 @@ TEST(SplatFormats, AntimatterSplatRoundTripWithinQuantization) {
   EXPECT_NEAR(decode_antimatter_splat(b.data(), b.size(), "clip.splat").f_dc[0], 0.5f / splat_detail::kShC0, 1e-4);
 }
 
+TEST(SplatFormats, GlbRoundTripIsLosslessButForFloatRounding) {
+  for (int degree : {0, 2, 3}) {
+    const GaussianPly g = random_model(2000, degree, 41u + uint32_t(degree));
+    const GaussianPly r = through_file(g, "model.glb");
+    ASSERT_EQ(r.count, g.count);
+    EXPECT_EQ(r.sh_degree, degree);
+    const ModelDiff d = compare_models(g, r);
+    SCOPED_TRACE(d.table());
+    EXPECT_EQ(d.position.max, 0.0);
+    EXPECT_LE(d.scale.max, 1e-5);     // exp, then log
+    EXPECT_LE(d.rotation.max, 0.05);  // normalised in float
+    EXPECT_LE(d.opacity.max, 1e-6);   // sigmoid, then logit
+    EXPECT_EQ(d.f_dc.max, 0.0);
+    EXPECT_EQ(d.f_rest.max, 0.0);
+  }
+}
+
 TEST(SplatFormats, EveryQuaternionSignAndAxisSurvives) {
   // The smallest-three encodings must pick the largest component and its sign right for each of w x y z.
   GaussianPly g = random_model(8, 0, 1);
   const float qs[8][4] = {{1, 0, 0, 0}, {0, -1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, -1},
                           {-0.5f, 0.5f, -0.5f, 0.5f}, {0.1f, -0.9f, 0.3f, 0.2f}, {-0.7f, 0.7f, 0, 0}, {0, 0, -0.2f, 0.98f}};
   std::memcpy(g.rotations.data(), qs, sizeof qs);
-  for (SplatFormat f : {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter}) {
+  for (SplatFormat f : {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter, SplatFormat::Glb}) {
     const std::vector<uint8_t> b = encode(f, g);
     const GaussianPly r = parse_gaussians_any(b.data(), b.size(), f == SplatFormat::Antimatter ? "q.splat" : "q.bin");
     const std::vector<uint32_t> order = f == SplatFormat::CompressedPly ? compressed_ply_order(g) : std::vector<uint32_t>{};
@@ -158,7 +176,8 @@ TEST(SplatFormats, FormatFromNameAndContent) {
   EXPECT_EQ(splat_format_from_name("a/B.PLY"), SplatFormat::Ply);
   EXPECT_EQ(splat_format_from_name("x.spz"), SplatFormat::Spz);
   EXPECT_EQ(splat_format_from_name("x.splat"), SplatFormat::Antimatter);
-  expect_error([] { splat_format_from_name("x.glb"); }, "x.glb: unknown model file type");
+  EXPECT_EQ(splat_format_from_name("x.glb"), SplatFormat::Glb);
+  expect_error([] { splat_format_from_name("x.gltf"); }, "x.gltf: unknown model file type");
   // Content wins over the name: an SPZ called .ply, a compressed PLY called .ply.
   const GaussianPly g = random_model(10, 1, 2);
   const auto spz = encode_spz(g, "x");
@@ -272,10 +291,43 @@ TEST(SplatFormats, AntimatterSplatBadInput) {
   expect_error([&] { encode_antimatter_splat(empty, "e.splat"); }, "empty model");
 }
 
+TEST(SplatFormats, GlbBadInput) {
+  const GaussianPly g = random_model(30, 1, 13);
+  const std::vector<uint8_t> good = encode_glb(g, "x");
+  expect_read_error({good.begin(), good.end() - 40}, "cut.glb", "truncated");
+  expect_read_error({good.begin(), good.begin() + 10}, "tiny.glb", "not a GLB file");  // shorter than the header
+  std::vector<uint8_t> bad = good;
+  bad[4] = 1;
+  expect_read_error(bad, "v1.glb", "glTF version 1 is not supported");
+  const uint32_t json_len = splat_detail::get_u32(good.data() + 12);
+  const std::string text(good.begin() + 20, good.begin() + 20 + json_len);
+  // The same file with its JSON edited (kept the same length so that the chunks still line up).
+  auto with_json = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const size_t at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    t.replace(at, from.size(), to);
+    t.resize(text.size(), ' ');
+    std::vector<uint8_t> b = good;
+    std::copy(t.begin(), t.end(), b.begin() + 20);
+    return b;
+  };
+  expect_read_error(with_json("\"asset\"", "{{{{{{{"), "broken.glb", "glTF JSON");
+  expect_read_error(with_json("KHR_gaussian_splatting:SCALE", "KHR_gaussian_splatting:SCALX"), "noscale.glb",
+                    "no mesh primitive with KHR_gaussian_splatting");
+  expect_read_error(with_json("KHR_gaussian_splatting:ROTATION", "KHR_gaussian_splatting:ROTATIOX"), "norot.glb",
+                    "KHR_gaussian_splatting:ROTATION is missing");
+  expect_read_error(with_json("\"bufferView\":1,\"componentType\":5126,\"count\":30",
+                              "\"bufferView\":1,\"componentType\":5126,\"count\":31"),
+                    "count.glb", "has 31 items, POSITION 30");
+  expect_read_error(with_json("\"byteLength\":360", "\"byteLength\":350"), "view.glb", "POSITION lies outside its buffer view");
+  expect_read_error(with_json("\"componentType\":5126", "\"componentType\":5123"), "type.glb", "component type 5123");
+}
+
 TEST(SplatFormats, EncodersRefuseNonFiniteValues) {
   GaussianPly g = random_model(5, 1, 9);
   g.opacity[3] = INFINITY;
-  for (SplatFormat f : {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter})
+  for (SplatFormat f : {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter, SplatFormat::Glb})
     expect_error([&] { encode(f, g); }, "opacity of Gaussian 3 is not a finite number");
 }
 
@@ -294,7 +346,7 @@ TEST(SplatFormats, FailedWriteLeavesTheOldFile) {
 TEST(SplatFormats, SummaryNamesFormatAndCount) {
   const GaussianPly g = random_model(40, 1, 12);
   const fs::path dir = scratch_dir("splat_formats_summary");
-  for (const char* name : {"m.spz", "m.compressed.ply", "m.splat"}) {
+  for (const char* name : {"m.spz", "m.compressed.ply", "m.splat", "m.glb"}) {
     write_gaussians(dir / name, g);
     const std::string s = gaussians_summary(dir / name);
     EXPECT_NE(s.find("40 Gaussians"), std::string::npos) << s;
