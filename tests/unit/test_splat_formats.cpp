@@ -34,9 +34,15 @@ std::vector<uint8_t> encode(SplatFormat f, const GaussianPly& g) {
   return {};
 }
 
+// A fresh scratch folder of the running test's own: ctest runs the tests as parallel processes, and a
+// shared folder would be emptied by one while another writes to it.
+fs::path own_scratch(const std::string& what) {
+  return scratch_dir("splat_formats_" + what + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+}
+
 // Writes `g` with write_gaussians and reads it back with read_gaussians, through a real file.
 GaussianPly through_file(const GaussianPly& g, const std::string& file_name) {
-  const fs::path p = scratch_dir("splat_formats_files") / file_name;
+  const fs::path p = own_scratch("files") / file_name;
   write_gaussians(p, g);
   return read_gaussians(p);
 }
@@ -196,7 +202,7 @@ TEST(SplatFormats, FormatFromNameAndContent) {
 
 // Writes `bytes` to a file called `name` and expects read_gaussians to fail naming the file and `problem`.
 void expect_read_error(const std::vector<uint8_t>& bytes, const std::string& name, const std::string& problem) {
-  const fs::path p = scratch_dir("splat_formats_bad") / name;
+  const fs::path p = own_scratch("bad") / name;
   write_file_bytes(p, bytes.data(), bytes.size());
   expect_error([&] { read_gaussians(p); }, p.string() + ": ");
   expect_error([&] { read_gaussians(p); }, problem);
