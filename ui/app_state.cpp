@@ -410,6 +410,7 @@ ExportRequest AppState::export_request() const {
     if (s.export_baked_spz) r.baked_formats.push_back(SplatFormat::Spz);
     if (s.export_baked_compressed_ply) r.baked_formats.push_back(SplatFormat::CompressedPly);
     if (s.export_baked_splat) r.baked_formats.push_back(SplatFormat::Antimatter);
+    if (s.export_baked_glb) r.baked_formats.push_back(SplatFormat::Glb);
   }
   r.render_path = parse_render_path(s.export_render_path);
   r.frames = s.export_frames;

@@ -106,6 +106,10 @@ void ExportDialog::draw_choices(AppState& st, bool active) {
   ImGui::Checkbox(".splat", &set.export_baked_splat);
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("the antimatter15 .splat layout of web viewers: 32 bytes per Gaussian, no higher SH");
+  ImGui::SameLine();
+  ImGui::Checkbox("GLB", &set.export_baked_glb);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("glTF binary with KHR_gaussian_splatting (.glb): float32, lossless");
   ImGui::EndDisabled();
   part_row("renders", &set.export_renders, &set.export_renders_dir, "e.g. export/renders",
            "one PNG per camera from the run's renderer, contact_sheet.png and cameras.json");

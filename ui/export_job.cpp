@@ -30,6 +30,7 @@ fs::path baked_format_path(const fs::path& baked, SplatFormat format) {
   const char* ext = format == SplatFormat::Spz             ? ".spz"
                     : format == SplatFormat::CompressedPly ? ".compressed.ply"
                     : format == SplatFormat::Antimatter    ? ".splat"
+                    : format == SplatFormat::Glb           ? ".glb"
                                                            : ".ply";
   return baked.parent_path() / (baked.stem().string() + ext);
 }

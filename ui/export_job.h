@@ -1,7 +1,7 @@
 #pragma once
 // The exports of a run folder (`goris export`: render/export/run_export.h) on a worker thread for the
 // editor's Export dialog and the scripted mode's `export` actions: the intrinsic PLY, the baked (distilled,
-// SH-only) PLY (and the same model as SPZ, compressed PLY, .splat) and rendered frames, in that order, each through the same library call as the CLI. States:
+// SH-only) PLY (and the same model as SPZ, compressed PLY, .splat, GLB) and rendered frames, in that order, each through the same library call as the CLI. States:
 //
 //   Idle --start--> Running --(every part written)--> Done
 //   Running --cancel--> Cancelling --(the next progress check)--> Cancelled      any failure --> Error
@@ -36,7 +36,7 @@ struct ExportRequest {
   std::filesystem::path ply;      // the model with its intrinsic attributes (empty: not wanted)
   std::filesystem::path baked;    // the distilled SH-only model, OUT.json beside it (empty: not wanted)
   int baked_iterations = 2000;    // distillation iterations (a radiance run needs none: baked as it is)
-  // The baked model also in these formats (SPZ, compressed PLY, .splat), beside the baked PLY under the
+  // The baked model also in these formats (SPZ, compressed PLY, .splat, GLB), beside the baked PLY under the
   // same name (baked_format_path); needs `baked`.
   std::vector<SplatFormat> baked_formats;
   std::filesystem::path renders;  // a folder of PNG frames, contact_sheet.png, cameras.json (empty: none)
@@ -46,7 +46,7 @@ struct ExportRequest {
 };
 
 // Where the baked model goes in `format`: baked's folder and stem with the format's extension
-// (export/baked.ply -> export/baked.spz, export/baked.compressed.ply, export/baked.splat).
+// (export/baked.ply -> export/baked.spz, export/baked.compressed.ply, export/baked.splat, export/baked.glb).
 std::filesystem::path baked_format_path(const std::filesystem::path& baked, SplatFormat format);
 
 // Throws goris::Error for a request that cannot run: no run folder, nothing wanted, the two PLYs being one

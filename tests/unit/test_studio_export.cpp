@@ -162,7 +162,7 @@ TEST(StudioExportSettings, RemembersTheDialogsChoices) {
   s.export_baked_iterations = 321;
   s.export_render_path = "orbit";
   s.export_frames = 12;
-  s.export_baked_spz = s.export_baked_splat = true;
+  s.export_baked_spz = s.export_baked_splat = s.export_baked_glb = true;
   save_settings(dir / "settings.json", s);
   const StudioSettings r = load_settings(dir / "settings.json");
   EXPECT_FALSE(r.export_ply);
@@ -173,7 +173,7 @@ TEST(StudioExportSettings, RemembersTheDialogsChoices) {
   EXPECT_EQ(r.export_baked_iterations, 321);
   EXPECT_EQ(r.export_render_path, "orbit");
   EXPECT_EQ(r.export_frames, 12);
-  EXPECT_TRUE(r.export_baked_spz && r.export_baked_splat);
+  EXPECT_TRUE(r.export_baked_spz && r.export_baked_splat && r.export_baked_glb);
   EXPECT_FALSE(r.export_baked_compressed_ply);
 
   std::ofstream(dir / "bad.json") << R"({"export_render_path": "sideways"})";
@@ -250,19 +250,19 @@ TEST(StudioExportJob, TheBakedModelAlsoInTheStandardFormats) {
   rq.run_dir = run;
   rq.baked = out / "baked.ply";
   rq.baked_iterations = 2;
-  rq.baked_formats = {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter};
+  rq.baked_formats = {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter, SplatFormat::Glb};
   rq.device = "cpu";
   ExportJob job;
   job.start(rq);
   ASSERT_EQ(job.wait(std::chrono::seconds(120)), ExportState::Done) << job.status();
   const GaussianPly baked = read_ply(rq.baked);
-  for (const char* name : {"baked.spz", "baked.compressed.ply", "baked.splat"}) {
+  for (const char* name : {"baked.spz", "baked.compressed.ply", "baked.splat", "baked.glb"}) {
     const GaussianPly g = read_gaussians(out / name);
     EXPECT_EQ(g.count, baked.count) << name;
     EXPECT_LE(compare_models(baked, g, match_by_position(baked, g)).position.max, 0.01) << name;
   }
   const ExportResult r = job.result();
-  ASSERT_EQ(r.written.size(), 5u);  // baked ply, its json, the three formats
+  ASSERT_EQ(r.written.size(), 6u);  // baked ply, its json, the four formats
   EXPECT_EQ(r.written[2], out / "baked.spz");
   EXPECT_NE(r.summary.find("Niantic SPZ"), std::string::npos) << r.summary;
   EXPECT_TRUE(temp_files(out).empty());
