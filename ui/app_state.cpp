@@ -406,6 +406,12 @@ ExportRequest AppState::export_request() const {
   r.baked = place(s.export_baked, s.export_baked_path, "baked PLY");
   r.renders = place(s.export_renders, s.export_renders_dir, "renders folder");
   r.baked_iterations = s.export_baked_iterations;
+  if (!r.baked.empty()) {
+    if (s.export_baked_spz) r.baked_formats.push_back(SplatFormat::Spz);
+    if (s.export_baked_compressed_ply) r.baked_formats.push_back(SplatFormat::CompressedPly);
+    if (s.export_baked_splat) r.baked_formats.push_back(SplatFormat::Antimatter);
+    if (s.export_baked_glb) r.baked_formats.push_back(SplatFormat::Glb);
+  }
   r.render_path = parse_render_path(s.export_render_path);
   r.frames = s.export_frames;
   r.device = s.train_device;

@@ -90,6 +90,27 @@ void ExportDialog::draw_choices(AppState& st, bool active) {
   set.export_baked_iterations = std::clamp(set.export_baked_iterations, 1, 10000000);
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("distillation iterations (a radiance run is plain SH already and needs none)");
+  // The baked model in the formats other viewers and engines read, beside the baked PLY.
+  ImGui::BeginDisabled(!set.export_baked);
+  ImGui::TextUnformatted("  also as");
+  ImGui::SameLine(kLabelWidth);
+  ImGui::Checkbox("SPZ", &set.export_baked_spz);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("Niantic SPZ version 3 beside the baked PLY (same name, .spz): gzip, quantized,\n"
+                      "about a tenth of the PLY");
+  ImGui::SameLine();
+  ImGui::Checkbox("compressed PLY", &set.export_baked_compressed_ply);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("PlayCanvas compressed PLY (.compressed.ply): chunks of 256, 32 bits per attribute");
+  ImGui::SameLine();
+  ImGui::Checkbox(".splat", &set.export_baked_splat);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("the antimatter15 .splat layout of web viewers: 32 bytes per Gaussian, no higher SH");
+  ImGui::SameLine();
+  ImGui::Checkbox("GLB", &set.export_baked_glb);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("glTF binary with KHR_gaussian_splatting (.glb): float32, lossless");
+  ImGui::EndDisabled();
   part_row("renders", &set.export_renders, &set.export_renders_dir, "e.g. export/renders",
            "one PNG per camera from the run's renderer, contact_sheet.png and cameras.json");
   ImGui::SameLine();

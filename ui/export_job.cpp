@@ -26,6 +26,15 @@ std::string fixed(double v, int digits) {
 
 }  // namespace
 
+fs::path baked_format_path(const fs::path& baked, SplatFormat format) {
+  const char* ext = format == SplatFormat::Spz             ? ".spz"
+                    : format == SplatFormat::CompressedPly ? ".compressed.ply"
+                    : format == SplatFormat::Antimatter    ? ".splat"
+                    : format == SplatFormat::Glb           ? ".glb"
+                                                           : ".ply";
+  return baked.parent_path() / (baked.stem().string() + ext);
+}
+
 void check_export_request(const ExportRequest& r) {
   if (r.run_dir.empty()) throw Error("export", "no run folder to export (train a model or open a run first)");
   if (r.ply.empty() && r.baked.empty() && r.renders.empty())
@@ -36,6 +45,13 @@ void check_export_request(const ExportRequest& r) {
   if (!r.baked.empty() && r.baked_iterations <= 0)
     throw Error(r.baked.string(),
                 "the distillation needs at least 1 iteration (" + std::to_string(r.baked_iterations) + " given)");
+  if (!r.baked_formats.empty() && r.baked.empty())
+    throw Error("export", "SPZ, compressed PLY and .splat hold the baked model: choose the baked PLY too");
+  for (SplatFormat f : r.baked_formats)
+    if (fs::absolute(baked_format_path(r.baked, f)).lexically_normal() == fs::absolute(r.baked).lexically_normal() ||
+        (!r.ply.empty() && fs::absolute(baked_format_path(r.baked, f)).lexically_normal() == fs::absolute(r.ply).lexically_normal()))
+      throw Error(baked_format_path(r.baked, f).string(), std::string("the ") + splat_format_name(f) +
+                                                              " file would replace another export: rename the baked PLY");
   if (!r.renders.empty() && r.frames < 0)
     throw Error(r.renders.string(), "the frame count must be >= 0 (" + std::to_string(r.frames) + " given)");
 }
@@ -269,6 +285,7 @@ void ExportJob::work(ExportRequest rq) {
     if (!rq.ply.empty()) check_output_file(rq.ply);
     part = ExportPart::Baked;
     if (!rq.baked.empty()) check_output_file(rq.baked);
+    for (SplatFormat f : rq.baked_formats) check_output_file(baked_format_path(rq.baked, f));
     part = ExportPart::Renders;
     if (!rq.renders.empty()) check_output_dir(rq.renders);
 
@@ -341,6 +358,11 @@ void ExportJob::work(ExportRequest rq) {
           },
           &stop_distill_);
       check_cancel();  // a cancel during the last steps: the file is complete, but report what was asked
+      std::vector<std::pair<fs::path, SplatFormat>> others;
+      for (SplatFormat f : rq.baked_formats) {
+        others.emplace_back(baked_format_path(rq.baked, f), f);
+        ex.write_model(others.back().first, r.distill.ply);
+      }
       const DistillResult& d = r.distill;
       std::string detail;
       if (r.distilled)
@@ -359,6 +381,9 @@ void ExportJob::work(ExportRequest rq) {
       }
       add_written(r.ply, "baked PLY: " + r.ply.string() + " (" + detail + ")");
       add_written(r.json, "baked PLY report: " + r.json.string());
+      for (const auto& [path, f] : others)
+        add_written(path, std::string("baked model as ") + splat_format_name(f) + ": " + path.string() + " (" +
+                              std::to_string(fs::file_size(path)) + " bytes)");
     }
 
     if (!rq.renders.empty()) {

@@ -1,7 +1,7 @@
 #pragma once
 // The exports of a run folder (`goris export`: render/export/run_export.h) on a worker thread for the
 // editor's Export dialog and the scripted mode's `export` actions: the intrinsic PLY, the baked (distilled,
-// SH-only) PLY and rendered frames, in that order, each through the same library call as the CLI. States:
+// SH-only) PLY (and the same model as SPZ, compressed PLY, .splat, GLB) and rendered frames, in that order, each through the same library call as the CLI. States:
 //
 //   Idle --start--> Running --(every part written)--> Done
 //   Running --cancel--> Cancelling --(the next progress check)--> Cancelled      any failure --> Error
@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/io/splat_formats.h"
 #include "render/export/run_export.h"
 
 namespace goris::ui {
@@ -35,14 +36,21 @@ struct ExportRequest {
   std::filesystem::path ply;      // the model with its intrinsic attributes (empty: not wanted)
   std::filesystem::path baked;    // the distilled SH-only model, OUT.json beside it (empty: not wanted)
   int baked_iterations = 2000;    // distillation iterations (a radiance run needs none: baked as it is)
+  // The baked model also in these formats (SPZ, compressed PLY, .splat, GLB), beside the baked PLY under the
+  // same name (baked_format_path); needs `baked`.
+  std::vector<SplatFormat> baked_formats;
   std::filesystem::path renders;  // a folder of PNG frames, contact_sheet.png, cameras.json (empty: none)
   RenderPath render_path = RenderPath::Test;
   int frames = 0;               // orbit: frame count (0 = 36); test / train: evenly spaced views (0 = all)
   std::string device = "auto";  // auto | cpu | cuda
 };
 
+// Where the baked model goes in `format`: baked's folder and stem with the format's extension
+// (export/baked.ply -> export/baked.spz, export/baked.compressed.ply, export/baked.splat, export/baked.glb).
+std::filesystem::path baked_format_path(const std::filesystem::path& baked, SplatFormat format);
+
 // Throws goris::Error for a request that cannot run: no run folder, nothing wanted, the two PLYs being one
-// file, a non-positive iteration count or a negative frame count.
+// file, a non-positive iteration count, a negative frame count or other formats without the baked PLY.
 void check_export_request(const ExportRequest& request);
 
 enum class ExportState { Idle, Running, Cancelling, Done, Cancelled, Error };

@@ -104,6 +104,10 @@ StudioSettings load_settings(const fs::path& path) {
   read_key(j, "export_baked_path", s.export_baked_path, path);
   read_key(j, "export_renders_dir", s.export_renders_dir, path);
   read_key(j, "export_baked_iterations", s.export_baked_iterations, path);
+  read_key(j, "export_baked_spz", s.export_baked_spz, path);
+  read_key(j, "export_baked_compressed_ply", s.export_baked_compressed_ply, path);
+  read_key(j, "export_baked_splat", s.export_baked_splat, path);
+  read_key(j, "export_baked_glb", s.export_baked_glb, path);
   read_key(j, "export_render_path", s.export_render_path, path);
   read_key(j, "export_frames", s.export_frames, path);
 
@@ -161,6 +165,10 @@ void save_settings(const fs::path& path, const StudioSettings& s) {
                   {"export_baked_path", s.export_baked_path},
                   {"export_renders_dir", s.export_renders_dir},
                   {"export_baked_iterations", s.export_baked_iterations},
+                  {"export_baked_spz", s.export_baked_spz},
+                  {"export_baked_compressed_ply", s.export_baked_compressed_ply},
+                  {"export_baked_splat", s.export_baked_splat},
+                  {"export_baked_glb", s.export_baked_glb},
                   {"export_render_path", s.export_render_path},
                   {"export_frames", s.export_frames}};
   std::error_code ec;

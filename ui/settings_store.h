@@ -38,6 +38,9 @@ struct StudioSettings {
   std::string export_baked_path = "export/baked.ply";
   std::string export_renders_dir = "export/renders";
   int export_baked_iterations = 2000;
+  // The baked model also as SPZ / compressed PLY / .splat / GLB, beside the baked PLY (ui/export_job.h).
+  bool export_baked_spz = false, export_baked_compressed_ply = false, export_baked_splat = false,
+       export_baked_glb = false;
   std::string export_render_path = "test";  // test | train | orbit
   int export_frames = 0;                    // orbit: frame count (0 = 36); test / train: views (0 = all)
 

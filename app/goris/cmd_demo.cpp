@@ -281,7 +281,10 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
   }
   md += "\nExported: `cleaned.ply` (the cleaned scene, intrinsic attributes as extra properties) and "
         "`cleaned_baked.ply` (distilled into plain SH: any 3DGS viewer shows it; fidelity against the run in "
-        "cleaned_baked.json; a radiance run is plain SH already and is copied)\n";
+        "cleaned_baked.json; a radiance run is plain SH already and is copied), and the baked model as "
+        "`cleaned.spz` (Niantic SPZ 3), `cleaned.compressed.ply` (PlayCanvas), `cleaned.splat` (antimatter15) and "
+        "`cleaned.glb` (glTF, KHR_gaussian_splatting) "
+        "for web viewers and engines\n";
   goris::write_file_bytes(out / "report.md", md.data(), md.size());
   std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
 }
@@ -318,9 +321,12 @@ void run_demo(const Options& o) {
                                     removed_renders.string(), "--maps", "--device", o.device});
   step("evaluate against the scene without the target",
        {"eval", removed.string(), "--split", "test", "--device", o.device});
-  step("export the cleaned scene (intrinsic PLY and a baked PLY any 3DGS viewer shows)",
+  step("export the cleaned scene (intrinsic PLY, a baked PLY any 3DGS viewer shows, and that model as SPZ, "
+       "compressed PLY, .splat and GLB)",
        {"export", removed.string(), "--ply", (out / "cleaned.ply").string(), "--baked",
-        (out / "cleaned_baked.ply").string(), "--iters", std::to_string(std::max(100, o.iters / 4)), "--device",
+        (out / "cleaned_baked.ply").string(), "--spz", (out / "cleaned.spz").string(), "--compressed-ply",
+        (out / "cleaned.compressed.ply").string(), "--splat", (out / "cleaned.splat").string(), "--glb",
+        (out / "cleaned.glb").string(), "--iters", std::to_string(std::max(100, o.iters / 4)), "--device",
         o.device});
   write_report(o, out, run, renders, times);
 }

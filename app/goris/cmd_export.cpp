@@ -1,5 +1,8 @@
-// `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--renders DIR [--path test|train|orbit] [--frames N]]
-// [--iters N] [--device D]`: the exports of a run folder (RUN or RUN/removal), see render/export/run_export.h.
+// `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--spz OUT.spz] [--compressed-ply OUT.compressed.ply]
+// [--splat OUT.splat] [--glb OUT.glb] [--renders DIR [--path test|train|orbit] [--frames N]] [--iters N] [--device D]`: the
+// exports of a run folder (RUN or RUN/removal), see render/export/run_export.h. The standard formats (SPZ,
+// compressed PLY, .splat, GLB: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
+// run the distilled one (one distillation serves --baked and all of them).
 // Every output path is checked before any work starts; Ctrl-C during the distillation ends it early and the
 // baked model so far is still written (marked "stopped" in its json).
 #include <unistd.h>
@@ -11,9 +14,12 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/goris/command.h"
 #include "app/goris/ctrl_c.h"
+#include "core/io/splat_formats.h"
 #include "core/util/error.h"
 #include "render/export/run_export.h"
 
@@ -22,7 +28,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, ply, baked, renders, path = "test", device = "auto";
+  std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, path = "test", device = "auto";
   int frames = 0, iters = 2000, extra_views = -1;
   float geometry_lr_scale = 0.0f;
   float sh_lr_scale = 20.0f;  // DistillSettings' default
@@ -45,16 +51,45 @@ void print_baked(const BakedReport& r) {
   std::printf("wrote %s and %s\n", r.ply.string().c_str(), r.json.string().c_str());
 }
 
+// The standard-format outputs asked for: (path, the format the name must have, option).
+struct FormatOutput {
+  std::string path;
+  SplatFormat format;
+  const char* option;
+};
+std::vector<FormatOutput> format_outputs(const Options& o) {
+  std::vector<FormatOutput> out;
+  if (!o.spz.empty()) out.push_back({o.spz, SplatFormat::Spz, "--spz"});
+  if (!o.compressed_ply.empty()) out.push_back({o.compressed_ply, SplatFormat::CompressedPly, "--compressed-ply"});
+  if (!o.splat.empty()) out.push_back({o.splat, SplatFormat::Antimatter, "--splat"});
+  if (!o.glb.empty()) out.push_back({o.glb, SplatFormat::Glb, "--glb"});
+  return out;
+}
+
 void run_export(const Options& o) {
-  if (o.ply.empty() && o.baked.empty() && o.renders.empty())
+  const std::vector<FormatOutput> formats = format_outputs(o);
+  if (o.ply.empty() && o.baked.empty() && o.renders.empty() && formats.empty())
     throw Error("goris export", "nothing to export: give at least one of --ply OUT.ply (intrinsic PLY), --baked OUT.ply "
-                                "(distilled standard 3DGS PLY), --renders DIR (PNG frames)");
-  if (!o.ply.empty() && !o.baked.empty() && fs::absolute(o.ply) == fs::absolute(o.baked))
-    throw Error(o.ply, "--ply and --baked name the same file");
+                                "(distilled standard 3DGS PLY), --spz OUT.spz, --compressed-ply OUT.compressed.ply, "
+                                "--splat OUT.splat, --glb OUT.glb (the baked model in those formats), --renders DIR (PNG frames)");
+  std::vector<std::pair<std::string, const char*>> files;
+  if (!o.ply.empty()) files.emplace_back(o.ply, "--ply");
+  if (!o.baked.empty()) files.emplace_back(o.baked, "--baked");
+  for (const FormatOutput& f : formats) files.emplace_back(f.path, f.option);
+  for (size_t i = 0; i < files.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (fs::absolute(files[i].first) == fs::absolute(files[j].first))
+        throw Error(files[i].first, std::string(files[j].second) + " and " + files[i].second + " name the same file");
+  for (const FormatOutput& f : formats)
+    if (splat_format_from_name(f.path) != f.format)
+      throw Error(f.path, std::string(f.option) + " needs a file name ending in " +
+                              (f.format == SplatFormat::Spz             ? ".spz"
+                               : f.format == SplatFormat::CompressedPly ? ".compressed.ply"
+                               : f.format == SplatFormat::Glb           ? ".glb"
+                                                                        : ".splat"));
   const RenderPath path = parse_render_path(o.path);
   // Fail on a bad path now, not after a distillation.
-  if (!o.ply.empty()) check_output_file(o.ply);
-  if (!o.baked.empty()) check_output_file(o.baked);
+  for (const auto& f : files) check_output_file(f.first);
   if (!o.renders.empty()) check_output_dir(o.renders);
 
   const Device device = resolve_device(o.device);
@@ -70,7 +105,10 @@ void run_export(const Options& o) {
                 ex.intrinsic() ? ", intrinsic attributes as extra properties" : "");
     std::fflush(stdout);
   }
-  if (!o.baked.empty()) {
+  // One distillation for --baked and the standard formats of an intrinsic run.
+  const bool need_bake = !o.baked.empty() || (!formats.empty() && ex.intrinsic());
+  GaussianPly plain;
+  if (need_bake) {
     DistillSettings s;
     s.iterations = o.iters;
     s.extra_views = o.extra_views;
@@ -91,9 +129,25 @@ void run_export(const Options& o) {
     BakedReport r;
     {
       const cli::CtrlC ctrl_c;
-      r = ex.write_baked(o.baked, s, progress, ctrl_c.flag());
+      r = ex.bake(s, progress, ctrl_c.flag());
     }
-    print_baked(r);
+    if (!o.baked.empty()) {
+      ex.write_baked_files(r, o.baked);
+      print_baked(r);
+    } else {
+      std::printf("baked: %d iterations%s, fidelity PSNR %.2f dB against the run's shaded renders on %zu held-out views\n",
+                  r.distill.iterations, r.distill.stopped ? " (stopped)" : "", r.distill.psnr, r.distill.holdout_views);
+    }
+    std::fflush(stdout);
+    plain = std::move(r.distill.ply);
+  } else if (!formats.empty()) {
+    plain = ex.radiance_model();
+  }
+  for (const FormatOutput& f : formats) {
+    ex.write_model(f.path, plain);
+    const int degree = f.format == SplatFormat::Antimatter ? 0 : plain.sh_degree;  // .splat holds no higher SH
+    std::printf("%s: wrote %s (%s, %zu Gaussians, SH degree %d, %ju bytes)\n", f.option + 2, f.path.c_str(),
+                splat_format_name(f.format), plain.count, degree, std::uintmax_t(fs::file_size(f.path)));
     std::fflush(stdout);
   }
   if (!o.renders.empty()) {
@@ -114,9 +168,19 @@ void setup_export(CLI::App& root) {
   c->add_option("--ply", o->ply,
                 "Write the model in the standard 3DGS layout, intrinsic attributes as extra properties, 3D filter "
                 "baked into scales and opacities");
-  auto* baked = c->add_option("--baked", o->baked,
+  c->add_option("--baked", o->baked,
                 "Write a standard SH-only 3DGS model distilled from the run's shaded renders (any viewer shows it), "
                 "and OUT.json beside it with the fidelity PSNR on held-out views");
+  c->add_option("--spz", o->spz,
+                "Write the baked model (as --baked) as Niantic SPZ version 3: gzip, quantized, about a tenth of the PLY");
+  c->add_option("--compressed-ply", o->compressed_ply,
+                "Write the baked model (as --baked) as a PlayCanvas compressed PLY (OUT.compressed.ply: chunks of 256, "
+                "32 bits per attribute)");
+  c->add_option("--splat", o->splat,
+                "Write the baked model (as --baked) in the antimatter15 .splat layout of web viewers (32 bytes per "
+                "Gaussian, no higher SH)");
+  c->add_option("--glb", o->glb,
+                "Write the baked model (as --baked) as glTF binary with KHR_gaussian_splatting (float32, lossless)");
   auto* renders = c->add_option("--renders", o->renders,
                                 "Write one PNG per frame from the run's renderer, contact_sheet.png and cameras.json");
   c->add_option("--path", o->path,
@@ -127,23 +191,19 @@ void setup_export(CLI::App& root) {
   c->add_option("--frames", o->frames, "Orbit: number of frames (default 36); test/train: that many evenly spaced views")
       ->check(CLI::NonNegativeNumber)
       ->needs(renders);
-  c->add_option("--iters", o->iters, "Distillation iterations for --baked (default 2000)")
-      ->check(CLI::PositiveNumber)
-      ->needs(baked);
+  c->add_option("--iters", o->iters, "Distillation iterations for --baked, and for --spz / --compressed-ply / --splat of an intrinsic run (default 2000)")
+      ->check(CLI::PositiveNumber);
   c->add_option("--extra-views", o->extra_views,
                 "Cameras interpolated between training cameras as extra distillation targets (default: as many as "
                 "the training cameras)")
-      ->check(CLI::NonNegativeNumber)
-      ->needs(baked);
+      ->check(CLI::NonNegativeNumber);
   c->add_option("--geometry-lr", o->geometry_lr_scale,
                 "Position/scale/rotation/opacity learning rates during distillation, as a factor of the run's "
                 "(default 0: geometry frozen)")
-      ->check(CLI::NonNegativeNumber)
-      ->needs(baked);
+      ->check(CLI::NonNegativeNumber);
   c->add_option("--sh-lr", o->sh_lr_scale, "SH learning rates during distillation, as a factor of the run's (default 20)")
-      ->check(CLI::PositiveNumber)
-      ->needs(baked);
-  c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")->needs(baked);
+      ->check(CLI::PositiveNumber);
+  c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_export(*o); });
 }

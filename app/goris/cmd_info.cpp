@@ -1,4 +1,6 @@
-// `goris info PATH`: what a data set or a PLY file contains, without decoding any image (headers only).
+// `goris info PATH [--against REF]`: what a data set or a model file (.ply, .compressed.ply, .spz, .splat, .glb)
+// contains, without decoding any image (headers only). With --against, how far the model is from another
+// model file, attribute by attribute (core/io/splat_compare.h): what an export's quantization changed.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +12,8 @@
 #include "app/goris/command.h"
 #include "core/io/dataset.h"
 #include "core/io/ply.h"
+#include "core/io/splat_compare.h"
+#include "core/io/splat_formats.h"
 #include "core/util/error.h"
 
 namespace {
@@ -99,12 +103,20 @@ void print_dataset(const goris::Dataset& d, const goris::DatasetOptions& o) {
 }
 
 void setup_info(CLI::App& root) {
-  auto* c = root.add_subcommand("info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF) or a PLY file");
-  static std::string path;
+  auto* c = root.add_subcommand(
+      "info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF) or a model file (.ply, .compressed.ply, .spz, .splat, .glb)");
+  static std::string path, against, match = "position";
   static int resolution = 0;
   static float downscale = 1.0f;
   static int test_every = 8;
-  c->add_option("path", path, "data set folder, one of its camera files, or a .ply")->required();
+  c->add_option("path", path, "data set folder, one of its camera files, or a model file")->required();
+  auto* ag = c->add_option("--against", against,
+                           "a model file to compare PATH with: max and mean error per attribute (position, log scale, "
+                           "rotation angle, opacity, SH DC and rest)");
+  c->add_option("--match", match,
+                "how Gaussians pair up for --against: position (nearest, for writers that reorder) or index")
+      ->check(CLI::IsMember({"position", "index"}))
+      ->needs(ag);
   auto* r = c->add_option("--resolution", resolution, "load images at this width in pixels (height keeps the aspect)")
                 ->check(CLI::PositiveNumber);
   c->add_option("--downscale", downscale, "divide the image size by this factor")->check(CLI::PositiveNumber)->excludes(r);
@@ -114,12 +126,20 @@ void setup_info(CLI::App& root) {
       ->capture_default_str();
   c->callback([] {
     const fs::path p(path);
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-    if (ext == ".ply") {
-      std::printf("%s", goris::ply_summary(p).c_str());
+    if (goris::is_splat_file_name(p)) {
+      std::printf("%s", goris::gaussians_summary(p).c_str());
+      if (!against.empty()) {
+        const goris::GaussianPly ref = goris::read_gaussians(against), got = goris::read_gaussians(p);
+        if (ref.count != got.count)
+          throw goris::Error(p.string(), std::to_string(got.count) + " Gaussians, " + against + " has " +
+                                             std::to_string(ref.count) + ": cannot compare");
+        const auto order = match == "position" ? goris::match_by_position(ref, got) : std::vector<uint32_t>{};
+        std::printf("against %s (matched by %s):\n%s", against.c_str(), match.c_str(),
+                    goris::compare_models(ref, got, order).table().c_str());
+      }
       return;
     }
+    if (!against.empty()) throw goris::Error(p.string(), "--against needs a model file, not a data set");
     goris::DatasetOptions o;
     o.target_width = resolution;
     o.downscale = downscale;

@@ -1,5 +1,7 @@
-// `goris render RUN --split test --out DIR [--maps]`: renders a trained run from the data set's cameras
-// (at the training resolution). With --maps every G-buffer channel is written as a viewable PNG too.
+// `goris render RUN --split test --out DIR [--maps] [--model FILE]`: renders a trained run from the data set's
+// cameras (at the training resolution). With --maps every G-buffer channel is written as a viewable PNG too.
+// --model renders a model file (.ply, .compressed.ply, .spz, .splat, .glb: core/io/splat_formats.h) in place of the
+// run's own, with the run's cameras and renderer (say, an export read back).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include "app/goris/command.h"
 #include "core/io/dataset.h"
 #include "core/io/image.h"
+#include "core/io/splat_formats.h"
 #include "core/scene/gaussians.h"
 #include "core/train/depth_normal_loss.h"
 #include "core/train/run_folder.h"
@@ -26,7 +29,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, split = "test", out, device = "auto";
+  std::string run, split = "test", out, device = "auto", model;
   bool maps = false;
 };
 
@@ -46,8 +49,9 @@ void run_render(const Options& o) {
   const Dataset ds = load_dataset(config.data, dataset_options(config));
   const std::vector<View>& views = o.split == "test" ? ds.test : ds.train;
   if (views.empty()) throw Error(config.data, "the data set has no " + o.split + " views");
-  std::string source;
-  GaussianModel model = load_run_model(run_dir, device, &source);
+  std::string source = o.model;
+  GaussianModel model = o.model.empty() ? load_run_model(run_dir, device, &source)
+                                        : GaussianModel::from_ply(read_gaussians(o.model), device);
   const fs::path out = fs::absolute(o.out);
   fs::create_directories(out);
   std::printf("rendering %zu %s views of %s (%zu Gaussians, %s) on %s -> %s\n", views.size(), o.split.c_str(),
@@ -118,6 +122,8 @@ void setup_render(CLI::App& root) {
               "normal and depth-normal (n*0.5+0.5), diffuse, fresnel, roughness, region, label; intrinsic runs add "
               "sh_color (D), glossy (G), indirect (L_ind'), visibility (V'), env_light (L_dir'), screen_roughness, "
               "indirect_traced and visibility_traced (L_ind and V as traced, before the screen-space filter)");
+  c->add_option("--model", o->model,
+                "Render this model file (.ply, .compressed.ply, .spz, .splat or .glb) instead of the run's own model");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_render(*o); });
 }

@@ -62,5 +62,8 @@ void write_ply(const std::filesystem::path& path, const GaussianPly& ply);
 // Human-readable summary for `goris info`: format, count, SH degree, extra properties, position
 // bounds, opacity range after sigmoid.
 std::string ply_summary(const std::filesystem::path& path);
+// The summary's last lines, for a model of any file format: position bounds and opacity range (nothing
+// for an empty model).
+std::string gaussian_stats(const GaussianPly& g);
 
 }  // namespace goris

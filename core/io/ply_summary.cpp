@@ -45,6 +45,11 @@ std::string ply_summary(const std::filesystem::path& path) {
     if (e.name != "vertex")
       s += "  other element (ignored): " + e.name + ", " + std::to_string(e.count) + (e.count == 1 ? " item\n" : " items\n");
 
+  return s + gaussian_stats(g);
+}
+
+std::string gaussian_stats(const GaussianPly& g) {
+  std::string s;
   if (g.count == 0) return s;
   s += "  position bounds:";
   for (int a = 0; a < 3; ++a) {

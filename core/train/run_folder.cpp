@@ -7,6 +7,7 @@
 
 #include "core/io/file_bytes.h"
 #include "core/io/ply.h"
+#include "core/io/splat_formats.h"
 #include "core/train/checkpoint.h"
 #include "core/util/error.h"
 
@@ -41,7 +42,7 @@ GaussianModel load_run_model(const std::filesystem::path& run_dir, Device device
   const auto ply = run_ply_path(run_dir);
   if (std::filesystem::exists(ply)) {
     if (source) *source = ply.string();
-    return GaussianModel::from_ply(read_ply(ply), device);
+    return GaussianModel::from_ply(read_gaussians(ply), device);
   }
   throw Error(run_dir.string(), "no trained model: neither checkpoints/ nor point_cloud.ply");
 }

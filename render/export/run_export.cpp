@@ -13,6 +13,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/image.h"
 #include "core/io/ply.h"
+#include "core/io/splat_formats.h"
 #include "core/train/image_losses.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
@@ -114,6 +115,19 @@ void RunExport::write_ply(const fs::path& out) const {
   goris::write_ply(out, model_.to_ply(/*bake_3d_filter=*/true));
 }
 
+GaussianPly RunExport::radiance_model() const {
+  if (intrinsic())
+    throw Error(run_dir_.string(), "an intrinsic run's colours need the distillation (bake) for a plain SH model");
+  GaussianPly g = model_.to_ply(/*bake_3d_filter=*/true);
+  g.extras.clear();
+  return g;
+}
+
+void RunExport::write_model(const fs::path& out, const GaussianPly& model) const {
+  create_folder(fs::absolute(out).parent_path(), out);
+  write_gaussians(out, model);
+}
+
 std::vector<Camera> RunExport::path_cameras(RenderPath path, int frames, std::vector<std::string>* names) const {
   std::vector<Camera> cams;
   if (names) names->clear();
@@ -142,9 +156,14 @@ std::vector<Camera> RunExport::path_cameras(RenderPath path, int frames, std::ve
 BakedReport RunExport::write_baked(const fs::path& out, const DistillSettings& settings,
                                    const std::function<void(const DistillProgress&)>& on_progress,
                                    const std::atomic<bool>* stop) {
+  BakedReport rep = bake(settings, on_progress, stop);
+  write_baked_files(rep, out);
+  return rep;
+}
+
+BakedReport RunExport::bake(const DistillSettings& settings, const std::function<void(const DistillProgress&)>& on_progress,
+                            const std::atomic<bool>* stop) {
   BakedReport rep;
-  rep.ply = out;
-  rep.json = baked_json_path(out);
   rep.distilled = intrinsic();
   const std::vector<Camera> train = cameras_of(dataset_.train);
   std::vector<Camera> holdout = cameras_of(dataset_.test);
@@ -171,7 +190,15 @@ BakedReport RunExport::write_baked(const fs::path& out, const DistillSettings& s
     GaussianModel baked = GaussianModel::from_ply(rep.distill.ply, device_);
     rep.gt_psnr_baked = raster_psnr(baked, distill_config(config_, s), holdout, gt);
   }
+  rep.settings = s;
+  rep.resolution = {holdout.front().width, holdout.front().height};
+  return rep;
+}
 
+void RunExport::write_baked_files(BakedReport& rep, const fs::path& out) const {
+  rep.ply = out;
+  rep.json = baked_json_path(out);
+  const DistillSettings& s = rep.settings;
   create_folder(fs::absolute(out).parent_path(), out);
   goris::write_ply(out, rep.distill.ply);
   const DistillResult& d = rep.distill;
@@ -189,13 +216,12 @@ BakedReport RunExport::write_baked(const fs::path& out, const DistillSettings& s
       {"iterations", d.iterations}, {"stopped", d.stopped},
       {"target_views", d.target_views}, {"extra_views", d.extra_views}, {"geometry_lr_scale", s.geometry_lr_scale},
       {"gaussians", d.ply.count}, {"sh_degree", d.ply.sh_degree},
-      {"resolution", {holdout.front().width, holdout.front().height}}, {"device", device_name(device_)},
+      {"resolution", {rep.resolution.first, rep.resolution.second}}, {"device", device_name(device_)},
       {"time_s", d.seconds_total},
       {"seconds", {{"targets", d.seconds_targets}, {"train", d.seconds_train}, {"holdout", d.seconds_holdout}}},
       {"gt", {{"images", "the data set's test images (GOR-IS scenes: after removal)"},
               {"psnr_run", number_or_null(rep.gt_psnr_run)}, {"psnr_baked", number_or_null(rep.gt_psnr_baked)}}}};
   write_json(rep.json, j);
-  return rep;
 }
 
 RendersReport RunExport::write_renders(const fs::path& dir, RenderPath path, int frames,

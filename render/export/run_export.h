@@ -8,6 +8,8 @@
 //                  (render/export/distill.h; for a radiance run the model itself), and OUT.json beside it
 //                  with the distillation fidelity (PSNR against the run's renderer on held-out cameras:
 //                  the test split, or an orbit when the data set has none), iterations and time;
+//   write_model    a plain SH model (write_baked's, or a radiance run's own) as SPZ, compressed PLY, .splat or GLB
+//                  for viewers and engines that read those (core/io/splat_formats.h);
 //   write_renders  one PNG per frame from the run's renderer (test or train cameras, or an orbit: see
 //                  render/export/camera_path.h), contact_sheet.png with all frames and cameras.json.
 //
@@ -18,9 +20,11 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/io/dataset.h"
+#include "core/io/ply.h"
 #include "core/scene/gaussians.h"
 #include "core/train/differentiable_renderer.h"
 #include "core/train/train_config.h"
@@ -41,6 +45,8 @@ struct BakedReport {
   DistillResult distill;   // radiance runs: iterations 0, PSNRs of the baked PLY against the model's renders
   // Against the data set's test images (NaN without test views): the run's renderer and the baked model.
   double gt_psnr_run = 0, gt_psnr_baked = 0;
+  DistillSettings settings;              // as used (a radiance run: 0 iterations)
+  std::pair<int, int> resolution{0, 0};  // of the held-out views
 };
 
 struct RendersReport {
@@ -71,6 +77,17 @@ class RunExport {
   BakedReport write_baked(const std::filesystem::path& out, const DistillSettings& settings,
                           const std::function<void(const DistillProgress&)>& on_progress = {},
                           const std::atomic<bool>* stop = nullptr);
+  // write_baked in two steps: the distillation (report.distill.ply is the baked model), then OUT.ply and
+  // OUT.json (sets report.ply and report.json).
+  BakedReport bake(const DistillSettings& settings, const std::function<void(const DistillProgress&)>& on_progress = {},
+                   const std::atomic<bool>* stop = nullptr);
+  void write_baked_files(BakedReport& report, const std::filesystem::path& out) const;
+  // A radiance run's model as plain SH for the standard formats: the 3D filter baked in, no extra
+  // properties (what write_baked bakes for such a run). Throws for an intrinsic run, whose colours need bake().
+  GaussianPly radiance_model() const;
+  // Writes a plain SH model in the format out's name says: .spz, .compressed.ply, .splat, .glb or .ply
+  // (core/io/splat_formats.h), through a temporary file.
+  void write_model(const std::filesystem::path& out, const GaussianPly& model) const;
   // frames: orbit frame count (0 = kDefaultOrbitFrames), or for test / train an evenly spaced subset of
   // that many views (0 = all). on_frame(done, total) reports progress.
   RendersReport write_renders(const std::filesystem::path& dir, RenderPath path, int frames,

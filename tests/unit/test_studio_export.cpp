@@ -9,6 +9,8 @@
 
 #include "core/io/image.h"
 #include "core/io/ply.h"
+#include "core/io/splat_compare.h"
+#include "core/io/splat_formats.h"
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
@@ -160,6 +162,7 @@ TEST(StudioExportSettings, RemembersTheDialogsChoices) {
   s.export_baked_iterations = 321;
   s.export_render_path = "orbit";
   s.export_frames = 12;
+  s.export_baked_spz = s.export_baked_splat = s.export_baked_glb = true;
   save_settings(dir / "settings.json", s);
   const StudioSettings r = load_settings(dir / "settings.json");
   EXPECT_FALSE(r.export_ply);
@@ -170,6 +173,8 @@ TEST(StudioExportSettings, RemembersTheDialogsChoices) {
   EXPECT_EQ(r.export_baked_iterations, 321);
   EXPECT_EQ(r.export_render_path, "orbit");
   EXPECT_EQ(r.export_frames, 12);
+  EXPECT_TRUE(r.export_baked_spz && r.export_baked_splat && r.export_baked_glb);
+  EXPECT_FALSE(r.export_baked_compressed_ply);
 
   std::ofstream(dir / "bad.json") << R"({"export_render_path": "sideways"})";
   try {
@@ -236,6 +241,38 @@ TEST(StudioExportJob, WritesEveryPartAndTheFilesLoad) {
   for (const fs::path& f : {rq.ply, rq.baked, rq.renders})
     EXPECT_NE(job.status().find(f.string()), std::string::npos) << job.status();
   EXPECT_EQ(job.runs_ended(), 1u);
+}
+
+TEST(StudioExportJob, TheBakedModelAlsoInTheStandardFormats) {
+  const fs::path run = tiny_intrinsic_run();
+  const fs::path out = test::scratch_dir("studio_export_formats");
+  ExportRequest rq;
+  rq.run_dir = run;
+  rq.baked = out / "baked.ply";
+  rq.baked_iterations = 2;
+  rq.baked_formats = {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter, SplatFormat::Glb};
+  rq.device = "cpu";
+  ExportJob job;
+  job.start(rq);
+  ASSERT_EQ(job.wait(std::chrono::seconds(120)), ExportState::Done) << job.status();
+  const GaussianPly baked = read_ply(rq.baked);
+  for (const char* name : {"baked.spz", "baked.compressed.ply", "baked.splat", "baked.glb"}) {
+    const GaussianPly g = read_gaussians(out / name);
+    EXPECT_EQ(g.count, baked.count) << name;
+    EXPECT_LE(compare_models(baked, g, match_by_position(baked, g)).position.max, 0.01) << name;
+  }
+  const ExportResult r = job.result();
+  ASSERT_EQ(r.written.size(), 6u);  // baked ply, its json, the four formats
+  EXPECT_EQ(r.written[2], out / "baked.spz");
+  EXPECT_NE(r.summary.find("Niantic SPZ"), std::string::npos) << r.summary;
+  EXPECT_TRUE(temp_files(out).empty());
+
+  // The formats hold the baked model: without it the request is refused.
+  ExportRequest alone = rq;
+  alone.baked.clear();
+  alone.ply = out / "m.ply";
+  EXPECT_THROW(check_export_request(alone), Error);
+  EXPECT_EQ(baked_format_path("x/baked.ply", SplatFormat::CompressedPly), fs::path("x/baked.compressed.ply"));
 }
 
 TEST(StudioExportJob, AnUnwritablePathFailsBeforeAnyWork) {
@@ -334,6 +371,10 @@ TEST(StudioExportAppState, TheScriptPressesTheDialogsButton) {
   EXPECT_EQ(r.ply, run / "export" / "model.ply");
   EXPECT_EQ(r.baked, out / "b.ply");
   EXPECT_TRUE(r.renders.empty());
+  EXPECT_TRUE(r.baked_formats.empty());
+  settings.export_baked_spz = true;
+  EXPECT_EQ(st.export_request().baked_formats, std::vector<SplatFormat>{SplatFormat::Spz});
+  settings.export_baked_spz = false;
   settings.export_ply_path.clear();
   EXPECT_THROW(st.export_request(), Error);  // chosen without a path
   EXPECT_NE(run_script(st, host, "export\n")

@@ -1,0 +1,62 @@
+# `goris export --spz --compressed-ply --splat --glb` on tiny runs of the embedded scene: an intrinsic run (the
+# formats hold the distilled model, one distillation shared with --baked) and a radiance run (the model
+# itself); `goris info` names each format and its count, `info --against` measures the quantization against
+# the baked PLY, `goris render --model` renders an export with the run's cameras; a bad name or a damaged
+# file is refused with a message naming it.
+file(REMOVE_RECURSE "${WORK}")
+set(RUN "${WORK}/run")
+set(OUTD "${WORK}/out")
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
+
+goris_fails("needs a file name ending in .spz" export "${WORK}/no_such_run" --spz "${OUTD}/a.ply")
+goris_fails("needs a file name ending in .compressed.ply" export "${WORK}/no_such_run" --compressed-ply "${OUTD}/a.ply")
+
+goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode intrinsic --iters 30 --resolution 48 --device cpu
+         --init-points 2000 --checkpoint-every 0 --set intrinsic_env_resolution=8)
+goris_ok(export "${RUN}" --baked "${OUTD}/baked.ply" --spz "${OUTD}/m.spz" --compressed-ply "${OUTD}/m.compressed.ply"
+         --splat "${OUTD}/m.splat" --glb "${OUTD}/m.glb" --iters 10 --device cpu)
+expect_text("${OUT}" "spz: wrote ${OUTD}/m.spz (Niantic SPZ")
+expect_text("${OUT}" "compressed-ply: wrote")
+expect_text("${OUT}" "splat: wrote")
+expect_text("${OUT}" "glb: wrote")
+
+goris_ok(info "${OUTD}/baked.ply")
+string(REGEX MATCH "([0-9]+) Gaussians" m "${OUT}")
+set(count "${CMAKE_MATCH_1}")
+foreach(f m.spz m.compressed.ply m.splat m.glb)
+  goris_ok(info "${OUTD}/${f}" --against "${OUTD}/baked.ply")
+  expect_text("${OUT}" "${count} Gaussians")
+  expect_text("${OUT}" "against ${OUTD}/baked.ply")
+  expect_text("${OUT}" "rotation  max")
+endforeach()
+goris_ok(info "${OUTD}/m.spz")
+expect_text("${OUT}" "Niantic SPZ version 3")
+goris_ok(info "${OUTD}/m.compressed.ply")
+expect_text("${OUT}" "PlayCanvas compressed PLY")
+
+goris_ok(render "${RUN}" --model "${OUTD}/m.spz" --out "${OUTD}/spz_renders" --device cpu)
+file(GLOB pngs "${OUTD}/spz_renders/*.png")
+list(LENGTH pngs n)
+if(n LESS 1)
+  message(FATAL_ERROR "goris render --model m.spz wrote no PNG")
+endif()
+
+# A radiance run: the formats hold its model without a distillation.
+goris_ok(train "${RESOURCES}/default_scene" --out "${WORK}/radiance" --iters 20 --resolution 48 --device cpu
+         --init-points 2000 --checkpoint-every 0)
+goris_ok(export "${WORK}/radiance" --spz "${OUTD}/r.spz" --splat "${OUTD}/r.splat" --device cpu)
+string(FIND "${OUT}" "distill" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "a radiance run's standard formats needed no distillation:\n${OUT}")
+endif()
+goris_ok(info "${OUTD}/r.spz" --against "${WORK}/radiance/point_cloud.ply")
+
+# Damaged files: the error names the file and the problem.
+execute_process(COMMAND head -c 100 "${OUTD}/m.spz" OUTPUT_FILE "${WORK}/cut.spz" RESULT_VARIABLE rc)  # CMake cannot cut binaries
+if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/cut.spz")
+  message(FATAL_ERROR "could not write ${WORK}/cut.spz")
+endif()
+goris_fails("${WORK}/cut.spz: the gzip stream is truncated" info "${WORK}/cut.spz")
+file(WRITE "${WORK}/odd.splat" "0123456789")
+goris_fails("${WORK}/odd.splat: truncated or corrupt: 10 bytes is not a multiple of 32" info "${WORK}/odd.splat")
+goris_fails("${WORK}/odd.splat" render "${RUN}" --model "${WORK}/odd.splat" --out "${OUTD}/x" --device cpu)

@@ -1,0 +1,7 @@
+// libFuzzer target for the GLB (KHR_gaussian_splatting) reader: any bytes must either decode into a
+// consistent GaussianPly of finite values or throw goris::Error; anything else is a bug.
+#include "tests/fuzz/fuzz_splat_common.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return goris::fuzz::check_decoder(goris::decode_glb, data, size, "fuzz.glb");
+}
