@@ -284,7 +284,8 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
         "cleaned_baked.json; a radiance run is plain SH already and is copied), and the baked model as "
         "`cleaned.spz` (Niantic SPZ 3), `cleaned.compressed.ply` (PlayCanvas), `cleaned.splat` (antimatter15) and "
         "`cleaned.glb` (glTF, KHR_gaussian_splatting) "
-        "for web viewers and engines\n";
+        "for web viewers and engines; videos: `cleaned_orbit.mp4` (a 10-second orbit of the cleaned scene) and "
+        "`before_after.mp4` (the test views with the target | after removal)\n";
   goris::write_file_bytes(out / "report.md", md.data(), md.size());
   std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
 }
@@ -328,6 +329,12 @@ void run_demo(const Options& o) {
         (out / "cleaned.compressed.ply").string(), "--splat", (out / "cleaned.splat").string(), "--glb",
         (out / "cleaned.glb").string(), "--iters", std::to_string(std::max(100, o.iters / 4)), "--device",
         o.device});
+  step("a 10-second orbit of the cleaned scene",
+       {"export", removed.string(), "--video", (out / "cleaned_orbit.mp4").string(), "--seconds", "10", "--device",
+        o.device});
+  step("the test views before | after removal",
+       {"export", removed.string(), "--video", (out / "before_after.mp4").string(), "--before", run.string(),
+        "--path", "test", "--fps", "2", "--device", o.device});
   write_report(o, out, run, renders, times);
 }
 

@@ -1,5 +1,6 @@
 // `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--spz OUT.spz] [--compressed-ply OUT.compressed.ply]
-// [--splat OUT.splat] [--glb OUT.glb] [--renders DIR [--path test|train|orbit] [--frames N]] [--iters N] [--device D]`: the
+// [--splat OUT.splat] [--glb OUT.glb] [--renders DIR [--frames N]] [--video OUT.mp4 [--seconds S] [--fps F]
+// [--before RUN0]] [--path test|train|orbit] [--iters N] [--device D]`: the
 // exports of a run folder (RUN or RUN/removal), see render/export/run_export.h. The standard formats (SPZ,
 // compressed PLY, .splat, GLB: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
 // run the distilled one (one distillation serves --baked and all of them).
@@ -22,14 +23,17 @@
 #include "core/io/splat_formats.h"
 #include "core/util/error.h"
 #include "render/export/run_export.h"
+#include "render/export/video.h"
 
 namespace {
 namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, path = "test", device = "auto";
+  std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, video, before, device = "auto";
+  std::string path;  // empty: test for --renders, orbit for --video
   int frames = 0, iters = 2000, extra_views = -1;
+  double seconds = 10.0, fps = 24.0;
   float geometry_lr_scale = 0.0f;
   float sh_lr_scale = 20.0f;  // DistillSettings' default
   std::uint64_t seed = 0;
@@ -68,14 +72,16 @@ std::vector<FormatOutput> format_outputs(const Options& o) {
 
 void run_export(const Options& o) {
   const std::vector<FormatOutput> formats = format_outputs(o);
-  if (o.ply.empty() && o.baked.empty() && o.renders.empty() && formats.empty())
+  if (o.ply.empty() && o.baked.empty() && o.renders.empty() && o.video.empty() && formats.empty())
     throw Error("goris export", "nothing to export: give at least one of --ply OUT.ply (intrinsic PLY), --baked OUT.ply "
                                 "(distilled standard 3DGS PLY), --spz OUT.spz, --compressed-ply OUT.compressed.ply, "
-                                "--splat OUT.splat, --glb OUT.glb (the baked model in those formats), --renders DIR (PNG frames)");
+                                "--splat OUT.splat, --glb OUT.glb (the baked model in those formats), --renders DIR (PNG frames), "
+                                "--video OUT.mp4 (a turntable)");
   std::vector<std::pair<std::string, const char*>> files;
   if (!o.ply.empty()) files.emplace_back(o.ply, "--ply");
   if (!o.baked.empty()) files.emplace_back(o.baked, "--baked");
   for (const FormatOutput& f : formats) files.emplace_back(f.path, f.option);
+  if (!o.video.empty()) files.emplace_back(o.video, "--video");
   for (size_t i = 0; i < files.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (fs::absolute(files[i].first) == fs::absolute(files[j].first))
@@ -87,7 +93,10 @@ void run_export(const Options& o) {
                                : f.format == SplatFormat::CompressedPly ? ".compressed.ply"
                                : f.format == SplatFormat::Glb           ? ".glb"
                                                                         : ".splat"));
-  const RenderPath path = parse_render_path(o.path);
+  const RenderPath renders_path = parse_render_path(o.path.empty() ? "test" : o.path);
+  const RenderPath video_path = parse_render_path(o.path.empty() ? "orbit" : o.path);
+  if (!o.video.empty() && fs::path(o.video).extension() != ".mp4")
+    throw Error(o.video, "--video writes MPEG-4: the name must end in .mp4");
   // Fail on a bad path now, not after a distillation.
   for (const auto& f : files) check_output_file(f.first);
   if (!o.renders.empty()) check_output_dir(o.renders);
@@ -151,12 +160,26 @@ void run_export(const Options& o) {
     std::fflush(stdout);
   }
   if (!o.renders.empty()) {
-    const RendersReport r = ex.write_renders(o.renders, path, o.frames, [tty](size_t done, size_t total) {
+    const RendersReport r = ex.write_renders(o.renders, renders_path, o.frames, [tty](size_t done, size_t total) {
       if (tty) std::fprintf(stderr, "\rrendering %zu/%zu%s", done, total, done == total ? "\n" : "");
     });
     std::printf("renders: %zu %s frames at %dx%d (%.1f ms each) -> %s, contact sheet %s\n", r.frames.size(),
-                render_path_name(path), r.width, r.height, r.ms_per_frame, r.dir.string().c_str(),
+                render_path_name(renders_path), r.width, r.height, r.ms_per_frame, r.dir.string().c_str(),
                 r.contact_sheet.filename().string().c_str());
+  }
+  if (!o.video.empty()) {
+    std::unique_ptr<RunExport> before;
+    if (!o.before.empty()) before = std::make_unique<RunExport>(o.before, device);
+    VideoSettings vs;
+    vs.path = video_path;
+    vs.seconds = o.seconds;
+    vs.fps = o.fps;
+    const VideoReport v = write_video(ex, o.video, vs, before.get(), [tty](size_t done, size_t total) {
+      if (tty) std::fprintf(stderr, "\rvideo frame %zu/%zu%s", done, total, done == total ? "\n" : "");
+    });
+    std::printf("video: %d %s frames at %dx%d, %.3g fps (%.1f s)%s -> %s\n", v.frames, render_path_name(video_path),
+                v.width, v.height, v.fps, double(v.frames) / v.fps, v.side_by_side ? ", before | after" : "",
+                v.file.string().c_str());
   }
 }
 
@@ -183,11 +206,21 @@ void setup_export(CLI::App& root) {
                 "Write the baked model (as --baked) as glTF binary with KHR_gaussian_splatting (float32, lossless)");
   auto* renders = c->add_option("--renders", o->renders,
                                 "Write one PNG per frame from the run's renderer, contact_sheet.png and cameras.json");
+  auto* video = c->add_option("--video", o->video,
+                              "Write an MPEG-4 video (OUT.mp4) from the run's renderer along --path (default orbit: "
+                              "one turn in --seconds)");
+  c->add_option("--seconds", o->seconds, "--video on the orbit: the length of the turn (default 10)")
+      ->check(CLI::Range(0.01, 600.0))
+      ->needs(video);
+  c->add_option("--fps", o->fps, "--video: frames per second (default 24)")->check(CLI::Range(1.0, 240.0))->needs(video);
+  c->add_option("--before", o->before,
+                "--video: a run with the target (the stage-1 RUN of a RUN/removal) rendered beside it, before | after")
+      ->needs(video);
   c->add_option("--path", o->path,
-                "Cameras for --renders: test (the data set's test views), train, or orbit (a circle around the "
-                "scene at the cameras' mean height and distance, looking at where they look)")
-      ->check(CLI::IsMember({"test", "train", "orbit"}))
-      ->needs(renders);
+                "Cameras for --renders (default test) and --video (default orbit): test (the data set's test views), "
+                "train, or orbit (a circle around the scene at the cameras' mean height and distance, looking at "
+                "where they look)")
+      ->check(CLI::IsMember({"test", "train", "orbit"}));
   c->add_option("--frames", o->frames, "Orbit: number of frames (default 36); test/train: that many evenly spaced views")
       ->check(CLI::NonNegativeNumber)
       ->needs(renders);

@@ -60,3 +60,15 @@ goris_fails("${WORK}/cut.spz: the gzip stream is truncated" info "${WORK}/cut.sp
 file(WRITE "${WORK}/odd.splat" "0123456789")
 goris_fails("${WORK}/odd.splat: truncated or corrupt: 10 bytes is not a multiple of 32" info "${WORK}/odd.splat")
 goris_fails("${WORK}/odd.splat" render "${RUN}" --model "${WORK}/odd.splat" --out "${OUTD}/x" --device cpu)
+
+# Videos: a turntable of seconds * fps frames and a before | after one, each read back by OpenCV before it is
+# renamed into place (write_video fails when the count or size read back differs); a bad name is refused.
+goris_ok(export "${WORK}/radiance" --video "${OUTD}/orbit.mp4" --seconds 1 --fps 6 --device cpu)
+expect_text("${OUT}" "video: 6 orbit frames at 48x")
+if(NOT EXISTS "${OUTD}/orbit.mp4" OR EXISTS "${OUTD}/.orbit.partial.mp4")
+  message(FATAL_ERROR "goris export --video left no orbit.mp4, or its temporary file")
+endif()
+goris_ok(export "${WORK}/radiance" --video "${OUTD}/ba.mp4" --before "${RUN}" --path test --fps 4 --device cpu)
+expect_text("${OUT}" "test frames at 96x")
+expect_text("${OUT}" "before | after")
+goris_fails("the name must end in .mp4" export "${WORK}/radiance" --video "${OUTD}/orbit.avi" --device cpu)
