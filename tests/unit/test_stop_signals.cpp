@@ -1,35 +1,56 @@
-// The CLI's Ctrl-C handler: one interrupt delivered twice in quick succession (timeout(1) signals the child
-// and then its process group) must stop the work gracefully, not kill the process.
+// The CLI's stop handler: SIGINT, SIGTERM and SIGHUP each stop the work gracefully and give the command the
+// shell's exit status for that signal; one interrupt delivered twice in quick succession (timeout(1)
+// signals the child and then its process group) must not kill the process.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <csignal>
 #include <thread>
 
-#include "../../app/goris/ctrl_c.h"
+#include "../../app/goris/stop_signals.h"
 
 namespace goris::cli {
 namespace {
 
-TEST(CtrlC, FirstInterruptRaisesTheStopFlag) {
-  const CtrlC ctrl_c;
-  EXPECT_FALSE(*ctrl_c.flag());
+TEST(StopSignals, FirstInterruptRaisesTheStopFlag) {
+  const StopSignals stop;
+  EXPECT_FALSE(*stop.flag());
+  EXPECT_EQ(stop.exit_code(), 0);
   std::raise(SIGINT);
-  EXPECT_TRUE(*ctrl_c.flag());
+  EXPECT_TRUE(*stop.flag());
+  EXPECT_EQ(stop.exit_code(), 130);
 }
 
-TEST(CtrlC, RepeatWithinHalfASecondIsTheSameInterrupt) {
-  const CtrlC ctrl_c;
+TEST(StopSignals, TerminateAndHangUpStopToo) {
+  {
+    const StopSignals stop;
+    std::raise(SIGTERM);
+    EXPECT_TRUE(*stop.flag());
+    EXPECT_EQ(stop.signal(), SIGTERM);
+    EXPECT_EQ(stop.exit_code(), 143);
+  }
+  {
+    const StopSignals stop;
+    EXPECT_FALSE(*stop.flag());  // a new object starts unstopped
+    std::raise(SIGHUP);
+    EXPECT_TRUE(*stop.flag());
+    EXPECT_EQ(stop.exit_code(), 129);
+    EXPECT_EQ(stop_signal_name(stop.signal()), "SIGHUP");
+  }
+}
+
+TEST(StopSignals, RepeatWithinHalfASecondIsTheSameInterrupt) {
+  const StopSignals stop;
   std::raise(SIGINT);
   std::raise(SIGINT);  // would end the process if taken as a second Ctrl-C
   std::raise(SIGINT);
-  EXPECT_TRUE(*ctrl_c.flag());
+  EXPECT_TRUE(*stop.flag());
 }
 
-TEST(CtrlC, SecondInterruptLaterEndsTheProcess) {
+TEST(StopSignals, SecondInterruptLaterEndsTheProcess) {
   EXPECT_EXIT(
       {
-        const CtrlC ctrl_c;
+        const StopSignals stop;
         std::raise(SIGINT);
         std::this_thread::sleep_for(std::chrono::milliseconds(600));
         std::raise(SIGINT);
@@ -38,10 +59,23 @@ TEST(CtrlC, SecondInterruptLaterEndsTheProcess) {
       ::testing::KilledBySignal(SIGINT), "");
 }
 
-TEST(CtrlC, PreviousHandlerComesBack) {
-  const auto before = std::signal(SIGINT, SIG_IGN);
-  { const CtrlC ctrl_c; }
-  EXPECT_EQ(std::signal(SIGINT, before), SIG_IGN);
+TEST(StopSignals, ADifferentSecondSignalEndsTheProcess) {
+  EXPECT_EXIT(
+      {
+        const StopSignals stop;
+        std::raise(SIGTERM);
+        std::raise(SIGINT);
+        std::_Exit(0);  // not reached
+      },
+      ::testing::KilledBySignal(SIGINT), "");
+}
+
+TEST(StopSignals, PreviousHandlersComeBack) {
+  const auto int_before = std::signal(SIGINT, SIG_IGN);
+  const auto term_before = std::signal(SIGTERM, SIG_IGN);
+  { const StopSignals stop; }
+  EXPECT_EQ(std::signal(SIGINT, int_before), SIG_IGN);
+  EXPECT_EQ(std::signal(SIGTERM, term_before), SIG_IGN);
 }
 
 }  // namespace
