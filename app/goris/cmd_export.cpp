@@ -1,7 +1,8 @@
 // `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--renders DIR [--path test|train|orbit] [--frames N]]
 // [--iters N] [--device D]`: the exports of a run folder (RUN or RUN/removal), see render/export/run_export.h.
-// Every output path is checked before any work starts; Ctrl-C during the distillation ends it early and the
-// baked model so far is still written (marked "stopped" in its json).
+// Every output path is checked before any work starts; SIGINT, SIGTERM or SIGHUP during the distillation ends
+// it early, the baked model so far is still written (marked "stopped" in its json), the exports after it are
+// skipped and the command exits 130, 143 or 129.
 #include <unistd.h>
 
 #include <atomic>
@@ -13,7 +14,10 @@
 #include <string>
 
 #include "app/goris/command.h"
-#include "app/goris/ctrl_c.h"
+#include "app/goris/number_checks.h"
+#include "app/goris/stop_signals.h"
+#include "core/train/run_folder.h"
+#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/export/run_export.h"
 
@@ -52,10 +56,19 @@ void run_export(const Options& o) {
   if (!o.ply.empty() && !o.baked.empty() && fs::absolute(o.ply) == fs::absolute(o.baked))
     throw Error(o.ply, "--ply and --baked name the same file");
   const RenderPath path = parse_render_path(o.path);
-  // Fail on a bad path now, not after a distillation.
-  if (!o.ply.empty()) check_output_file(o.ply);
-  if (!o.baked.empty()) check_output_file(o.baked);
-  if (!o.renders.empty()) check_output_dir(o.renders);
+  // Fail on a bad path now, not after a distillation: never into the data set or over the run's inputs.
+  const fs::path run_dir = fs::absolute(o.run);
+  OutputGuard guard;
+  try {
+    guard = run_output_guard(run_dir, read_run_config(run_dir));
+  } catch (const Error&) {
+  }  // not a run: RunExport below says so, after the paths' own problems
+  if (!o.ply.empty()) check_output_file(o.ply, guard);
+  if (!o.baked.empty()) {
+    check_output_file(o.baked, guard);
+    check_output_file(baked_json_path(o.baked), guard);
+  }
+  if (!o.renders.empty()) check_output_dir(o.renders, guard);
 
   const Device device = resolve_device(o.device);
   RunExport ex(o.run, device);
@@ -89,11 +102,19 @@ void run_export(const Options& o) {
       if (tty && p.done == p.total) std::fprintf(stderr, "\n");
     };
     BakedReport r;
+    int stopped_by = 0;
     {
-      const cli::CtrlC ctrl_c;
-      r = ex.write_baked(o.baked, s, progress, ctrl_c.flag());
+      const cli::StopSignals stop;
+      r = ex.write_baked(o.baked, s, progress, stop.flag());
+      stopped_by = stop.signal();
     }
     print_baked(r);
+    if (stopped_by) {
+      std::printf("interrupted (%s): the distillation stopped early%s\n", cli::stop_signal_name(stopped_by).c_str(),
+                  o.renders.empty() ? "" : "; --renders skipped");
+      cli::set_exit_code(128 + stopped_by);
+      return;
+    }
     std::fflush(stdout);
   }
   if (!o.renders.empty()) {
@@ -125,25 +146,27 @@ void setup_export(CLI::App& root) {
       ->check(CLI::IsMember({"test", "train", "orbit"}))
       ->needs(renders);
   c->add_option("--frames", o->frames, "Orbit: number of frames (default 36); test/train: that many evenly spaced views")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::whole(0, 100000))
       ->needs(renders);
   c->add_option("--iters", o->iters, "Distillation iterations for --baked (default 2000)")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::whole(1, cli::kIntMax))
       ->needs(baked);
   c->add_option("--extra-views", o->extra_views,
                 "Cameras interpolated between training cameras as extra distillation targets (default: as many as "
                 "the training cameras)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::whole(0, 100000))
       ->needs(baked);
   c->add_option("--geometry-lr", o->geometry_lr_scale,
                 "Position/scale/rotation/opacity learning rates during distillation, as a factor of the run's "
                 "(default 0: geometry frozen)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::real(0, cli::kRealMax))
       ->needs(baked);
   c->add_option("--sh-lr", o->sh_lr_scale, "SH learning rates during distillation, as a factor of the run's (default 20)")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::real(1e-30, cli::kRealMax))
       ->needs(baked);
-  c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")->needs(baked);
+  c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")
+      ->check(cli::whole(0, cli::kSeedMax))
+      ->needs(baked);
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_export(*o); });
 }

@@ -3,6 +3,7 @@
 # errors that say what to change.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(RUN "${WORK}/run")
 
 # The random initial points fill only the middle of the views, so the image corners show background.

@@ -6,6 +6,7 @@ if(NOT EXISTS "${SHARED}/datasets/lego")
   return()
 endif()
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 get_filename_component(DATA "${SHARED}/datasets/lego" REALPATH)
 set(RUN "${WORK}/run")
 

@@ -189,8 +189,8 @@ TEST(StudioExportJob, WritesEveryPartAndTheFilesLoad) {
   const GaussianModel model = load_run_model(run, Device::CPU);
   ExportRequest rq;
   rq.run_dir = run;
-  rq.ply = out / "a" / "model.ply";
-  rq.baked = out / "b" / "baked.ply";
+  rq.ply = out / "model.ply";
+  rq.baked = out / "baked.ply";
   rq.baked_iterations = 3;
   rq.renders = out / "frames";
   rq.render_path = RenderPath::Orbit;
