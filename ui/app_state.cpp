@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/compute/device.h"
+#include "core/io/output_path.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
@@ -207,6 +208,13 @@ void AppState::start_training(int iterations, bool more) {
     if (run_folder.empty()) run_folder = default_run_folder(scene_->path);
     rq.run_dir = run_folder;
     rq.data = scene_->path;
+    // The CLI's rules (goris train): a new run never goes into a data set, and a folder that already holds
+    // another run is not silently resumed with that run's settings instead of these.
+    const bool this_sessions_run = fs::absolute(rq.run_dir) == session_.run_dir();
+    if (!this_sessions_run && (fs::exists(run_config_path(rq.run_dir)) || latest_checkpoint(rq.run_dir)))
+      throw Error(rq.run_dir.string(), "already holds a training run: open that run to continue it, or choose another "
+                                       "output folder");
+    check_output_dir(rq.run_dir, OutputGuard{{rq.data}, {}});
   }
   session_.start(rq);
   message("training into " + rq.run_dir.string());

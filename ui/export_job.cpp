@@ -280,12 +280,20 @@ void ExportJob::work(ExportRequest rq) {
     result_.summary += (result_.summary.empty() ? "" : "\n") + line;
   };
   try {
-    // Every output path first, so that a typo fails now and not after a distillation.
+    // Every output path first, so that a typo fails now and not after a distillation. The dialog proposes
+    // files in a folder of their own (RUN/export): that one folder is made when its parent exists, as the
+    // CLI makes an output folder; deeper missing paths are refused.
+    auto check_file = [](const fs::path& f) {
+      const fs::path dir = fs::absolute(f).parent_path();
+      std::error_code ec;
+      if (!fs::exists(dir, ec) && fs::is_directory(dir.parent_path(), ec)) check_output_dir(dir);
+      check_output_file(f);
+    };
     part = ExportPart::Ply;
-    if (!rq.ply.empty()) check_output_file(rq.ply);
+    if (!rq.ply.empty()) check_file(rq.ply);
     part = ExportPart::Baked;
-    if (!rq.baked.empty()) check_output_file(rq.baked);
-    for (SplatFormat f : rq.baked_formats) check_output_file(baked_format_path(rq.baked, f));
+    if (!rq.baked.empty()) check_file(rq.baked);
+    for (SplatFormat f : rq.baked_formats) check_file(baked_format_path(rq.baked, f));
     part = ExportPart::Renders;
     if (!rq.renders.empty()) check_output_dir(rq.renders);
 

@@ -155,7 +155,11 @@ void RemovalSession::work(fs::path run_dir, RemovalOptions options) {
     char line[256];
     std::snprintf(line, sizeof line, "done: %zu Gaussians removed, %zu added, %d fine-tune iterations -> %s",
                   report.selected, report.added, report.finetune_iterations, report.out_dir.string().c_str());
-    finish(RemovalState::Done, line);
+    std::string status = line;
+    if (!report.finetune_restarted.empty())
+      status += " (the fine-tune started over: the earlier one was made from other inputs, changed: " +
+                report.finetune_restarted + ")";
+    finish(RemovalState::Done, status);
   } catch (const std::exception& e) {
     if (stop_)  // the 2D inpainting stops by throwing
       finish(RemovalState::Cancelled, "cancelled; the run folder is consistent: Remove again resumes");

@@ -9,9 +9,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
+#include <thread>
 
+#include "app/goris/stop_signals.h"
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
 #include "core/util/error.h"
@@ -91,7 +95,26 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
   }
   int status = 0;
   struct rusage ru {};
-  wait4(pid, &status, 0, &ru);
+  int stopped_by = 0;
+  {
+    // A stop signal sent to the bench alone (kill, timeout, a cancelled job) is passed on to the child, which
+    // checkpoints and exits; then the bench stops with the status for that signal.
+    const cli::StopSignals stop;
+    while (wait4(pid, &status, WNOHANG, &ru) == 0) {
+      if (stop.signal() && !stopped_by) {
+        stopped_by = stop.signal();
+        kill(pid, stopped_by);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (!stopped_by) stopped_by = stop.signal();
+  }
+  if (stopped_by) {
+    std::printf("    %-8s interrupted (%s): stopping the bench [log %s]\n", step.c_str(),
+                cli::stop_signal_name(stopped_by).c_str(), log.string().c_str());
+    std::fflush(stdout);
+    std::exit(128 + stopped_by);
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.peak_mib = double(ru.ru_maxrss) / 1024.0;  // Linux: KiB
   r.cpu_seconds = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/goris/command.h"
+#include "app/goris/number_checks.h"
 #include "core/compute/kernel_profile.h"
 #include "core/compute/memory.h"
 #include "core/io/dataset.h"
@@ -189,8 +190,8 @@ void setup_bench_intrinsic(CLI::App& root) {
   auto kernels = std::make_shared<bool>(false);
   c->add_option("run", *run, "An intrinsic run folder (goris train --mode intrinsic)")->required();
   c->add_option("--view", *view, "Training view index")->capture_default_str();
-  c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
-  c->add_option("--threads", *threads, "CPU threads (0 = all)")->capture_default_str()->check(CLI::NonNegativeNumber);
+  c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(cli::whole(1, 1000));
+  c->add_option("--threads", *threads, "CPU threads (0 = all)")->capture_default_str()->check(cli::whole(0, 4096));
   c->add_option("--device", *device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->add_option("--coarse-tracing", *coarse,
                 "run (as the run was trained) | on | off | both (off then on, with the PSNR between the two frames)")
@@ -198,10 +199,10 @@ void setup_bench_intrinsic(CLI::App& root) {
       ->check(CLI::IsMember({"run", "on", "off", "both"}));
   c->add_option("--coarse-max-level", *coarse_level, "Largest coarse-tracing block 2^N pixels wide (0 = the run's)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 3));
+      ->check(cli::whole(0, 3));
   c->add_option("--resolution", *resolution, "Render the view at this width in pixels (0 = the run's)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 8192));
+      ->check(cli::whole(0, 8192));
   c->add_flag("--kernels", *kernels,
               "Also time every launch site (parallel_for, blend, CPU tracer, sorts, scans) over the timed iterations (the last coarse-tracing set-up; "
               "on CUDA each launch is synchronised, so the stage times grow)");

@@ -27,6 +27,7 @@
 #include "app/goris/bench_child.h"
 #include "app/goris/bench_suite.h"
 #include "app/goris/command.h"
+#include "app/goris/number_checks.h"
 #include "core/io/file_bytes.h"
 #include "core/report/chart.h"
 #include "core/report/pareto.h"
@@ -772,10 +773,10 @@ void setup_bench_pipeline(CLI::App& root) {
   c->add_option("--configs", o->configs, "Comma-separated: " + config_names() + " or all")->capture_default_str();
   c->add_option("--resolution", o->resolution, "Train and evaluate at this image width (0 = the data set's)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 8192));
+      ->check(goris::cli::whole(0, 8192));
   c->add_option("--init-points", o->init_points, "Random initial points of every stage 1 (0 = goris train's default)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 100000000));
+      ->check(goris::cli::whole(0, 100000000));
   c->add_option("--out", o->out, "Output folder (results.csv, results.md, chart*.svg/png, runs/)")->required();
   c->add_option("--schedule", o->schedules, "short (500 iterations), medium (2000), long (8000), full (30000); repeatable")
       ->capture_default_str()

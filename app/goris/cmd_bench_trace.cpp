@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "app/goris/command.h"
+#include "app/goris/number_checks.h"
 #include "core/compute/buffer.h"
 #include "core/io/npy.h"
 #include "core/util/bench.h"
@@ -200,8 +201,8 @@ void setup_bench_trace(CLI::App& root) {
   auto repeats = std::make_shared<int>(5);
   c->add_option("--shared", *shared, "folder holding fixtures/rasterizer_garden and fixtures/tracer_garden")
       ->capture_default_str();
-  c->add_option("--image", *image, "side of the square camera image traced")->capture_default_str()->check(CLI::Range(1, 4096));
-  c->add_option("--repeats", *repeats, "timed runs (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
+  c->add_option("--image", *image, "side of the square camera image traced")->capture_default_str()->check(goris::cli::whole(1, 4096));
+  c->add_option("--repeats", *repeats, "timed runs (median reported)")->capture_default_str()->check(goris::cli::whole(1, 1000));
   c->callback([shared, image, repeats] { run_bench(*shared, *image, *repeats); });
 }
 

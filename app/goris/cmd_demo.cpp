@@ -25,6 +25,7 @@
 
 #include "app/goris/bench_child.h"
 #include "app/goris/command.h"
+#include "app/goris/number_checks.h"
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/metrics/removal_metrics.h"
@@ -343,7 +344,7 @@ void setup_demo(CLI::App& root) {
   auto* c = root.add_subcommand("demo", "Train, remove the target, render and evaluate the embedded default scene; write a report");
   c->add_option("--data", o->data, "Data set (default: the embedded default scene)")->capture_default_str();
   c->add_option("--out", o->out, "Output folder (report.md, images, run/)")->capture_default_str();
-  c->add_option("--iters", o->iters, "Training iterations")->capture_default_str()->check(CLI::PositiveNumber);
+  c->add_option("--iters", o->iters, "Training iterations")->capture_default_str()->check(goris::cli::whole(1, goris::cli::kIntMax));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->add_option("--mode", o->mode, "Stage-1 mode: radiance (fast), intrinsic or auto")
       ->capture_default_str()

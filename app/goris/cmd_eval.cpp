@@ -43,6 +43,7 @@
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/util/bench.h"
+#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "core/compute/memory.h"
 #include "core/train/normal_prior.h"
@@ -218,6 +219,8 @@ std::optional<MaterialSeparation> material_separation(const TrainConfig& config,
 void run_eval(const Options& o) {
   const fs::path run_dir = fs::absolute(o.run);
   const TrainConfig config = read_run_config(run_dir);
+  const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
+  check_output_file(out, run_output_guard(run_dir, config));  // never into the data set or over the run's files
   const Device device = resolve_device(o.device);
   const DatasetOptions dopt = dataset_options(config);
   const Dataset ds = load_dataset(config.data, dopt);
@@ -311,7 +314,6 @@ void run_eval(const Options& o) {
                  {"views", m_psnrs.size()},
                  {"region", "bounding box of the object mask (>= 0.5), grown by 10% per side (min 4 px)"}};
   j["flip"] = number_or_null(mean_of(flips));
-  const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
   const fs::path sheet_path = out.parent_path() / (out.stem().string() + "_removal.png");
   if (!region_fractions.empty()) {
     j["removal"] = {{"views", region_psnrs.size()},

@@ -4,8 +4,9 @@
 // exports of a run folder (RUN or RUN/removal), see render/export/run_export.h. The standard formats (SPZ,
 // compressed PLY, .splat, GLB: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
 // run the distilled one (one distillation serves --baked and all of them).
-// Every output path is checked before any work starts; Ctrl-C during the distillation ends it early and the
-// baked model so far is still written (marked "stopped" in its json).
+// Every output path is checked before any work starts; SIGINT, SIGTERM or SIGHUP during the distillation ends
+// it early, the baked model so far is still written (marked "stopped" in its json), the exports after it are
+// skipped and the command exits 130, 143 or 129.
 #include <unistd.h>
 
 #include <atomic>
@@ -19,8 +20,11 @@
 #include <vector>
 
 #include "app/goris/command.h"
-#include "app/goris/ctrl_c.h"
+#include "app/goris/number_checks.h"
+#include "app/goris/stop_signals.h"
 #include "core/io/splat_formats.h"
+#include "core/train/run_folder.h"
+#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/export/run_export.h"
 #include "render/export/video.h"
@@ -71,6 +75,8 @@ std::vector<FormatOutput> format_outputs(const Options& o) {
 }
 
 void run_export(const Options& o) {
+  if (!o.path.empty() && o.renders.empty() && o.video.empty())
+    throw Error("--path", "--path chooses the cameras of --renders or --video: give one of them");
   const std::vector<FormatOutput> formats = format_outputs(o);
   if (o.ply.empty() && o.baked.empty() && o.renders.empty() && o.video.empty() && formats.empty())
     throw Error("goris export", "nothing to export: give at least one of --ply OUT.ply (intrinsic PLY), --baked OUT.ply "
@@ -79,7 +85,10 @@ void run_export(const Options& o) {
                                 "--video OUT.mp4 (a turntable)");
   std::vector<std::pair<std::string, const char*>> files;
   if (!o.ply.empty()) files.emplace_back(o.ply, "--ply");
-  if (!o.baked.empty()) files.emplace_back(o.baked, "--baked");
+  if (!o.baked.empty()) {
+    files.emplace_back(o.baked, "--baked");
+    files.emplace_back(baked_json_path(o.baked).string(), "--baked's json");
+  }
   for (const FormatOutput& f : formats) files.emplace_back(f.path, f.option);
   if (!o.video.empty()) files.emplace_back(o.video, "--video");
   for (size_t i = 0; i < files.size(); ++i)
@@ -97,9 +106,15 @@ void run_export(const Options& o) {
   const RenderPath video_path = parse_render_path(o.path.empty() ? "orbit" : o.path);
   if (!o.video.empty() && fs::path(o.video).extension() != ".mp4")
     throw Error(o.video, "--video writes MPEG-4: the name must end in .mp4");
-  // Fail on a bad path now, not after a distillation.
-  for (const auto& f : files) check_output_file(f.first);
-  if (!o.renders.empty()) check_output_dir(o.renders);
+  // Fail on a bad path now, not after a distillation: never into the data set or over the run's inputs.
+  const fs::path run_dir = fs::absolute(o.run);
+  OutputGuard guard;
+  try {
+    guard = run_output_guard(run_dir, read_run_config(run_dir));
+  } catch (const Error&) {
+  }  // not a run: RunExport below says so, after the paths' own problems
+  for (const auto& f : files) check_output_file(f.first, guard);
+  if (!o.renders.empty()) check_output_dir(o.renders, guard);
 
   const Device device = resolve_device(o.device);
   RunExport ex(o.run, device);
@@ -136,9 +151,11 @@ void run_export(const Options& o) {
       if (tty && p.done == p.total) std::fprintf(stderr, "\n");
     };
     BakedReport r;
+    int stopped_by = 0;
     {
-      const cli::CtrlC ctrl_c;
-      r = ex.bake(s, progress, ctrl_c.flag());
+      const cli::StopSignals stop;
+      r = ex.bake(s, progress, stop.flag());
+      stopped_by = stop.signal();
     }
     if (!o.baked.empty()) {
       ex.write_baked_files(r, o.baked);
@@ -146,6 +163,12 @@ void run_export(const Options& o) {
     } else {
       std::printf("baked: %d iterations%s, fidelity PSNR %.2f dB against the run's shaded renders on %zu held-out views\n",
                   r.distill.iterations, r.distill.stopped ? " (stopped)" : "", r.distill.psnr, r.distill.holdout_views);
+    }
+    if (stopped_by) {
+      std::printf("interrupted (%s): the distillation stopped early; the exports after --baked are skipped\n",
+                  cli::stop_signal_name(stopped_by).c_str());
+      cli::set_exit_code(128 + stopped_by);
+      return;
     }
     std::fflush(stdout);
     plain = std::move(r.distill.ply);
@@ -210,9 +233,9 @@ void setup_export(CLI::App& root) {
                               "Write an MPEG-4 video (OUT.mp4) from the run's renderer along --path (default orbit: "
                               "one turn in --seconds)");
   c->add_option("--seconds", o->seconds, "--video on the orbit: the length of the turn (default 10)")
-      ->check(CLI::Range(0.01, 600.0))
+      ->check(cli::real(0.01, 600.0))
       ->needs(video);
-  c->add_option("--fps", o->fps, "--video: frames per second (default 24)")->check(CLI::Range(1.0, 240.0))->needs(video);
+  c->add_option("--fps", o->fps, "--video: frames per second (default 24)")->check(cli::real(1.0, 240.0))->needs(video);
   c->add_option("--before", o->before,
                 "--video: a run with the target (the stage-1 RUN of a RUN/removal) rendered beside it, before | after")
       ->needs(video);
@@ -222,21 +245,22 @@ void setup_export(CLI::App& root) {
                 "where they look)")
       ->check(CLI::IsMember({"test", "train", "orbit"}));
   c->add_option("--frames", o->frames, "Orbit: number of frames (default 36); test/train: that many evenly spaced views")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::whole(0, 100000))
       ->needs(renders);
-  c->add_option("--iters", o->iters, "Distillation iterations for --baked, and for --spz / --compressed-ply / --splat of an intrinsic run (default 2000)")
-      ->check(CLI::PositiveNumber);
+  c->add_option("--iters", o->iters, "Distillation iterations for --baked, and for the standard formats of an intrinsic run (default 2000)")
+      ->check(cli::whole(1, cli::kIntMax));
   c->add_option("--extra-views", o->extra_views,
                 "Cameras interpolated between training cameras as extra distillation targets (default: as many as "
                 "the training cameras)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::whole(0, 100000));
   c->add_option("--geometry-lr", o->geometry_lr_scale,
                 "Position/scale/rotation/opacity learning rates during distillation, as a factor of the run's "
                 "(default 0: geometry frozen)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::real(0, cli::kRealMax));
   c->add_option("--sh-lr", o->sh_lr_scale, "SH learning rates during distillation, as a factor of the run's (default 20)")
-      ->check(CLI::PositiveNumber);
-  c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras");
+      ->check(cli::real(1e-30, cli::kRealMax));
+  c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")
+      ->check(cli::whole(0, cli::kSeedMax));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_export(*o); });
 }

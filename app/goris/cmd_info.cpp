@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/goris/command.h"
+#include "app/goris/number_checks.h"
 #include "core/io/dataset.h"
 #include "core/io/ply.h"
 #include "core/io/splat_compare.h"
@@ -118,11 +119,11 @@ void setup_info(CLI::App& root) {
       ->check(CLI::IsMember({"position", "index"}))
       ->needs(ag);
   auto* r = c->add_option("--resolution", resolution, "load images at this width in pixels (height keeps the aspect)")
-                ->check(CLI::PositiveNumber);
-  c->add_option("--downscale", downscale, "divide the image size by this factor")->check(CLI::PositiveNumber)->excludes(r);
+                ->check(goris::cli::whole(1, 65536));
+  c->add_option("--downscale", downscale, "divide the image size by this factor")->check(goris::cli::real(1, 1000))->excludes(r);
   c->add_option("--test-every", test_every,
                 "hold out every N-th view for testing (instant-ngp, COLMAP, LLFF); 0 = none")
-      ->check(CLI::NonNegativeNumber)
+      ->check(goris::cli::whole(0, goris::cli::kIntMax))
       ->capture_default_str();
   c->callback([] {
     const fs::path p(path);

@@ -1,7 +1,8 @@
 // `goris remove RUN [--inpainter NAME | --inpainted DIR] [--ablate material|lamask] [--iters N]`: stage 2 on a
 // trained run (render/removal/removal_pipeline.h): each step with its progress, every intermediate in
-// RUN/removal/, the cleaned scene as the run folder RUN/removal (render / eval / export take it). Ctrl-C
-// stops at the next safe point; running the command again resumes.
+// RUN/removal/, the cleaned scene as the run folder RUN/removal (render / eval / export take it). SIGINT,
+// SIGTERM or SIGHUP stops at the next safe point with exit status 130, 143 or 129; running the command
+// again resumes.
 #include <unistd.h>
 
 #include <atomic>
@@ -13,7 +14,8 @@
 #include <vector>
 
 #include "app/goris/command.h"
-#include "app/goris/ctrl_c.h"
+#include "app/goris/number_checks.h"
+#include "app/goris/stop_signals.h"
 #include "core/compute/device.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
@@ -57,18 +59,25 @@ void run_remove(const Options& o) {
     std::fflush(stderr);
   };
   RemovalReport r;
+  int stopped_by = 0;
   {
-    const cli::CtrlC ctrl_c;
+    const cli::StopSignals stop;
     try {
-      r = run_removal(o.run, ro, progress, ctrl_c.flag());
+      r = run_removal(o.run, ro, progress, stop.flag());
     } catch (...) {
       if (tty) std::fprintf(stderr, "\n");
       throw;
     }
+    stopped_by = stop.signal();
   }
   if (tty) std::fprintf(stderr, "\n");
+  if (!r.finetune_restarted.empty())
+    std::printf("the fine-tune started over: the earlier one in %s was made from other inputs (changed: %s)\n",
+                r.out_dir.string().c_str(), r.finetune_restarted.c_str());
   if (r.cancelled) {
-    std::printf("interrupted; run the same command again to resume (%s)\n", r.out_dir.string().c_str());
+    std::printf("interrupted (%s); run the same command again to resume (%s)\n",
+                cli::stop_signal_name(stopped_by).c_str(), r.out_dir.string().c_str());
+    cli::set_exit_code(128 + stopped_by);
     return;
   }
   double total = 0;
@@ -103,7 +112,8 @@ void setup_remove(CLI::App& root) {
                 "The fine-tune inside the lighting-aware mask: dereflect (the photo minus stage 1's estimate of the "
                 "target's reflection) or exclude (no photo loss there, the paper)")
       ->check(CLI::IsMember({"dereflect", "exclude"}));
-  c->add_option("--iters", o->iters, "Fine-tune iterations (default: 4000 scaled like stage 1)")->check(CLI::PositiveNumber);
+  c->add_option("--iters", o->iters, "Fine-tune iterations (default: 4000 scaled like stage 1)")
+      ->check(cli::whole(1, cli::kIntMax));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_remove(*o); });
 }

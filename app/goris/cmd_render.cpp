@@ -16,6 +16,7 @@
 #include "core/train/depth_normal_loss.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
+#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/maps/gbuffer_maps.h"
 #include "render/raster/rasterizer.h"
@@ -45,6 +46,8 @@ constexpr ExtraMap kExtraMaps[] = {{"diffuse", extra::kDiffuse, 3}, {"fresnel", 
 void run_render(const Options& o) {
   const fs::path run_dir = fs::absolute(o.run);
   const TrainConfig config = read_run_config(run_dir);
+  const fs::path out = fs::absolute(o.out);
+  check_output_dir(out, run_output_guard(run_dir, config));  // never into the data set or over the run's files
   const Device device = resolve_device(o.device);
   const Dataset ds = load_dataset(config.data, dataset_options(config));
   const std::vector<View>& views = o.split == "test" ? ds.test : ds.train;
@@ -52,8 +55,6 @@ void run_render(const Options& o) {
   std::string source = o.model;
   GaussianModel model = o.model.empty() ? load_run_model(run_dir, device, &source)
                                         : GaussianModel::from_ply(read_gaussians(o.model), device);
-  const fs::path out = fs::absolute(o.out);
-  fs::create_directories(out);
   std::printf("rendering %zu %s views of %s (%zu Gaussians, %s) on %s -> %s\n", views.size(), o.split.c_str(),
               run_dir.string().c_str(), model.count(), source.c_str(), device_name(device), out.string().c_str());
 

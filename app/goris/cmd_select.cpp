@@ -17,10 +17,12 @@
 #include <nlohmann/json.hpp>
 
 #include "app/goris/command.h"
+#include "app/goris/number_checks.h"
 #include "core/io/dataset.h"
 #include "core/io/image.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
+#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/removal/selection.h"
 #include "render/train/raster_renderer.h"
@@ -106,6 +108,11 @@ void run_select(const Options& o, int n_methods) {
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path run_dir = fs::absolute(o.run);
   const TrainConfig config = read_run_config(run_dir);
+  // Never into the data set or over the run's other files (the selection itself is this command's output).
+  const fs::path json_path = o.out.empty() ? selection_json_path(run_dir) : fs::absolute(o.out);
+  const OutputGuard guard = run_output_guard(run_dir, config, /*keep_selection=*/false);
+  check_output_file(json_path, guard);
+  check_output_file(json_path.parent_path() / (json_path.stem().string() + ".npy"), guard);
   const Device device = resolve_device(o.device);
   const Dataset ds = load_dataset(config.data, dataset_options(config));
   if (ds.train.empty()) throw Error(config.data, "the data set has no training views");
@@ -254,8 +261,6 @@ void run_select(const Options& o, int n_methods) {
   const fs::path rel = fs::relative(source, run_dir, ec);
   record.model_source = !ec && !rel.empty() && rel.native()[0] != '.' ? rel.string() : source;
   record.model_fingerprint = model_fingerprint(model);
-  const fs::path json_path = o.out.empty() ? selection_json_path(run_dir) : fs::absolute(o.out);
-  if (json_path.has_parent_path()) fs::create_directories(json_path.parent_path());
   write_selection(json_path, record, result.mask);
   std::printf("wrote %s and %s\n", json_path.string().c_str(),
               (json_path.parent_path() / (json_path.stem().string() + ".npy")).string().c_str());
@@ -295,7 +300,7 @@ void setup_select(CLI::App& root) {
       ->check(CLI::Range(0.001, 1.0));
   c->add_flag("--no-close", o->no_close, "Do not add the Gaussians inside the hull of the selected centres");
   c->add_option("--out", o->out, "Selection file to write (default RUN/selection.json; the mask goes beside it)");
-  c->add_option("--previews", o->previews, "Preview images of training views to write")->check(CLI::Range(0, 1000));
+  c->add_option("--previews", o->previews, "Preview images of training views to write")->check(cli::whole(0, 1000));
   c->add_option("--device", o->device, "auto | cpu | cuda (rendering for masks and previews)")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o, click, masks, labels] {

@@ -1,6 +1,7 @@
 // `goris train DATA --out RUN`: stage-1 training (radiance mode) into a run folder: config.json,
-// checkpoints/, log.csv and the final point_cloud.ply. Ctrl-C finishes the current iteration, writes a
-// checkpoint and exits 0 with the command that resumes the run.
+// checkpoints/, log.csv and the final point_cloud.ply. SIGINT (Ctrl-C), SIGTERM or SIGHUP finishes the
+// current iteration, writes a checkpoint, prints the command that resumes the run and exits 130, 143 or 129
+// (stop_signals.h), so that `goris train ... && next` does not go on with an unfinished run.
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,8 +17,10 @@
 #include <nlohmann/json.hpp>
 
 #include "app/goris/command.h"
-#include "app/goris/ctrl_c.h"
+#include "app/goris/number_checks.h"
+#include "app/goris/stop_signals.h"
 #include "core/compute/device.h"
+#include "core/io/output_path.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/train/trainer.h"
@@ -40,7 +43,7 @@ struct Options {
   std::optional<std::uint64_t> seed;
   std::vector<std::string> sets;  // KEY=VALUE overrides of config.json keys
   std::string preset;             // a named group of overrides, applied before `sets`
-  bool resume = false;
+  bool resume = false, restart = false;
 };
 
 std::string shell_quote(const std::string& s) {
@@ -65,10 +68,18 @@ void reject_changes_on_resume(const Options& o) {
   no(!o.preset.empty(), "--preset");
 }
 
+// --restart: the files of an earlier training run in `run_dir` go, so that nothing of it is resumed or read.
+void remove_training_run(const fs::path& run_dir) {
+  std::error_code ec;
+  fs::remove_all(run_dir / "checkpoints", ec);
+  for (const fs::path& f : {run_config_path(run_dir), run_ply_path(run_dir), run_dir / "log.csv", run_dir / "densify_stop.json"})
+    fs::remove(f, ec);
+}
+
 void run_train(const Options& o) {
-  // Ctrl-C from the start: one pressed while the data loads stops the run at its first step with a checkpoint
-  // (resumable), instead of killing it between writing config.json and its first checkpoint.
-  const cli::CtrlC ctrl_c;
+  // Stop signals from the start: one that comes while the data loads stops the run at its first step with a
+  // checkpoint (resumable), instead of killing it between writing config.json and its first checkpoint.
+  const cli::StopSignals stop;
   const fs::path run_dir = fs::absolute(o.out);
   const fs::path data = fs::weakly_canonical(fs::absolute(o.data));
   std::optional<ResumePoint> resumed;
@@ -76,15 +87,26 @@ void run_train(const Options& o) {
   if (o.resume) {
     reject_changes_on_resume(o);
     resumed = read_latest_checkpoint(run_dir);
-    if (!resumed) throw Error(run_dir.string(), "no checkpoint in checkpoints/ to resume from");
+    if (!resumed)
+      throw Error(run_dir.string(), fs::exists(run_config_path(run_dir))
+                                        ? "no checkpoint in checkpoints/ to resume from (the run stopped before its "
+                                          "first one): start it over with --restart instead of --resume"
+                                        : "no checkpoint in checkpoints/ to resume from");
     config = resumed->checkpoint.config;
     if (fs::weakly_canonical(fs::path(config.data)) != fs::weakly_canonical(data))
       throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
     std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->checkpoint.state.iteration,
                 resumed->file.filename().string().c_str());
   } else {
-    if (fs::exists(run_config_path(run_dir)) || latest_checkpoint(run_dir))
-      throw Error(run_dir.string(), "already holds a training run: add --resume to continue it, or choose another --out");
+    if (o.restart) {
+      remove_training_run(run_dir);
+    } else if (latest_checkpoint(run_dir)) {
+      throw Error(run_dir.string(), "already holds a training run: add --resume to continue it, --restart to start it "
+                                    "over, or choose another --out");
+    } else if (fs::exists(run_config_path(run_dir))) {
+      throw Error(run_dir.string(), "holds a training run that stopped before its first checkpoint (config.json, no "
+                                    "checkpoints/): add --restart to start it over, or choose another --out");
+    }
     config.mode = o.mode;
     config.data = data.string();
     if (!o.normals.empty()) config.intrinsic.normals = fs::weakly_canonical(fs::absolute(o.normals)).string();
@@ -95,6 +117,10 @@ void run_train(const Options& o) {
     if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
     apply_config_overrides(o.sets, config);
   }
+  // Never a run inside the data set (or any data set); only the run folder itself is created, and removed
+  // again if the run fails before writing anything.
+  const RemoveIfLeftEmpty created(run_dir);
+  check_output_dir(run_dir, OutputGuard{{data}, {}});
   if (o.iters) config.iterations = *o.iters;
   if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;
   config.device = o.device;
@@ -149,7 +175,7 @@ void run_train(const Options& o) {
     std::fflush(stderr);
   };
   Trainer::RunResult result;
-  ro.stop = ctrl_c.flag();
+  ro.stop = stop.flag();
   try {
     result = trainer.run(ro);
   } catch (...) {
@@ -160,9 +186,11 @@ void run_train(const Options& o) {
 
   const TrainerState& st = trainer.state();
   if (result == Trainer::RunResult::Stopped) {
-    std::printf("interrupted at iteration %d/%d; checkpoint %s\nresume with: goris train %s --out %s --resume\n",
-                st.iteration, config.iterations, checkpoint_path(run_dir, st.iteration).string().c_str(),
-                shell_quote(data.string()).c_str(), shell_quote(run_dir.string()).c_str());
+    std::printf("interrupted (%s) at iteration %d/%d; checkpoint %s\nresume with: goris train %s --out %s --resume\n",
+                cli::stop_signal_name(stop.signal()).c_str(), st.iteration, config.iterations,
+                checkpoint_path(run_dir, st.iteration).string().c_str(), shell_quote(data.string()).c_str(),
+                shell_quote(run_dir.string()).c_str());
+    cli::set_exit_code(stop.exit_code());
     return;
   }
   write_trained_run(run_dir, trainer, *trainer.renderer());
@@ -189,19 +217,22 @@ void setup_train(CLI::App& root) {
                  "warm-up when it has none)")
       ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
   c->add_option("--normals", o->normals, "Folder of normal-prior maps for intrinsic mode (see README)");
-  c->add_option("--iters", o->iters, "Number of iterations (default 30000)")->check(CLI::PositiveNumber);
+  c->add_option("--iters", o->iters, "Number of iterations (default 30000)")->check(cli::whole(1, cli::kIntMax));
   auto* res = c->add_option("--resolution", o->resolution, "Train at this image width (height keeps the aspect)")
-                  ->check(CLI::PositiveNumber);
+                  ->check(cli::whole(1, 65536));
   auto* ds = c->add_option("--downscale", o->downscale, "Divide the image size by this factor (>= 1)")
-                 ->check(CLI::Range(1.0f, 1000.0f));
+                 ->check(cli::real(1, 1000));
   res->excludes(ds);
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  c->add_flag("--resume", o->resume, "Continue the run in --out from its latest checkpoint");
-  c->add_option("--seed", o->seed, "Random seed (initial points, view order, splits)");
+  auto* resume = c->add_flag("--resume", o->resume, "Continue the run in --out from its latest checkpoint");
+  c->add_flag("--restart", o->restart,
+              "Start the run in --out over: its config.json, checkpoints/, log.csv and point_cloud.ply are removed")
+      ->excludes(resume);
+  c->add_option("--seed", o->seed, "Random seed (initial points, view order, splits)")->check(cli::whole(0, cli::kSeedMax));
   c->add_option("--init-points", o->init_points, "Random initial points when the data has no SfM points (100000)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole(1, kMaxRandomInitPoints));
   c->add_option("--checkpoint-every", o->checkpoint_every, "Checkpoint interval in iterations (2000; 0 = end only)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::whole(0, cli::kIntMax));
   c->add_option("--preset", o->preset,
                 "Named settings applied before --set: planar-glossy (stage 1 for one planar glossy surface with "
                 "glossy masks, see README)");

@@ -4,21 +4,31 @@
 #include <fstream>
 #include <system_error>
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
 
 #include "core/util/error.h"
 
 namespace goris {
 namespace fs = std::filesystem;
 
-namespace {
-void require_regular_file(const fs::path& path) {
+void require_regular_file(const fs::path& path, const std::string& what) {
+  const std::string a_what = (std::string("aeiou").find(what[0]) != std::string::npos ? "an " : "a ") + what;
   std::error_code ec;
   const auto st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) throw Error(path.string(), "file not found");
-  if (fs::is_directory(st)) throw Error(path.string(), "is a folder, expected a file");
+  if (ec || !fs::exists(st)) throw Error(path.string(), what + " not found");
+  if (fs::is_directory(st)) throw Error(path.string(), "is a folder, not " + a_what);
+  const char* kind = fs::is_fifo(st)             ? "a FIFO (named pipe)"
+                     : fs::is_character_file(st) ? "a character device"
+                     : fs::is_block_file(st)     ? "a block device"
+                     : fs::is_socket(st)         ? "a socket"
+                     : fs::is_regular_file(st)   ? nullptr
+                                                 : "neither a regular file nor a folder";
+  if (kind) throw Error(path.string(), std::string("is ") + kind + ", not " + a_what);
 }
-}  // namespace
 
 std::vector<uint8_t> read_file_bytes(const fs::path& path) {
   require_regular_file(path);
@@ -46,6 +56,25 @@ void write_file_bytes(const fs::path& path, const void* bytes, size_t size) {
     out.close();
     if (!out) throw Error(path.string(), "write failed (disk full?)");
   });
+}
+
+void remove_stale_temp_files(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    // .<stem>.tmp<pid>_<n><ext>, as write_via_temp_file names them
+    const std::string name = e.path().filename().string();
+    const std::size_t at = name.rfind(".tmp");
+    if (name.empty() || name[0] != '.' || at == std::string::npos || at == 0) continue;
+    std::size_t i = at + 4, digits = 0;
+    long long pid = 0;
+    for (; i < name.size() && std::isdigit(static_cast<unsigned char>(name[i])) && digits < 12; ++i, ++digits)
+      pid = pid * 10 + (name[i] - '0');
+    if (digits == 0 || i >= name.size() || name[i] != '_' || pid <= 0) continue;
+    if (::kill(pid_t(pid), 0) == 0 || errno == EPERM) continue;  // its writer still runs
+    std::error_code rm;
+    fs::remove(e.path(), rm);
+  }
 }
 
 void write_via_temp_file(const fs::path& path, const std::function<void(const fs::path& tmp)>& write) {

@@ -9,7 +9,13 @@
 
 namespace goris {
 
-// The file's bytes; throws goris::Error naming the file when it is missing, a folder or unreadable.
+// Throws goris::Error naming the path unless it is a regular file: missing, a folder, a FIFO, a device or a
+// socket are refused by type before anything opens it (opening a FIFO would wait for a writer forever).
+// `what` names what was wanted ("file", "image file", "PLY file").
+void require_regular_file(const std::filesystem::path& path, const std::string& what = "file");
+
+// The file's bytes; throws goris::Error naming the file when it is missing, a folder, not a regular file or
+// unreadable.
 std::vector<uint8_t> read_file_bytes(const std::filesystem::path& path);
 std::string read_text_file(const std::filesystem::path& path);
 
@@ -20,5 +26,9 @@ void write_file_bytes(const std::filesystem::path& path, const void* bytes, size
 // If write throws, the temporary file is removed and `path` is left untouched.
 void write_via_temp_file(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& write);
+
+// Removes the temporary files write_via_temp_file left in `dir` when its process was killed mid-write
+// (a kill during a checkpoint): those whose writing process no longer runs.
+void remove_stale_temp_files(const std::filesystem::path& dir);
 
 }  // namespace goris

@@ -14,11 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void require_file(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(path.string(), "image file not found");
-  if (fs::is_directory(path, ec)) throw Error(path.string(), "is a folder, expected an image file");
-}
 
 // Host-side float image <-> cv::Mat (the Mat shares the CPU buffer; no copy).
 cv::Mat as_mat(Image& im) { return cv::Mat(im.height, im.width, CV_32FC(im.channels), im.pixels.data()); }
@@ -48,7 +43,8 @@ Image to_device(Image im, Device d) {
 }  // namespace
 
 Image read_image(const fs::path& path) {
-  require_file(path);
+  require_regular_file(path, "image file");
+  check_image_header_size(path);  // before the decoder allocates what the header declares
   cv::Mat raw;
   try {
     raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);

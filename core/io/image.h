@@ -2,6 +2,7 @@
 // Images as float buffers on one device. Values are the file's values scaled to [0, 1] (8-bit / 255,
 // 16-bit / 65535, float files as they are) with NO gamma change: an sRGB-encoded PNG stays sRGB-encoded,
 // exactly what the photos' loss functions compare against.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 
@@ -47,6 +48,14 @@ std::optional<Image> load_alpha(const std::filesystem::path& path, Device device
 // Width and height from the file header (PNG IHDR, JPEG SOF) without decoding the pixels; other formats
 // fall back to a full decode. Throws goris::Error naming the file when it is missing or not an image.
 ImageSize probe_image_size(const std::filesystem::path& path);
+
+// The most pixels an image file may declare (100 megapixels: 10000x10000; a decode of it as float RGBA
+// takes 1.6 GB). A PNG or JPEG whose header declares more is refused before decoding: a compressed file
+// of a few hundred KB can declare gigabytes of pixels.
+inline constexpr std::uint64_t kMaxImagePixels = 100000000;
+// Throws goris::Error naming the file and its declared size when its PNG/JPEG header exceeds
+// kMaxImagePixels (read_image calls it before decoding); other formats pass.
+void check_image_header_size(const std::filesystem::path& path);
 
 // Resamples to (width, height) on the same device: area averaging when shrinking (no aliasing),
 // bilinear when enlarging. Returns a copy when the size is unchanged.

@@ -1,10 +1,13 @@
 // probe_image_size: image dimensions from the header bytes, so that `goris info` and the loaders' mask
-// checks need not decode hundreds of images.
+// checks need not decode hundreds of images; check_image_header_size: the same header read before a
+// decode, so that a small file declaring a huge image is refused instead of allocated.
 #include <array>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <system_error>
 
+#include "core/io/file_bytes.h"
 #include "core/io/image.h"
 #include "core/util/error.h"
 
@@ -58,12 +61,9 @@ ImageSize probe_jpeg(const fs::path& path, std::ifstream& in) {
   throw Error(path.string(), "malformed or truncated JPEG: no frame header found");
 }
 
-}  // namespace
-
-ImageSize probe_image_size(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(path.string(), "image file not found");
-  if (fs::is_directory(path, ec)) throw Error(path.string(), "is a folder, expected an image file");
+// The size a PNG or JPEG header declares; nothing for other formats.
+std::optional<ImageSize> header_size(const fs::path& path) {
+  require_regular_file(path, "image file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string(), "cannot open for reading");
   uint8_t sig[8] = {};
@@ -73,8 +73,26 @@ ImageSize probe_image_size(const fs::path& path) {
   static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
   if (got == 8 && std::memcmp(sig, kPng, 8) == 0) return probe_png(path, in);
   if (got >= 3 && sig[0] == 0xFF && sig[1] == 0xD8 && sig[2] == 0xFF) return probe_jpeg(path, in);
+  return std::nullopt;
+}
+
+}  // namespace
+
+ImageSize probe_image_size(const fs::path& path) {
+  if (const auto s = header_size(path)) return *s;
   const Image im = read_image(path);  // other formats: decode once
   return {im.width, im.height};
+}
+
+void check_image_header_size(const fs::path& path) {
+  const auto s = header_size(path);
+  if (!s) return;
+  const std::uint64_t pixels = std::uint64_t(s->width) * std::uint64_t(s->height);
+  if (pixels > kMaxImagePixels)
+    throw Error(path.string(), "the header declares " + std::to_string(s->width) + "x" + std::to_string(s->height) +
+                                   " pixels (" + std::to_string(pixels / 1000000) + " megapixels), more than the limit of " +
+                                   std::to_string(kMaxImagePixels / 1000000) +
+                                   " megapixels; not decoding it (downscale the file first)");
 }
 
 }  // namespace goris

@@ -12,6 +12,7 @@ namespace goris::ply_detail {
 FileView::FileView(const std::filesystem::path& path) {
   // Mapping saves a copy of the whole file (a quarter of the read time for a million Gaussians); files
   // that cannot be mapped (empty, special, odd file systems) are read into memory instead.
+  require_regular_file(path, "PLY file");  // a FIFO or device is refused before open() could block
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   struct stat st {};
   if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {

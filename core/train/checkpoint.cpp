@@ -4,8 +4,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -233,10 +238,62 @@ std::vector<std::pair<int, std::filesystem::path>> list_checkpoints(const std::f
 }
 }  // namespace
 
+namespace {
+// The checkpoint's magic and trailing checksum, read in chunks (no copy of the file in memory). Results are
+// kept per (path, size, modification time): a command asks several times, a checkpoint is large.
+bool is_intact(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  const auto mtime = fs::last_write_time(path, ec);
+  if (ec || size < 8 + 4 + 8) return false;
+  static std::mutex mutex;
+  static std::map<std::string, std::tuple<std::uintmax_t, fs::file_time_type, bool>> known;
+  const std::string key = path.string();
+  {
+    std::lock_guard lk(mutex);
+    if (auto it = known.find(key); it != known.end() && std::get<0>(it->second) == size && std::get<1>(it->second) == mtime)
+      return std::get<2>(it->second);
+  }
+  std::ifstream f(path, std::ios::binary);
+  std::vector<char> buf(1 << 20);
+  Fnv1a h;
+  std::uintmax_t left = size - 8;
+  char magic[8] = {};
+  bool ok = bool(f.read(magic, 8)) && std::memcmp(magic, kMagic, 8) == 0;
+  if (ok) {
+    for (unsigned char c : std::string_view(magic, 8)) h.byte(c);
+    left -= 8;
+  }
+  while (ok && left > 0) {
+    const std::size_t n = std::size_t(std::min<std::uintmax_t>(left, buf.size()));
+    ok = bool(f.read(buf.data(), std::streamsize(n)));
+    for (std::size_t i = 0; ok && i < n; ++i) h.byte(static_cast<unsigned char>(buf[i]));
+    left -= n;
+  }
+  std::uint64_t stored = 0;
+  ok = ok && bool(f.read(reinterpret_cast<char*>(&stored), 8)) && stored == h.value;
+  std::lock_guard lk(mutex);
+  known[key] = {size, mtime, ok};
+  return ok;
+}
+}  // namespace
+
 std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir) {
   const auto all = list_checkpoints(run_dir);
   if (all.empty()) return std::nullopt;
-  return all.back().second;
+  for (auto it = all.rbegin(); it != all.rend(); ++it) {
+    if (is_intact(it->second)) {
+      static std::mutex mutex;
+      static std::set<std::string> warned;  // once per file, though a command asks several times
+      std::lock_guard lk(mutex);
+      if (it != all.rbegin() && warned.insert(all.back().second.string()).second)
+        std::fprintf(stderr, "warning: %s is truncated or corrupted (a stop while it was written?); using %s\n",
+                     all.back().second.string().c_str(), it->second.filename().string().c_str());
+      return it->second;
+    }
+  }
+  return all.back().second;  // none is intact: reading it says what is wrong
 }
 
 std::filesystem::path renderer_state_path(const std::filesystem::path& checkpoint) {

@@ -24,7 +24,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device);
 
 // Checkpoint files of a run folder: RUN/checkpoints/iter_<8 digits>.ckpt.
 std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir, int iteration);
-// The checkpoint with the highest iteration in RUN/checkpoints, if any.
+// The checkpoint with the highest iteration in RUN/checkpoints that is intact (magic and checksum), if any:
+// a truncated or corrupted latest one (a kill or a full disk while it was written) is passed over for the
+// one before, with a warning on stderr naming it. When none is intact, the latest (reading it says why).
 std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir);
 // Where the renderer's own parameters (environment map, roughness net) of a checkpoint are stored:
 // the checkpoint's path + ".renderer" (written only by renderers that own parameters).

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
+#include "core/util/number_text.h"
 
 namespace goris {
 
@@ -147,7 +150,9 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
   if (resolution < 0) fail("resolution must be positive (or 0 for none)");
   if (max_train_views < 0) fail("max_train_views must be >= 0 (0 = all views)");
-  if (random_init_points < 1) fail("random_init_points must be at least 1");
+  if (random_init_points < 1 || random_init_points > kMaxRandomInitPoints)
+    fail("random_init_points must be from 1 to " + std::to_string(kMaxRandomInitPoints) +
+         " (each point is a Gaussian with its optimiser state, about 1 KB)");
   if (!(random_init_box_ratio > 0)) fail("random_init_box_ratio must be positive");
   if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
   if (!(depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
@@ -269,6 +274,48 @@ void to_json(nlohmann::json& j, const TrainConfig& c) {
   });
 }
 
+namespace {
+
+// One setting read without silent conversion (core/util/number_text.h): a whole number within its type's
+// limits (10000000000 is refused, not wrapped into an int), a finite number for a real setting ("nan" is
+// named as such), true/false, a string. Throws goris::Error with what is expected and what was given.
+template <class T>
+void read_field(const nlohmann::json& x, T& v) {
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!x.is_boolean()) throw Error("must be true or false, got " + x.dump());
+    v = x.get<bool>();
+  } else if constexpr (std::is_integral_v<T>) {
+    const long double lo = std::numeric_limits<T>::lowest(), hi = std::numeric_limits<T>::max();
+    long double d = 0;
+    bool whole = true;
+    if (x.is_number_unsigned())
+      d = static_cast<long double>(x.get<std::uint64_t>());
+    else if (x.is_number_integer())
+      d = static_cast<long double>(x.get<std::int64_t>());
+    else if (x.is_number_float() && std::floor(x.get<double>()) == x.get<double>())
+      d = x.get<double>();
+    else
+      whole = false;
+    if (!whole || d < lo || d > hi)
+      throw Error("must be a whole number from " + limit_text(lo) + " to " + limit_text(hi) + ", got " + x.dump());
+    v = static_cast<T>(d);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    if (x.is_string() && names_non_finite_number(x.get<std::string>()))
+      throw Error("is " + x.get<std::string>() + ": NaN and infinity are not allowed, a finite number is needed");
+    const double hi = double(std::numeric_limits<T>::max());
+    if (!x.is_number() || std::fabs(x.get<double>()) > hi)
+      throw Error("must be a number from " + limit_text(-hi) + " to " + limit_text(hi) + ", got " + x.dump());
+    v = static_cast<T>(x.get<double>());
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if (!x.is_string()) throw Error("must be a string (in quotes), got " + x.dump());
+    v = x.get<std::string>();
+  } else {
+    v = x.get<T>();
+  }
+}
+
+}  // namespace
+
 void from_json(const nlohmann::json& j, TrainConfig& c) {
   if (!j.is_object()) throw Error("training configuration: expected a JSON object");
   std::set<std::string> known;
@@ -281,8 +328,10 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
         if (!x.is_array() || x.size() != 3) throw Error("expected 3 numbers");
         for (int k = 0; k < 3; ++k) v[k] = x.at(k).get<float>();
       } else {
-        v = x.get<std::decay_t<decltype(v)>>();
+        read_field(x, v);
       }
+    } catch (const Error& e) {
+      throw Error(std::string("training configuration: '") + name + "' " + e.what());
     } catch (const std::exception& e) {
       throw Error(std::string("training configuration: key '") + name + "' has the wrong type (" + e.what() + ")");
     }

@@ -145,6 +145,10 @@ struct IntrinsicSettings {
   float detect_plane_tolerance = 0.05f;  // masks grown over the detections' plane(s), x camera distance (0 = off)
 };
 
+// The largest random initialisation a configuration accepts: beyond it the points alone outgrow a
+// workstation's memory (each is a Gaussian with its optimiser state).
+constexpr int kMaxRandomInitPoints = 20000000;
+
 struct TrainConfig {
   // "radiance": SH colour only (also the warm-up of intrinsic stage 1); "intrinsic": stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss).
@@ -173,7 +177,7 @@ struct TrainConfig {
   bool auto_detect_glossy = false;
 
   // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
-  int random_init_points = 100000;
+  int random_init_points = 100000;  // at most kMaxRandomInitPoints
   float random_init_box_ratio = 0.33f;
 
   // Optimisation.

@@ -478,6 +478,8 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
   std::optional<CsvLog> log;
   if (!o.run_dir.empty()) {
     std::filesystem::create_directories(o.run_dir / "checkpoints");
+    remove_stale_temp_files(o.run_dir / "checkpoints");  // left by a process killed while writing one
+    remove_stale_temp_files(o.run_dir);
     log.emplace(o.run_dir / "log.csv", state_.iteration);
   }
   auto checkpoint = [&] {

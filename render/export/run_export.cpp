@@ -16,6 +16,7 @@
 #include "core/io/splat_formats.h"
 #include "core/train/image_losses.h"
 #include "core/train/run_folder.h"
+#include "core/train/run_output_guard.h"
 #include "core/train/train_setup.h"
 #include "core/util/error.h"
 #include "render/export/camera_path.h"
@@ -35,25 +36,6 @@ nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 void write_json(const fs::path& path, const nlohmann::json& j) {
   write_json_file(path, j);
-}
-
-void create_folder(const fs::path& dir, const fs::path& for_what) {
-  if (dir.empty()) return;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw Error(for_what.string(), "cannot create the folder " + dir.string() + (ec ? " (" + ec.message() + ")" : ""));
-}
-
-// A file can be created (and removed again) in `dir`.
-void probe_writable(const fs::path& dir, const fs::path& for_what) {
-  const fs::path probe = dir / ".goris_export_probe";
-  {
-    std::ofstream f(probe, std::ios::binary);
-    if (!f) throw Error(for_what.string(), "cannot write into " + dir.string() + " (permissions?)");
-  }
-  std::error_code ec;
-  fs::remove(probe, ec);
 }
 
 }  // namespace
@@ -79,21 +61,6 @@ fs::path baked_json_path(const fs::path& ply) {
   return j.replace_extension(".json");
 }
 
-void check_output_file(const fs::path& path) {
-  const fs::path abs = fs::absolute(path);
-  if (abs.filename().empty()) throw Error(path.string(), "an output file name is needed, not a folder");
-  if (fs::is_directory(abs)) throw Error(path.string(), "is a folder; an output file name is needed");
-  create_folder(abs.parent_path(), path);
-  probe_writable(abs.parent_path(), path);
-}
-
-void check_output_dir(const fs::path& dir) {
-  const fs::path abs = fs::absolute(dir);
-  if (fs::exists(abs) && !fs::is_directory(abs)) throw Error(dir.string(), "exists and is not a folder");
-  create_folder(abs, dir);
-  probe_writable(abs, dir);
-}
-
 RunExport::RunExport(const fs::path& run_dir, Device device)
     : run_dir_(fs::absolute(run_dir)), device_(device), config_(read_run_config(run_dir_)) {
   dataset_ = load_dataset(config_.data, dataset_options(config_));
@@ -111,7 +78,7 @@ std::vector<float> RunExport::render(const Camera& camera) {
 }
 
 void RunExport::write_ply(const fs::path& out) const {
-  create_folder(fs::absolute(out).parent_path(), out);
+  check_output_file(out, run_output_guard(run_dir_, config_));
   goris::write_ply(out, model_.to_ply(/*bake_3d_filter=*/true));
 }
 
@@ -124,7 +91,7 @@ GaussianPly RunExport::radiance_model() const {
 }
 
 void RunExport::write_model(const fs::path& out, const GaussianPly& model) const {
-  create_folder(fs::absolute(out).parent_path(), out);
+  check_output_file(out, run_output_guard(run_dir_, config_));
   write_gaussians(out, model);
 }
 
@@ -199,7 +166,8 @@ void RunExport::write_baked_files(BakedReport& rep, const fs::path& out) const {
   rep.ply = out;
   rep.json = baked_json_path(out);
   const DistillSettings& s = rep.settings;
-  create_folder(fs::absolute(out).parent_path(), out);
+  check_output_file(out, run_output_guard(run_dir_, config_));
+  check_output_file(rep.json, run_output_guard(run_dir_, config_));
   goris::write_ply(out, rep.distill.ply);
   const DistillResult& d = rep.distill;
   nlohmann::json per_view = nlohmann::json::array();
@@ -228,7 +196,7 @@ RendersReport RunExport::write_renders(const fs::path& dir, RenderPath path, int
                                        const std::function<void(size_t, size_t)>& on_frame) {
   RendersReport rep;
   rep.dir = fs::absolute(dir);
-  create_folder(rep.dir, dir);
+  check_output_dir(dir, run_output_guard(run_dir_, config_));
   const std::vector<Camera> cams = path_cameras(path, frames, &rep.frames);
   rep.width = cams.front().width;
   rep.height = cams.front().height;

@@ -13,8 +13,8 @@
 //   write_renders  one PNG per frame from the run's renderer (test or train cameras, or an orbit: see
 //                  render/export/camera_path.h), contact_sheet.png with all frames and cameras.json.
 //
-// Every file goes through a temporary file renamed into place; check_output_* run before any work so that
-// an unwritable path fails in a second, not after a distillation.
+// Every file goes through a temporary file renamed into place; check_output_* (core/io/output_path.h) run
+// before any work so that an unwritable path fails in a second, not after a distillation.
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/io/dataset.h"
+#include "core/io/output_path.h"
 #include "core/io/ply.h"
 #include "core/scene/gaussians.h"
 #include "core/train/differentiable_renderer.h"
@@ -109,11 +110,5 @@ class RunExport {
 
 // OUT.json beside a baked OUT.ply (the extension replaced).
 std::filesystem::path baked_json_path(const std::filesystem::path& ply);
-
-// Before any work: creates the output's folder and checks a file can be created there (and that `path` is
-// not a folder); throws goris::Error naming the path and the problem.
-void check_output_file(const std::filesystem::path& path);
-// The same for an output folder (created; must not be a file).
-void check_output_dir(const std::filesystem::path& dir);
 
 }  // namespace goris

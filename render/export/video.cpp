@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 
 namespace goris {
@@ -56,7 +57,7 @@ VideoReport write_video(RunExport& run, const fs::path& out, const VideoSettings
   std::string ext = out.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext != ".mp4") throw Error(out.string(), "a video is written as MPEG-4: the name must end in .mp4");
-  check_output_file(out);
+  check_output_file(out, run_output_guard(run.run_dir(), run.config()));  // never into the data set or the run
 
   const int frames = s.path == RenderPath::Orbit ? std::max(1, int(std::lround(s.seconds * s.fps))) : 0;
   const std::vector<Camera> cams = run.path_cameras(s.path, frames);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/json_file.h"
+#include "core/io/made_from.h"
 #include "core/inpaint/harmonic_inpainter.h"
 #include "core/inpaint/inpainter.h"
 #include "core/io/dataset.h"
@@ -17,6 +18,7 @@
 #include "core/io/image.h"
 #include "core/io/npy.h"
 #include "core/io/npy_write.h"
+#include "core/io/output_path.h"
 #include "core/io/ply.h"
 #include "core/removal/mirror_twins.h"
 #include "core/inpaint/region_fill.h"
@@ -31,6 +33,7 @@
 #include "core/train/trainer.h"
 #include "core/util/bench.h"
 #include "core/util/error.h"
+#include "core/util/fnv1a.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "render/maps/gbuffer_maps.h"
@@ -203,6 +206,23 @@ nlohmann::json options_json(const RemovalOptions& o) {
   return j;
 }
 
+// The selection as 16 hex digits (FNV-1a of the per-Gaussian mask): any added or dropped Gaussian changes it.
+std::string selection_fingerprint(const SelectionMask& mask) {
+  const std::uint64_t h = fnv1a(std::string_view(reinterpret_cast<const char*>(mask.data()), mask.size()));
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+// Removes a fine-tune's checkpoints and results that were made from other inputs, so that neither a rerun
+// nor render / eval of RUN/removal can pick them up.
+void remove_stale_finetune(const fs::path& out) {
+  std::error_code ec;
+  fs::remove_all(out / "checkpoints", ec);
+  for (const char* f : {"point_cloud.ply", "report.json", "log.csv", "densify_stop.json", "config.json"})
+    fs::remove(out / f, ec);
+}
+
 }  // namespace
 
 RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
@@ -233,9 +253,18 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   RemovalReport report;
   const fs::path out = run_dir / "removal";
   report.out_dir = out;
+  const RemoveIfLeftEmpty created(out);  // a removal refused below leaves no empty removal/ behind
   fs::create_directories(out);
-  GaussianModel model = load_run_model(run_dir, device);
+  std::string model_source;
+  GaussianModel model = load_run_model(run_dir, device, &model_source);
   report.gaussians_before = model.count();
+  // What the later steps' stored outputs are made from (made_from.h): stage 1's model and the options here,
+  // the selection once step 1 has made it. The 2D-inpainting cache and the fine-tune reuse their outputs
+  // only when their record matches.
+  nlohmann::json made_from;
+  made_from["stage1"] = {{"source", fs::path(model_source).lexically_relative(run_dir).generic_string()},
+                         {"model", model_fingerprint(model)}};
+  made_from["options"] = options_json(o);
   const RasterSettings raster = RasterRenderer::settings_for(config);
   auto cancelled = [&] { return stop && stop->load(); };
   // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
@@ -302,6 +331,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     }
     record.model_fingerprint = model_fingerprint(model);
     write_selection(out / "selection.json", record, selected);
+    made_from["selection"] = {{"gaussians", report.selected}, {"fingerprint", selection_fingerprint(selected)}};
     apply_selection_to_labels(model, selected);
     s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + twin_note);
   }
@@ -427,11 +457,11 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     StepScope s(report, RemovalStep::Inpaint2D, on_progress);
     const fs::path dir = out / "inpainted";
     fs::create_directories(dir);
-    nlohmann::json opts = options_json(o);
+    nlohmann::json opts = made_from;
     opts["materials"] = materials;
     opts["views"] = report.reference_views;
-    const fs::path opts_path = dir / "options.json";
-    const bool cached = fs::exists(opts_path) && nlohmann::json::parse(read_text_file(opts_path), nullptr, false) == opts;
+    const fs::path opts_path = dir / "made_from.json";
+    const bool cached = made_from_changes(opts_path, opts).empty();
     std::unique_ptr<Inpainter> inp;
     const HarmonicInpainter harmonic;
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
@@ -489,7 +519,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       }
     }
     if (!cached) {
-      write_json_file(opts_path, opts);
+      write_made_from(opts_path, opts);
     }
     s.finish();
   }
@@ -547,8 +577,22 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
 
     TrainerState state;
     auto renderer = make_renderer(ft, extent, device);
-    const auto resume = latest_checkpoint(out);
-    if (resume && fs::exists(run_config_path(out))) {
+    // A checkpoint is resumed only when it was made from the same inputs; otherwise it and its results go
+    // and the fine-tune starts over, saying what changed.
+    nlohmann::json finetune_from = made_from;
+    finetune_from["materials"] = materials;
+    finetune_from["iterations"] = iters;
+    const fs::path record = out / "made_from.json";
+    auto resume = latest_checkpoint(out);
+    const bool earlier = resume || fs::exists(run_ply_path(out)) || fs::exists(out / "report.json");
+    if (const std::string changes = made_from_changes(record, finetune_from); earlier && !changes.empty()) {
+      report.finetune_restarted = changes;
+      s.tell(0, std::size_t(iters), "starting over: the earlier fine-tune was made from other inputs (" + changes + ")");
+      remove_stale_finetune(out);
+      resume.reset();
+    }
+    if (resume && !fs::exists(run_config_path(out))) resume.reset();
+    if (resume) {
       Checkpoint ck = read_checkpoint(*resume, Device::CPU);
       state = std::move(ck.state);
       if (device != Device::CPU) state.model = state.model.copy_to(device);
@@ -559,6 +603,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       if (const auto s1 = latest_checkpoint(run_dir)) Trainer::load_renderer_state(*s1, *renderer);
     }
     write_run_config(out, ft);
+    if (!resume) write_made_from(record, finetune_from);  // before the first checkpoint, which it describes
     Trainer trainer(ft, std::move(views), extent, renderer, std::move(state));
     Trainer::RunOptions ro;
     ro.run_dir = out;
@@ -602,6 +647,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              {"material_pixels", fs_stats.material_pixels},
                              {"projected_points", fs_stats.projected_points}};
     j["options"] = options_json(o);
+    j["made_from"] = finetune_from;
     j["peak_host_memory_mib"] = peak_host_memory_mib();
     s.finish("done");
     for (int k = 0; k < kRemovalStepCount; ++k) j["seconds"][removal_step_name(RemovalStep(k))] = report.seconds[k];

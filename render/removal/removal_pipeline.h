@@ -28,7 +28,9 @@
 //
 // The result is itself a run folder (render / eval / export take RUN/removal). Cancelling (the stop flag)
 // leaves the folder consistent: a rerun skips the 2D inpainting when its maps are there for the same
-// options, and resumes the fine-tune from its last checkpoint.
+// inputs, and resumes the fine-tune from its last checkpoint when that was made from the same inputs
+// (stage 1's model, the selection, the options: removal/made_from.json); otherwise the fine-tune starts
+// over and the report says what changed.
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -84,6 +86,9 @@ struct RemovalReport {
   std::size_t shadow_pixels = 0;            // training-view pixels relit by more than 5 %
   std::vector<std::string> reference_views;
   int finetune_iterations = 0;
+  // Why the fine-tune started over instead of resuming or reusing the earlier one in RUN/removal: which of
+  // its inputs changed (core/io/made_from.h), e.g. "selection.fingerprint, options.inpainter"; "" otherwise.
+  std::string finetune_restarted;
   bool cancelled = false;
 };
 

@@ -6,6 +6,7 @@
 # key value is refused.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(RUN "${WORK}/run")
 
 goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode intrinsic --iters 40 --resolution 48 --device cpu

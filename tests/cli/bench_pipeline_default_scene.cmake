@@ -3,6 +3,7 @@
 # results.md and the charts are written; a second run reuses both results; bad names are refused.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(OUTDIR "${WORK}/bench")
 
 goris_fails("unknown configuration 'nope'" bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,nope

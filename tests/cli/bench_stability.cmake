@@ -5,6 +5,7 @@
 # case that cannot finish is recorded and makes the bench exit non-zero.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(OUTDIR "${WORK}/bench")
 set(SCENE "${RESOURCES}/default_scene")
 

@@ -2,6 +2,7 @@
 # agreement against the data set's own glossy masks and the masks written with --out; bad inputs are named.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(RUN "${WORK}/run")
 goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode radiance --iters 40 --resolution 32 --device cpu
          --init-points 3000 --checkpoint-every 20)

@@ -19,6 +19,8 @@ function(ply_header path var)
   set(${var} "${head}" PARENT_SCOPE)
 endfunction()
 
+file(MAKE_DIRECTORY "${OUTD}")
+
 # Bad input first (no run needed to be refused).
 goris_fails("--ply OUT.ply" export "${WORK}/no_such_run")
 goris_fails("config.json" export "${WORK}/no_such_run" --ply "${OUTD}/a.ply")
@@ -29,6 +31,11 @@ goris_fails("--renders" export "${WORK}/no_such_run" --ply "${OUTD}/a.ply" --pat
 
 goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode intrinsic --iters 40 --resolution 64 --device cpu
          --init-points 3000 --checkpoint-every 0 --set intrinsic_env_resolution=8)
+# An output file's folder must exist (a mistyped path is refused, not created).
+goris_fails("${WORK}/missing does not exist" export "${RUN}" --ply "${WORK}/missing/x.ply")
+if(EXISTS "${WORK}/missing")
+  message(FATAL_ERROR "a refused export created ${WORK}/missing")
+endif()
 goris_fails("same file" export "${RUN}" --ply "${OUTD}/x.ply" --baked "${OUTD}/x.ply")
 
 goris_ok(export "${RUN}" --ply "${OUTD}/intrinsic.ply" --baked "${OUTD}/baked.ply" --iters 30

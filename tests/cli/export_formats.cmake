@@ -7,6 +7,7 @@ file(REMOVE_RECURSE "${WORK}")
 set(RUN "${WORK}/run")
 set(OUTD "${WORK}/out")
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
+file(MAKE_DIRECTORY "${OUTD}")  # outputs go into existing folders
 
 goris_fails("needs a file name ending in .spz" export "${WORK}/no_such_run" --spz "${OUTD}/a.ply")
 goris_fails("needs a file name ending in .compressed.ply" export "${WORK}/no_such_run" --compressed-ply "${OUTD}/a.ply")

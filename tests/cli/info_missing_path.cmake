@@ -1,5 +1,6 @@
 # `goris info` on paths that are not data sets exits non-zero with a message naming the path.
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/empty")
 
 function(expect_failure path)

@@ -3,6 +3,7 @@
 # resumes from what is there, and ablations that belong to stage 1 are refused with the flag to use.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(RUN "${WORK}/run")
 
 function(expect_count pattern n)

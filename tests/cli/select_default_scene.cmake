@@ -3,6 +3,7 @@
 # errors that say what to change.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(RUN "${WORK}/run")
 
 # The random initial points fill only the middle of the views, so the image corners show background.
@@ -38,10 +39,12 @@ file(MAKE_DIRECTORY "${WORK}/masks")
 foreach(i 000 001 002)
   file(COPY "${RESOURCES}/default_scene/train/mask_${i}.png" DESTINATION "${WORK}/masks")
 endforeach()
+file(MAKE_DIRECTORY "${WORK}/dirmasks")  # an output file's folder must exist
 goris_ok(select "${RUN}" --masks "${WORK}/masks" --previews 0 --device cpu --out "${WORK}/dirmasks/sel.json")
 expect_text("${OUT}" "voting with the object masks of 3 training views")
 
 # --click: the Gaussian under a pixel of a training view (by name or index), into another file.
+file(MAKE_DIRECTORY "${WORK}/click")
 goris_ok(select "${RUN}" --click r_000 32 33 --grow 0 --device cpu --out "${WORK}/click/sel.json")
 expect_text("${OUT}" "picked Gaussian")
 file(READ "${WORK}/click/sel.json" sel)
@@ -56,6 +59,7 @@ foreach(f sel.npy sel_preview/r_000.png)
     message(FATAL_ERROR "--click --out did not write ${f}")
   endif()
 endforeach()
+file(MAKE_DIRECTORY "${WORK}/click0")
 goris_ok(select "${RUN}" --click 0 32 33 --grow 0 --device cpu --previews 0 --out "${WORK}/click0/sel.json")
 
 # Errors that explain themselves; nothing already written is lost.

@@ -3,6 +3,7 @@
 # are refused, and nothing is written under
 # --out. Needs no Blender.
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 function(expect_fail what)
   execute_process(COMMAND "${GORIS}" synth ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(rc EQUAL 0)

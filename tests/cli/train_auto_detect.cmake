@@ -4,6 +4,7 @@
 # and --resume continues in the decided mode).
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 set(DATA "${RESOURCES}/default_scene")
 # 40 iterations at 32 px; the warm-up (15000 of 30000, scaled) ends after iteration 20, and the detection
 # does not wait for settled geometry (intrinsic_detect_settled, tried at the end).

@@ -1,5 +1,6 @@
 # `goris train | render | eval` on bad input exit non-zero with a message naming the path and the problem.
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/empty_run")
 
 function(expect_failure)

@@ -6,6 +6,7 @@ if(NOT EXISTS "${SHARED}/datasets/lego")
   return()
 endif()
 file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
 get_filename_component(DATA "${SHARED}/datasets/lego" REALPATH)
 set(RUN "${WORK}/run")
 
@@ -60,16 +61,16 @@ if(rc EQUAL 0)
 endif()
 expect_text("${err}" "full_XXX.png")
 
-# Ctrl-C: finish the iteration, checkpoint, exit 0 with the resume command. timeout(1) delivers its SIGINT
+# Ctrl-C: finish the iteration, checkpoint, exit 130 (interrupted) with the resume command. timeout(1) delivers its SIGINT
 # twice (to the child, then to the process group): that must still count as one Ctrl-C.
 function(train_interrupted seconds dir)
   execute_process(COMMAND timeout --preserve-status -s INT ${seconds} "${GORIS}" train "${DATA}" --out "${dir}"
                           --iters 100000 ${common}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "training interrupted after ${seconds} s exited with ${rc}\n${out}\n${err}")
+  if(NOT rc EQUAL 130)
+    message(FATAL_ERROR "training interrupted after ${seconds} s exited with ${rc}, expected 130\n${out}\n${err}")
   endif()
-  if(NOT out MATCHES "interrupted at iteration ([0-9]+)/")
+  if(NOT out MATCHES "interrupted \\(SIGINT\\) at iteration ([0-9]+)/")
     message(FATAL_ERROR "training interrupted after ${seconds} s did not say where it stopped:\n${out}")
   endif()
   expect_text("${out}" "resume with: goris train")

@@ -34,7 +34,7 @@ screenshot_now ${WORK}/export_running.png
 export_wait
 screenshot ${WORK}/export_dialog.png
 export_start ply ${WORK}/blocker.txt/model.ply
-expect_export_error cannot create the folder
+expect_export_error is not a folder
 screenshot ${WORK}/export_error.png
 export_dialog close
 quit
@@ -55,7 +55,7 @@ expect_text("${R_OUT}" "export done: exported ${ex}/model.ply")
 expect_text("${R_OUT}" "export done: exported ${ex}/baked.ply")
 expect_text("${R_OUT}" "export done: exported ${ex}/renders")
 # The failure names the part, the file and the problem (stderr: the status bar's error messages).
-expect_text("${R_ERR}" "export error: intrinsic PLY: ${WORK}/blocker.txt/model.ply: cannot create the folder")
+expect_text("${R_ERR}" "export error: intrinsic PLY: ${WORK}/blocker.txt/model.ply: cannot write: ${WORK}/blocker.txt is not a folder")
 if(EXISTS "${WORK}/blocker.txt/model.ply" OR NOT EXISTS "${WORK}/blocker.txt")
   message(FATAL_ERROR "the failed export touched ${WORK}/blocker.txt")
 endif()
@@ -103,4 +103,4 @@ studio_run("${WORK}/export_fails.txt" F)
 if(NOT F_RC MATCHES "^[0-9]+$" OR F_RC EQUAL 0 OR F_RC GREATER 127)
   message(FATAL_ERROR "a failing export should exit with status 1, got ${F_RC}\n${F_OUT}\n${F_ERR}")
 endif()
-expect_text("${F_ERR}" "error: ${WORK}/export_fails.txt:2: export: the export ended error (expected done): intrinsic PLY: ${WORK}/blocker.txt/again.ply: cannot create the folder")
+expect_text("${F_ERR}" "error: ${WORK}/export_fails.txt:2: export: the export ended error (expected done): intrinsic PLY: ${WORK}/blocker.txt/again.ply: cannot write: ${WORK}/blocker.txt is not a folder")

@@ -41,12 +41,14 @@ TEST(ExportBadInput, OutputPathsAreCheckedFirst) {
   e = error_of([&] { check_output_file(file / "out.ply"); });
   EXPECT_NE(e.find((file / "out.ply").string()), std::string::npos) << e;
   e = error_of([&] { check_output_dir(file / "renders"); });
-  EXPECT_NE(e.find("cannot create"), std::string::npos) << e;
-  // Good paths: folders are created, nothing is left behind.
-  check_output_file(dir / "new" / "out.ply");
-  EXPECT_TRUE(fs::is_directory(dir / "new"));
-  EXPECT_FALSE(fs::exists(dir / "new" / "out.ply"));
-  EXPECT_TRUE(fs::is_empty(dir / "new"));
+  EXPECT_NE(e.find("is not a folder"), std::string::npos) << e;
+  // A file's folder must exist: no folders are made for it (a mistyped path is not created).
+  e = error_of([&] { check_output_file(dir / "new" / "out.ply"); });
+  EXPECT_NE(e.find("does not exist"), std::string::npos) << e;
+  EXPECT_FALSE(fs::exists(dir / "new"));
+  // Good paths: an output folder is created in an existing one, nothing is left behind.
+  check_output_file(dir / "out.ply");
+  EXPECT_FALSE(fs::exists(dir / "out.ply"));
   check_output_dir(dir / "renders");
   EXPECT_TRUE(fs::is_empty(dir / "renders"));
 }

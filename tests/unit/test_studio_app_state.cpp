@@ -173,6 +173,22 @@ TEST(StudioAppState, ScriptRunsTrainingAndReportsErrors) {
   EXPECT_EQ(st.model()->iteration(), 10);  // the viewports show the last snapshot
   EXPECT_NE(st.last_message().find("done: 10 iterations"), std::string::npos) << st.last_message();
 
+  // Another editor's `out` at that finished run refuses to train it over with new settings, as the CLI does.
+  {
+    AppState other(settings);
+    FakeHost other_host(other);
+    EXPECT_EQ(run_script(other, other_host, "open " + scene_path().string() + "\nout " + (dir / "run").string() +
+                                                "\nset random_init_points 200\ntrain 3\n"),
+              ScriptRunner::Status::Failed);
+    EXPECT_NE(last_error().find("already holds a training run"), std::string::npos) << last_error();
+    EXPECT_EQ(read_run_config(dir / "run").random_init_points, 300);
+    // A missing parent folder is refused, not created.
+    EXPECT_EQ(run_script(other, other_host, "out " + (dir / "missing" / "run").string() + "\ntrain 3\n"),
+              ScriptRunner::Status::Failed);
+    EXPECT_NE(last_error().find("does not exist"), std::string::npos) << last_error();
+    EXPECT_FALSE(fs::exists(dir / "missing"));
+  }
+
   // Failures name the line and the action.
   EXPECT_EQ(run_script(st, host, "wait_frames 1\nset no_such_key 1\n"), ScriptRunner::Status::Failed);
   EXPECT_NE(last_error().find("t.txt:2: set: "), std::string::npos) << last_error();

@@ -1,0 +1,60 @@
+# A finished fine-tune in RUN/removal is reused only for the same inputs: after a new selection or other
+# options, `goris remove` starts the fine-tune over (saying what changed) instead of resuming the old
+# checkpoint, so report.json's counts add up and the result is the new one.
+include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(RUN "${WORK}/run")
+set(R "${RUN}/removal")
+
+# The fine-tune neither adds nor removes Gaussians: after = before - selected + added by the lift.
+function(expect_counts_add_up)
+  file(READ "${R}/report.json" report)
+  string(JSON before GET "${report}" gaussians_before)
+  string(JSON selected GET "${report}" selected)
+  string(JSON added GET "${report}" added_by_lift)
+  string(JSON after GET "${report}" gaussians_after)
+  math(EXPR want "${before} - ${selected} + ${added}")
+  if(NOT after EQUAL want)
+    message(FATAL_ERROR "report.json: ${after} Gaussians after, expected ${before} - ${selected} + ${added} = ${want} "
+                        "(a stale fine-tune was resumed?)\n${report}")
+  endif()
+endfunction()
+
+goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode radiance --iters 20 --resolution 64 --device cpu
+         --init-points 2000 --checkpoint-every 0)
+goris_ok(select "${RUN}" --masks --device cpu)
+goris_ok(remove "${RUN}" --iters 10 --device cpu)
+expect_counts_add_up()
+file(READ "${R}/report.json" first)
+string(JSON first_selected GET "${first}" selected)
+file(SHA256 "${R}/point_cloud.ply" first_ply)
+
+# The same inputs again: nothing starts over.
+goris_ok(remove "${RUN}" --iters 10 --device cpu)
+string(FIND "${OUT}" "started over" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "the same inputs restarted the fine-tune:\n${OUT}")
+endif()
+
+# A different selection: the fine-tune starts over and says the selection changed.
+goris_ok(select "${RUN}" --masks --no-close --device cpu)
+goris_ok(remove "${RUN}" --iters 10 --device cpu)
+expect_text("${OUT}" "the fine-tune started over")
+expect_text("${OUT}" "selection")
+expect_counts_add_up()
+file(READ "${R}/report.json" second)
+string(JSON second_selected GET "${second}" selected)
+if(second_selected EQUAL first_selected)
+  message(FATAL_ERROR "the test needs a different selection: --no-close selected ${second_selected} again")
+endif()
+file(SHA256 "${R}/point_cloud.ply" second_ply)
+if(second_ply STREQUAL first_ply)
+  message(FATAL_ERROR "removal/point_cloud.ply is the previous result after a new selection")
+endif()
+
+# Other options: the same, naming the option.
+goris_ok(remove "${RUN}" --iters 10 --device cpu --ablate shadows)
+expect_text("${OUT}" "the fine-tune started over")
+expect_text("${OUT}" "options.ablate")
+expect_counts_add_up()
