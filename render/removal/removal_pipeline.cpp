@@ -380,19 +380,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         report.dereflected_pixels = d.pixels;
       }
     }
-    // The target mirrored through the glossy plane, on the glossy surface: its reflection, whatever the
-    // model made of it (planar_reflection.h). Inpainted and kept out of the photo loss below.
-    if (glossy_plane.found && glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection") &&
-        !cancelled()) {
-      GaussianModel mirrored = mirrored_through(model, target_only, glossy_plane);
-      fs::create_directories(out / "reflection_masks");
-      for (std::size_t i = 0; i < cameras.size(); ++i) {
-        if (views[i].glossy_mask.empty()) continue;
-        reflection[i] = planar_reflection_mask(mirrored, cameras[i], views[i].glossy_mask, raster);
-        report.reflection_pixels += count_set(reflection[i]);
-        save_mask_png(out / "reflection_masks" / (ds.train[i].name + ".png"), reflection[i]);
-      }
-    }
     std::string shadow_note;
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
@@ -409,9 +396,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     std::snprintf(f, sizeof f, " (F relative to %.3f)", report.lighting_fresnel_reference);
     const std::string dereflect_note =
         report.dereflected_pixels ? "; " + std::to_string(report.dereflected_pixels) + " dereflected" : "";
-    const std::string reflection_note =
-        report.reflection_pixels ? "; " + std::to_string(report.reflection_pixels) + " in the planar reflection" : "";
-    s.finish(std::to_string(report.lighting_pixels) + " pixels" + reflection_note +
+    s.finish(std::to_string(report.lighting_pixels) + " pixels" +
              (o.lighting_relative_fresnel && intrinsic && !o.ablate.count("lamask") ? f : "") + dereflect_note +
              shadow_note);
   }
@@ -425,13 +410,31 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     ms.raster = raster;
     holes = compute_inpaint_masks(model, selected, cameras, ms,
                                   [&](std::size_t i, std::size_t n) { s.tell(i, n, i < ds.train.size() ? ds.train[i].name : ""); });
+    // The target mirrored through the glossy plane, on the glossy surface: its reflection, whatever the
+    // model made of it (planar_reflection.h). Inpainted and kept out of the photo loss below. The surface is
+    // that of the scene without the target (removed_glossy_masks.h): where the target stood in front of the
+    // surface, the photo's mask says "not glossy", yet after the removal the surface and the reflection the
+    // model keeps there (a radiance model's mirror twin) are seen.
+    if (glossy_plane.found && glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection") &&
+        !cancelled()) {
+      GaussianModel mirrored = mirrored_through(model, target_only, glossy_plane);
+      fs::create_directories(out / "reflection_masks");
+      for (std::size_t i = 0; i < cameras.size(); ++i) {
+        if (views[i].glossy_mask.empty()) continue;
+        reflection[i] = planar_reflection_mask(mirrored, cameras[i], removed_glossy_mask(views[i], holes[i]), raster);
+        report.reflection_pixels += count_set(reflection[i]);
+        save_mask_png(out / "reflection_masks" / (ds.train[i].name + ".png"), reflection[i]);
+      }
+    }
     fs::create_directories(out / "inpaint_masks");
     for (std::size_t i = 0; i < holes.size(); ++i) {
       if (reflection[i].width == holes[i].mask.width) holes[i].mask = mask_or(holes[i].mask, reflection[i]);
       report.inpaint_pixels += count_set(holes[i].mask);
       save_mask_png(out / "inpaint_masks" / (ds.train[i].name + ".png"), holes[i].mask);
     }
-    s.finish(std::to_string(report.inpaint_pixels) + " pixels");
+    const std::string reflection_note =
+        report.reflection_pixels ? " (" + std::to_string(report.reflection_pixels) + " in the planar reflection)" : "";
+    s.finish(std::to_string(report.inpaint_pixels) + " pixels" + reflection_note);
   }
 
   // 4. Reference views.

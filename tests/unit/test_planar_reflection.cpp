@@ -11,6 +11,9 @@
 #include "core/util/error.h"
 #include "core/removal/plane_from_masks.h"
 #include "render/removal/planar_reflection.h"
+#include "render/removal/removed_glossy_masks.h"
+#include "core/train/trainer.h"
+#include "render/raster/rasterizer.h"
 #include "tests/unit/test_selection_scene.h"
 
 using namespace goris;
@@ -83,6 +86,38 @@ TEST(PlanarReflection, ReflectionMaskIsTheMirroredTargetOnTheGlossySurface) {
   // Growing takes in more pixels, and nothing lies outside the glossy mask.
   EXPECT_GT(count_set(planar_reflection_mask(mirrored, cam, all, raster, {0.2f, 0.05f})), count_set(m));
   EXPECT_EQ(count_set(planar_reflection_mask(mirrored, cam, none, raster)), 0u);
+}
+
+TEST(PlanarReflection, ReflectionBehindTheTargetIsFoundOnTheSurfaceWithoutIt) {
+  // A blob resting just above the floor z = 0, seen from low down: its reflection starts right below it,
+  // partly behind the blob itself. The photo's glossy mask is 0 under the blob (the blob is not glossy),
+  // so the mirrored blob's coverage there is lost; after the removal that surface (and whatever the model
+  // shows through it) is seen, and the mask of the surface without the target finds it.
+  GaussianModel target = make_model({{{0, 0, 0.12f}, 0.1f, 0.95f}});
+  const Camera cam = look_at({0, -3, 0.6f}, {0, 0, 0});
+  const std::size_t hw = std::size_t(cam.width) * cam.height;
+  RasterSettings raster;
+  const RasterOutput r = rasterize(target.view(false), cam, raster, target.device());
+  const std::vector<float> alpha = r.gbuffer.alpha.to_host();
+  TrainView view;
+  view.name = "r_000";
+  view.camera = cam;
+  view.glossy_mask.assign(hw, 1.0f);  // the floor fills the view ...
+  InpaintMaskView hole;
+  hole.covered = Mask(cam.width, cam.height);
+  for (std::size_t p = 0; p < hw; ++p)
+    if (alpha[p] > 0.2f) view.glossy_mask[p] = 0.0f, hole.covered.data[p] = 255;  // ... except behind the blob
+  ASSERT_GT(count_set(hole.covered), 50u);
+  GaussianModel mirrored = mirrored_through(target, {1}, floor_plane());
+  const Mask photo = planar_reflection_mask(mirrored, cam, view.glossy_mask, raster, {0.2f, 0.0f});
+  const Mask removed = planar_reflection_mask(mirrored, cam, removed_glossy_mask(view, hole), raster, {0.2f, 0.0f});
+  std::size_t behind = 0;
+  for (std::size_t p = 0; p < hw; ++p) {
+    EXPECT_FALSE(photo.data[p] && hole.covered.data[p]) << "pixel " << p;  // the photo's mask never sees it
+    if (photo.data[p]) EXPECT_TRUE(removed.data[p]) << "pixel " << p;       // the rest stays
+    behind += removed.data[p] && hole.covered.data[p] ? 1 : 0;
+  }
+  EXPECT_GT(behind, 10u);
 }
 
 namespace {
