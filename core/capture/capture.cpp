@@ -88,8 +88,9 @@ class StageRunner {
 
   // Runs `colmap command args...` as stage `index`; returns its output lines (the last ones) on success,
   // throws goris::Error with the log's tail when it fails.
-  void run(const std::string& stage, int index, const std::string& command, std::vector<std::string> args, int images,
-           std::vector<std::string>* lines = nullptr) {
+  // may_fail: a failed run returns false instead of throwing (the mapper fails when it places no photos).
+  bool run(const std::string& stage, int index, const std::string& command, std::vector<std::string> args, int images,
+           std::vector<std::string>* lines = nullptr, bool may_fail = false) {
     check_stop();
     const auto start = Clock::now();
     const fs::path log = logs_ / (std::to_string(index) + "_" + command + ".log");
@@ -103,13 +104,15 @@ class StageRunner {
         },
         [this] { return stop_ && stop_->load(); });
     check_stop();
+    report_.stages.push_back({stage, seconds_since(start)});
+    if (r.exit_code != 0 && may_fail) return false;
     if (r.exit_code != 0) {
       std::string tail;
       for (size_t i = r.last_lines.size() > 8 ? r.last_lines.size() - 8 : 0; i < r.last_lines.size(); ++i)
         tail += "\n  " + r.last_lines[i];
       throw Error(log.string(), "colmap " + command + " failed (exit code " + std::to_string(r.exit_code) + "):" + tail);
     }
-    report_.stages.push_back({stage, seconds_since(start)});
+    return true;
   }
 
  private:
@@ -207,7 +210,8 @@ CaptureReport run_capture(const CaptureOptions& o, const std::function<void(cons
   const std::string db = (work / "database.db").string();
   // SIFT's doubled first octave finds features in small photos; on photos of 480 px and more it costs four
   // times the CPU time for few extra matches.
-  const std::string first_octave = std::max(rep.width, rep.height) >= 480 ? "0" : "-1";
+  const bool small = std::max(rep.width, rep.height) < 480;
+  const std::string first_octave = small ? "-1" : "0";
   stages.run("features", 2, "feature_extractor",
              {"--database_path", db, "--image_path", input.string(), "--ImageReader.single_camera", "1",
               "--ImageReader.camera_model", o.camera_model, "--SiftExtraction.use_gpu", "0",
@@ -220,9 +224,11 @@ CaptureReport run_capture(const CaptureOptions& o, const std::function<void(cons
   else
     stages.run("matching", 3, "sequential_matcher",
                {"--database_path", db, "--SiftMatching.use_gpu", "0", "--SequentialMatching.overlap", "10"}, rep.images);
-  stages.run("mapping", 4, "mapper",
-             {"--database_path", db, "--image_path", input.string(), "--output_path", (work / "sparse").string()},
-             rep.images);
+  // Small photos have few features: the mapper's inlier thresholds are lowered to match.
+  std::vector<std::string> mapper{"--database_path", db, "--image_path", input.string(), "--output_path",
+                                  (work / "sparse").string()};
+  if (small) mapper.insert(mapper.end(), {"--Mapper.init_min_num_inliers", "30", "--Mapper.abs_pose_min_num_inliers", "15"});
+  stages.run("mapping", 4, "mapper", mapper, rep.images, nullptr, true);
   const fs::path model = largest_model(work / "sparse", &rep.registered);
   if (rep.registered < kMinImages)
     throw Error(o.input.string(),
@@ -321,6 +327,10 @@ std::string report_text(const CaptureReport& r) {
   }
   std::snprintf(buf, sizeof buf, " total %.1f s\n", r.seconds_total);
   s += buf;
+  if (r.registered < r.images * 0.9)
+    s += "warning: " + std::to_string(r.images - r.registered) + " photos were not placed and are left out: try " +
+         (r.matcher == "sequential" ? std::string("--matcher exhaustive, ") : std::string()) +
+         "a larger --resolution or more --features, or photos with more overlap\n";
   return s;
 }
 

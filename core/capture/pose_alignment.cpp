@@ -42,9 +42,13 @@ Similarity fit_similarity(const std::vector<glm::dvec3>& from, const std::vector
 }
 
 PoseComparison compare_poses(const Dataset& captured, const Dataset& given, const std::string& given_name) {
+  // A name that two given views share (GOR-IS train and test views) cannot be matched: left out.
   std::map<std::string, const Camera*> given_by_name;
+  std::map<std::string, int> uses;
   for (const auto* views : {&given.train, &given.test})
-    for (const View& v : *views) given_by_name.emplace(v.name, &v.camera);
+    for (const View& v : *views) given_by_name.emplace(v.name, &v.camera), ++uses[v.name];
+  for (const auto& [name, n] : uses)
+    if (n > 1) given_by_name.erase(name);
   PoseComparison c;
   c.given = int(given_by_name.size());
   std::vector<glm::dvec3> from, to, dir_from, dir_to;
