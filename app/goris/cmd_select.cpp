@@ -1,12 +1,21 @@
-// `goris select RUN (--click VIEW X Y | --masks [DIR] | --labels [--threshold T]) [--grow G] [--out FILE]`:
-// chooses the target of object removal and stores it in the run folder (selection.json + selection.npy,
-// core/removal/selection_file.h) with preview images (tinted | removed) of a few training views.
+// `goris select RUN [--click VIEW X Y ... | --masks [DIR] | --labels [--threshold T]] [regions] [edits]
+// [--out FILE] [--write-masks DIR]`: chooses the target of object removal and stores it in the run folder
+// (selection.json + selection.npy, core/removal/selection_file.h) with preview images (tinted | removed) of
+// a few training views.
 //
 //   --labels  Gaussians with learned label > T (0.3), closed by the hull of their centres (paper Sec. 3.3)
 //   --masks   depth-tested votes of the Gaussian centres in the training views' object masks, then closed
-//   --click   the Gaussian a pixel of a training view shows, grown over similar neighbours, then closed
+//   --click   the Gaussian a pixel of a training view shows, grown over similar neighbours, then closed;
+//             repeated clicks (other views) are each grown and united, or intersected with --clicks intersect
+// Regions (each repeatable, united with one another): --rect / --polygon in a training view's pixels
+// (--through visible: only what that view shows; all: every centre inside), --sphere, --box, --colour.
+// With a rule above they are combined with its result by --combine (union, subtract, intersect).
+// Then --dilate / --shrink graph steps and --invert. --write-masks renders the selection's object masks
+// for every training view (selection_view_masks.h) and, with --masks-iou, scores them against the data
+// set's own masks.
 // An empty selection, or one larger than --max-fraction of the scene, is an error that says what to change.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +28,7 @@
 #include "app/goris/command.h"
 #include "app/goris/number_checks.h"
 #include "core/io/dataset.h"
+#include "core/inpaint/mask.h"
 #include "core/io/image.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
@@ -33,9 +43,16 @@ using namespace goris;
 
 struct Options {
   std::string run, out, device = "auto";
-  std::vector<std::string> click;  // VIEW X Y
+  std::vector<std::string> click;  // VIEW X Y, repeated
+  std::string clicks = "union";
   std::string masks_dir;
-  bool masks = false, labels = false, no_close = false;
+  bool masks = false, labels = false, no_close = false, invert = false;
+  std::vector<std::string> rects, polygons;  // VIEW COORDS pairs
+  std::vector<std::string> spheres, boxes, colours;
+  std::string through = "visible", combine = "union";
+  int dilate = 0, shrink = 0;
+  std::string write_masks, masks_iou;
+  bool masks_iou_given = false;
   float threshold = 0.3f, min_fraction = 0.5f, max_fraction = 0.5f;
   std::optional<float> grow;
   int previews = 4;
@@ -58,7 +75,7 @@ int parse_int(const std::string& s, const char* what) {
 }
 
 // A training view by name (r_012) or by index into the training views (12).
-std::size_t find_view(const std::vector<View>& views, const std::string& key) {
+std::size_t find_view(const std::vector<View>& views, const std::string& key, const std::string& what = "--click") {
   for (std::size_t i = 0; i < views.size(); ++i)
     if (views[i].name == key) return i;
   std::size_t used = 0;
@@ -69,8 +86,19 @@ std::size_t find_view(const std::vector<View>& views, const std::string& key) {
     used = 0;
   }
   if (used == key.size() && idx >= 0 && std::size_t(idx) < views.size()) return std::size_t(idx);
-  throw Error("--click", "no training view '" + key + "' (give a name such as " + views.front().name +
+  throw Error(what, "no training view '" + key + "' (give a name such as " + views.front().name +
                              " or an index 0.." + std::to_string(views.size() - 1) + ")");
+}
+
+// "a,b,c,..." with a count from `counts`; `what` names the argument in errors.
+std::vector<float> parse_numbers(const std::string& text, const std::string& what, std::vector<std::size_t> counts) {
+  const std::vector<float> v = parse_number_list(text, what);
+  if (std::find(counts.begin(), counts.end(), v.size()) == counts.end()) {
+    std::string want;
+    for (std::size_t c : counts) want += (want.empty() ? "" : " or ") + std::to_string(c);
+    throw Error(what, "'" + text + "' has " + std::to_string(v.size()) + " numbers, expected " + want);
+  }
+  return v;
 }
 
 nlohmann::json summary_json(const SelectionSummary& s) {
@@ -103,8 +131,66 @@ std::vector<std::size_t> preview_views(std::size_t n_views, int wanted, std::opt
   return v;
 }
 
+// Every training view's object mask from the selection, DIR/mask_XXX.png; with --masks-iou scored against
+// the data set's (or DIR's) masks into DIR/iou.json.
+void write_view_masks(const Options& o, const Dataset& ds, const GaussianModel& model, const SelectionMask& sel,
+                      const RasterSettings& raster, const OutputGuard& guard) {
+  const fs::path dir = fs::absolute(o.write_masks);
+  std::vector<MaskedView> exact;
+  if (o.masks_iou_given) {
+    std::optional<fs::path> against;
+    if (!o.masks_iou.empty()) against = fs::absolute(o.masks_iou);
+    if (against && fs::equivalent(*against, dir))
+      throw Error("--masks-iou", against->string() + " is the --write-masks folder itself");
+    exact = load_masked_views(ds.train, against);
+  }
+  fs::create_directories(dir);
+  nlohmann::json per_view = nlohmann::json::array();
+  double sum = 0.0, worst = 1.0;
+  std::size_t scored = 0;
+  for (const View& v : ds.train) {
+    const Mask m = selection_view_mask(model, sel, v.camera, raster);
+    const fs::path file = dir / object_mask_file_name(v.name);
+    check_output_file(file, guard);
+    save_mask_png(file, m);
+    auto it = std::find_if(exact.begin(), exact.end(), [&](const MaskedView& e) { return e.name == v.name; });
+    if (it == exact.end()) continue;
+    const double iou = mask_iou(m, mask_from_image(it->mask));
+    per_view.push_back({{"view", v.name}, {"iou", iou}, {"pixels", count_set(m)}});
+    sum += iou;
+    worst = std::min(worst, iou);
+    ++scored;
+  }
+  std::printf("wrote %zu object masks to %s\n", ds.train.size(), dir.string().c_str());
+  if (!o.masks_iou_given) return;
+  if (scored == 0) throw Error("--masks-iou", "no training view has an exact mask to compare with");
+  const double mean = sum / double(scored);
+  const nlohmann::json j = {{"views", scored}, {"mean_iou", mean}, {"min_iou", worst}, {"per_view", per_view}};
+  const fs::path out = dir / "iou.json", tmp = dir / "iou.json.tmp";
+  {
+    std::FILE* f = std::fopen(tmp.string().c_str(), "w");
+    if (!f) throw Error(tmp.string(), "cannot write");
+    const std::string text = j.dump(1) + "\n";
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok) throw Error(tmp.string(), "write failed");
+  }
+  fs::rename(tmp, out);
+  std::printf("masks IoU against the exact masks: mean %.4f, min %.4f over %zu views (%s)\n", mean, worst, scored,
+              out.string().c_str());
+}
+
 void run_select(const Options& o, int n_methods) {
-  if (n_methods != 1) throw Error("goris select: choose exactly one of --click VIEW X Y, --masks [DIR], --labels");
+  const bool regions = !o.rects.empty() || !o.polygons.empty() || !o.spheres.empty() || !o.boxes.empty() ||
+                       !o.colours.empty();
+  if (n_methods > 1 || (n_methods == 0 && !regions))
+    throw Error("goris select: choose one of --click VIEW X Y, --masks [DIR], --labels, and/or regions (--rect, "
+                "--polygon, --sphere, --box, --colour)");
+  const Through through = through_from_name(o.through);
+  const Combine combine = combine_from_name(o.combine);
+  const Combine clicks_combine = combine_from_name(o.clicks);
+  if (clicks_combine == Combine::Subtract) throw Error("--clicks", "is union or intersect");
+  if (!o.masks_iou_given ? false : o.write_masks.empty())
+    throw Error("--masks-iou", "needs --write-masks DIR (the masks it scores)");
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path run_dir = fs::absolute(o.run);
   const TrainConfig config = read_run_config(run_dir);
@@ -129,6 +215,7 @@ void run_select(const Options& o, int n_methods) {
   SelectionResult result;
   std::string seed_rule;
   std::optional<std::size_t> clicked_view;
+  std::vector<SelectionMask> clicked_seeds;  // one per click, grown apart
   float grow = o.grow.value_or(0.0f);
 
   if (o.labels) {
@@ -182,61 +269,164 @@ void run_select(const Options& o, int n_methods) {
                       " of the views where it is visible (" + std::to_string(ever_visible) +
                       " Gaussians are visible at all): are the masks white on the object? Lower --min-fraction, "
                       "or use --click");
-  } else {
+  } else if (!o.click.empty()) {
     record.method = "click";
-    const std::size_t vi = find_view(ds.train, o.click[0]);
-    const View& view = ds.train[vi];
-    const int x = parse_int(o.click[1], "X"), y = parse_int(o.click[2], "Y");
-    if (x < 0 || y < 0 || x >= view.camera.width || y >= view.camera.height)
-      throw Error("--click", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside view " +
-                                 view.name + " (" + std::to_string(view.camera.width) + "x" +
-                                 std::to_string(view.camera.height) + " at the run's training resolution)");
-    const PickResult p = pick_gaussian(model, view.camera, x, y);
-    if (!p.hit)
-      throw Error("--click", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of view " + view.name +
-                                 " shows background (the ray's opacity is " + num(p.ray_alpha) +
-                                 "): click on the object");
-    std::printf("picked Gaussian %u in %s at (%d, %d): weight %.3f, depth %.3f, point (%.3f, %.3f, %.3f)\n", p.gaussian,
-                view.name.c_str(), x, y, p.weight, p.depth, p.point.x, p.point.y, p.point.z);
-    clicked_view = vi;
-    record.parameters["view"] = view.name;
-    record.parameters["x"] = x;
-    record.parameters["y"] = y;
-    record.parameters["picked"] = p.gaussian;
-    record.parameters["pick_weight"] = p.weight;
-    record.parameters["pick_depth"] = p.depth;
-    SelectionMask seeds(model.count(), 0);
-    seeds[p.gaussian] = 1;
+    nlohmann::json clicks = nlohmann::json::array();
+    std::vector<SelectionMask> picked;
+    for (std::size_t c = 0; c + 2 < o.click.size(); c += 3) {
+      const std::size_t vi = find_view(ds.train, o.click[c]);
+      const View& view = ds.train[vi];
+      const int x = parse_int(o.click[c + 1], "X"), y = parse_int(o.click[c + 2], "Y");
+      if (x < 0 || y < 0 || x >= view.camera.width || y >= view.camera.height)
+        throw Error("--click", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside view " +
+                                   view.name + " (" + std::to_string(view.camera.width) + "x" +
+                                   std::to_string(view.camera.height) + " at the run's training resolution)");
+      const PickResult p = pick_gaussian(model, view.camera, x, y);
+      if (!p.hit)
+        throw Error("--click", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of view " + view.name +
+                                   " shows background (the ray's opacity is " + num(p.ray_alpha) +
+                                   "): click on the object");
+      std::printf("picked Gaussian %u in %s at (%d, %d): weight %.3f, depth %.3f, point (%.3f, %.3f, %.3f)\n",
+                  p.gaussian, view.name.c_str(), x, y, p.weight, p.depth, p.point.x, p.point.y, p.point.z);
+      if (!clicked_view) clicked_view = vi;
+      clicks.push_back({{"view", view.name}, {"x", x}, {"y", y}, {"picked", p.gaussian}, {"pick_weight", p.weight},
+                        {"pick_depth", p.depth}});
+      SelectionMask seeds(model.count(), 0);
+      seeds[p.gaussian] = 1;
+      picked.push_back(std::move(seeds));
+    }
+    // One click keeps the flat record it always had; more clicks are listed.
+    if (clicks.size() == 1)
+      for (auto it = clicks[0].begin(); it != clicks[0].end(); ++it) record.parameters[it.key()] = it.value();
+    else {
+      record.parameters["clicks"] = clicks;
+      record.parameters["combine_clicks"] = o.clicks;
+    }
     // A click selects one Gaussian: growing is what makes it the object, so it grows by default.
     if (!o.grow) grow = 0.5f;
-    result.mask = seeds;
+    clicked_seeds = std::move(picked);
     result.summary.total = model.count();
-    result.summary.seeds = result.summary.selected = 1;
+    result.summary.seeds = clicked_seeds.size();
     seed_rule = "picked";
   }
 
   nlohmann::json grow_json;
-  if (grow > 0.0f) {
+  std::optional<SelectionGraph> graph;  // built once, for growing and the graph steps
+  auto the_graph = [&]() -> const SelectionGraph& {
+    if (!graph) graph = build_selection_graph(pts);
+    return *graph;
+  };
+  auto grow_one = [&](const SelectionMask& seeds) {
     GrowSettings gs;
     gs.grow = grow;
     gs.max_fraction = o.max_fraction;
-    const SelectionGraph graph = build_selection_graph(pts);
-    const GrowResult g = grow_selection(pts, graph, result.mask, gs);
-    grow_json = {{"grow", grow}, {"seeds", g.seeds}, {"added", g.added}};
+    const GrowResult g = grow_selection(pts, the_graph(), seeds, gs);
     std::printf("grew by %zu Gaussians (grow %.2f)\n", g.added, grow);
     if (g.hit_limit)
       throw Error(run_dir.string(), "growing the selection would take more than " + percent(o.max_fraction) +
                                         " of the scene's Gaussians (stopped at " + std::to_string(g.seeds + g.added) +
                                         "): it leaks into the surroundings - lower --grow (now " +
                                         num(grow) + ") or raise --max-fraction");
+    return g;
+  };
+  if (!clicked_seeds.empty()) {
+    // Each click is grown from its own Gaussian (its own reference colour), then the views' evidence is
+    // united or intersected.
+    SelectionMask merged;
+    std::size_t added = 0;
+    for (const SelectionMask& seeds : clicked_seeds) {
+      SelectionMask m = seeds;
+      if (grow > 0.0f) {
+        const GrowResult g = grow_one(seeds);
+        added += g.added;
+        m = g.mask;
+      }
+      merged = merged.empty() ? m : combine_selections(merged, m, clicks_combine);
+    }
+    if (grow > 0.0f) grow_json = {{"grow", grow}, {"seeds", clicked_seeds.size()}, {"added", added}};
+    result.mask = merged;
+    result.summary.selected = count_selected(merged);
+  } else if (grow > 0.0f && !result.mask.empty()) {
+    const GrowResult g = grow_one(result.mask);
+    grow_json = {{"grow", grow}, {"seeds", g.seeds}, {"added", g.added}};
     result.mask = g.mask;
     result.summary.selected = count_selected(g.mask);
   }
   // A click's object is what growing found: that region is closed like the other rules' seeds. Without
-  // growth the user asked for exactly the picked Gaussian.
+  // growth the user asked for exactly the picked Gaussians.
   if (record.method == "click" && grow > 0.0f) {
     result = close_selection(pts, result.mask, close);
     seed_rule = "picked and grown";
+  }
+
+  // Regions: united with one another, then combined with the rule's result.
+  if (regions) {
+    SelectionMask region(model.count(), 0);
+    nlohmann::json rj = nlohmann::json::array();
+    auto add = [&](const SelectionMask& m, nlohmann::json what) {
+      what["selected"] = count_selected(m);
+      rj.push_back(what);
+      region = combine_selections(region, m, Combine::Union);
+    };
+    auto screen = [&](const std::vector<std::string>& args, const char* flag, bool rect) {
+      for (std::size_t k = 0; k + 1 < args.size(); k += 2) {
+        const View& v = ds.train[find_view(ds.train, args[k], flag)];
+        ScreenPolygon poly;
+        if (rect) {
+          const std::vector<float> c = parse_numbers(args[k + 1], flag, {4});
+          poly = rect_polygon({c[0], c[1]}, {c[2], c[3]});
+        } else {
+          poly = parse_polygon(args[k + 1], flag);
+        }
+        add(select_in_view_region(model, pts, v.camera, poly, through, raster),
+            {{"kind", rect ? "rect" : "polygon"}, {"view", v.name}, {"points", args[k + 1]},
+             {"through", through_name(through)}});
+      }
+    };
+    screen(o.rects, "--rect", true);
+    screen(o.polygons, "--polygon", false);
+    for (const std::string& t : o.spheres) {
+      const std::vector<float> c = parse_numbers(t, "--sphere", {4});
+      if (c[3] < 0.0f) throw Error("--sphere", "radius " + num(c[3]) + " is negative");
+      add(select_sphere(pts, {c[0], c[1], c[2]}, c[3]), {{"kind", "sphere"}, {"values", t}});
+    }
+    for (const std::string& t : o.boxes) {
+      const std::vector<float> c = parse_numbers(t, "--box", {6, 9});
+      SelectionBox box;
+      box.centre = {c[0], c[1], c[2]};
+      box.half_extent = {c[3], c[4], c[5]};
+      if (c[3] < 0.0f || c[4] < 0.0f || c[5] < 0.0f) throw Error("--box", "half extents must not be negative");
+      if (c.size() == 9) box.rotation = rotation_from_euler_degrees({c[6], c[7], c[8]});
+      add(select_box(pts, box), {{"kind", "box"}, {"values", t}});
+    }
+    for (const std::string& t : o.colours) {
+      const std::vector<float> c = parse_numbers(t, "--colour", {4});
+      if (c[3] < 0.0f) throw Error("--colour", "distance " + num(c[3]) + " is negative");
+      add(select_by_colour(pts, {c[0], c[1], c[2]}, c[3]), {{"kind", "colour"}, {"values", t}});
+    }
+    record.parameters["regions"] = rj;
+    if (n_methods == 0) {
+      record.method = "region";
+      result.mask = region;
+      result.summary.total = model.count();
+      result.summary.seeds = count_selected(region);
+      seed_rule = "in the regions";
+    } else {
+      record.parameters["combine"] = o.combine;
+      result.mask = combine_selections(result.mask, region, combine);
+      seed_rule += std::string(", ") + combine_name(combine) + " regions";
+    }
+    std::printf("regions select %zu Gaussians\n", count_selected(region));
+  }
+  if (o.dilate > 0) result.mask = dilate_selection(the_graph(), result.mask, o.dilate);
+  if (o.shrink > 0) result.mask = shrink_selection(the_graph(), result.mask, o.shrink);
+  if (o.invert) result.mask = invert_selection(result.mask);
+  if (o.dilate > 0 || o.shrink > 0 || o.invert || regions) {
+    record.parameters["dilate"] = o.dilate;
+    record.parameters["shrink"] = o.shrink;
+    record.parameters["invert"] = o.invert;
+    result.summary.selected = count_selected(result.mask);
+    if (o.invert) seed_rule += ", inverted";
   }
   record.parameters["grow"] = grow;
   record.parameters["close"] = close.enabled && (record.method != "click" || grow > 0.0f);
@@ -274,6 +464,7 @@ void run_select(const Options& o, int n_methods) {
   }
   if (!pv.empty())
     std::printf("previews (tinted | removed) of %zu views in %s\n", pv.size(), preview_dir.string().c_str());
+  if (!o.write_masks.empty()) write_view_masks(o, ds, model, result.mask, raster, guard);
   std::printf("done in %.1f s\n", seconds_since(t0));
 }
 
@@ -283,8 +474,11 @@ void setup_select(CLI::App& root) {
   c->add_option("run", o->run, "Run folder written by `goris train`")->required();
   auto* click = c->add_option("--click", o->click,
                               "VIEW X Y: the Gaussian shown at pixel (X, Y) of training view VIEW (name like r_012 or "
-                              "index), grown over similar neighbours (--grow, default 0.5)")
-                    ->expected(3);
+                              "index), grown over similar neighbours (--grow, default 0.5); repeat for more views")
+                    ->expected(3)
+                    ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--clicks", o->clicks, "union | intersect: how several clicks' grown selections combine")
+      ->check(CLI::IsMember({"union", "intersect"}));
   auto* masks = c->add_option("--masks", o->masks_dir,
                               "[DIR] Vote with object masks: the data set's train mask_XXX.png, or DIR/mask_XXX.png "
                               "or DIR/<view name>.png when DIR is given (after RUN)")
@@ -298,13 +492,49 @@ void setup_select(CLI::App& root) {
       ->check(CLI::Range(0.0, 1.0));
   c->add_option("--max-fraction", o->max_fraction, "Refuse selections larger than this fraction of all Gaussians")
       ->check(CLI::Range(0.001, 1.0));
+  c->add_option("--rect", o->rects,
+                "VIEW x0,y0,x1,y1: centres inside this rectangle of training view VIEW's pixels (repeatable)")
+      ->expected(2)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--polygon", o->polygons, "VIEW x,y,x,y,...: centres inside this polygon (lasso) of view VIEW (repeatable)")
+      ->expected(2)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--through", o->through,
+                "visible: --rect / --polygon take only what the view shows (depth-tested centres); all: every "
+                "centre inside")
+      ->check(CLI::IsMember({"visible", "all"}));
+  c->add_option("--sphere", o->spheres, "cx,cy,cz,r: centres inside this sphere (world units; repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--box", o->boxes,
+                "cx,cy,cz,hx,hy,hz[,rx,ry,rz]: centres inside this box (half extents; rotation in degrees about "
+                "x, then y, then z; repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--colour", o->colours, "r,g,b,d: Gaussians whose base (SH DC) colour lies within d of r,g,b (0..1)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--combine", o->combine,
+                "union | subtract | intersect: how the regions combine with --click / --masks / --labels")
+      ->check(CLI::IsMember({"union", "subtract", "intersect"}));
+  c->add_option("--dilate", o->dilate, "Add this many rings of graph neighbours to the selection")
+      ->check(cli::whole(0, 100));
+  c->add_option("--shrink", o->shrink, "Remove this many rings from the selection's border")->check(cli::whole(0, 100));
+  c->add_flag("--invert", o->invert, "Select everything else (last step; raise --max-fraction as needed)");
+  c->add_option("--write-masks", o->write_masks,
+                "DIR: write every training view's object mask of the selection (mask_XXX.png, depth-tested coverage)");
+  auto* iou = c->add_option("--masks-iou", o->masks_iou,
+                            "[DIR] with --write-masks: score them (IoU) against the data set's object masks, or "
+                            "DIR's; writes iou.json beside them")
+                  ->expected(0, 1);
   c->add_flag("--no-close", o->no_close, "Do not add the Gaussians inside the hull of the selected centres");
   c->add_option("--out", o->out, "Selection file to write (default RUN/selection.json; the mask goes beside it)");
   c->add_option("--previews", o->previews, "Preview images of training views to write")->check(cli::whole(0, 1000));
   c->add_option("--device", o->device, "auto | cpu | cuda (rendering for masks and previews)")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  c->callback([o, click, masks, labels] {
+  c->callback([o, click, masks, labels, iou] {
     o->masks = masks->count() > 0;
+    o->masks_iou_given = iou->count() > 0;
     run_select(*o, int(click->count() > 0) + int(o->masks) + int(labels->count() > 0));
   });
 }

@@ -204,21 +204,27 @@ GrowResult grow_selection(const SelectionPoints& pts, const SelectionMask& seeds
   return grow_selection(pts, build_selection_graph(pts), seeds, settings);
 }
 
-SelectionMask shrink_selection(const SelectionGraph& graph, const SelectionMask& mask, int steps) {
+namespace {
+
+// `steps` rounds of morphology over the graph: erode (shrink) deselects every selected Gaussian with an
+// unselected neighbour, dilate selects every unselected Gaussian with a selected neighbour.
+SelectionMask graph_morphology(const SelectionGraph& graph, const SelectionMask& mask, int steps, bool dilate) {
+  const char* what = dilate ? "dilate" : "shrink";
   if (mask.size() != graph.size())
-    throw Error("selection", "shrink: mask has " + std::to_string(mask.size()) + " entries for a graph of " +
-                                 std::to_string(graph.size()) + " Gaussians");
-  if (steps < 0) throw Error("selection", "shrink steps must be >= 0");
+    throw Error("selection", std::string(what) + ": mask has " + std::to_string(mask.size()) +
+                                 " entries for a graph of " + std::to_string(graph.size()) + " Gaussians");
+  if (steps < 0) throw Error("selection", std::string(what) + " steps must be >= 0");
   SelectionMask cur = mask;
   for (auto& m : cur) m = m ? 1 : 0;
+  const std::uint8_t from = dilate ? 0 : 1;  // the Gaussians a step may change
   for (int step = 0; step < steps; ++step) {
     SelectionMask next = cur;
     bool changed = false;
     for (std::size_t i = 0; i < cur.size(); ++i) {
-      if (!cur[i]) continue;
+      if (cur[i] != from) continue;
       for (std::uint32_t e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
-        if (!cur[graph.neighbors[e]]) {
-          next[i] = 0;
+        if (cur[graph.neighbors[e]] != from) {
+          next[i] = 1 - from;
           changed = true;
           break;
         }
@@ -227,6 +233,16 @@ SelectionMask shrink_selection(const SelectionGraph& graph, const SelectionMask&
     if (!changed) break;
   }
   return cur;
+}
+
+}  // namespace
+
+SelectionMask shrink_selection(const SelectionGraph& graph, const SelectionMask& mask, int steps) {
+  return graph_morphology(graph, mask, steps, false);
+}
+
+SelectionMask dilate_selection(const SelectionGraph& graph, const SelectionMask& mask, int steps) {
+  return graph_morphology(graph, mask, steps, true);
 }
 
 }  // namespace goris

@@ -69,5 +69,8 @@ GrowResult grow_selection(const SelectionPoints& pts, const SelectionMask& seeds
 // Erodes the selection `steps` times: each step deselects every selected Gaussian with an unselected graph
 // neighbour. A selection with no unselected neighbour at all (an isolated object) does not shrink.
 SelectionMask shrink_selection(const SelectionGraph& graph, const SelectionMask& mask, int steps = 1);
+// Dilates it `steps` times: each step selects every unselected Gaussian with a selected graph neighbour
+// (no similarity test: a plain "grow by one ring of neighbours").
+SelectionMask dilate_selection(const SelectionGraph& graph, const SelectionMask& mask, int steps = 1);
 
 }  // namespace goris

@@ -8,14 +8,20 @@
 //                                          (core/removal/selection_labels.h)
 //   labels_from_masks(model, views, ...)   2D object masks, depth-tested votes  (selection_masks.h)
 //   GaussianPicker / pick_gaussian(...)    the Gaussian under a pixel           (selection_pick.h)
+//   select_in_view_region(model, ...)      a rectangle / lasso / brush disc of a view, through the depth
+//                                          or through everything                (selection_region.h)
+//   select_sphere / select_box / select_by_colour   volumes and colour range     (core/removal/selection_ops.h)
 // Editing:
 //   close_selection(pts, seeds, ...)       outliers out, then everything inside the hull / box added
 //   grow_selection / shrink_selection      over the centres' kNN graph, slider 0..1, bounded
-//                                          (core/removal/selection_grow.h)
+//                                          (core/removal/selection_grow.h); dilate_selection adds rings
+//   combine_selections / invert_selection  union, subtract, intersect          (core/removal/selection_ops.h)
 // Storing:
 //   write_selection / read_selection       RUN/selection.json + selection.npy, stale-model checks
 //                                          (core/removal/selection_file.h)
 //   apply_selection_to_labels(model, m)    the selection as the model's label channel
+//   selection_view_mask(model, m, cam)     a view's object mask from the selection's coverage
+//                                          (selection_view_masks.h)
 // Showing:
 //   render_selection_preview(...)          tinted | removed side by side       (selection_preview.h)
 //
@@ -26,7 +32,11 @@
 #include "core/removal/selection_file.h"
 #include "core/removal/selection_grow.h"
 #include "core/removal/selection_labels.h"
+#include "core/removal/selection_ops.h"
+#include "core/removal/selection_screen.h"
 #include "core/removal/selection_points.h"
 #include "render/removal/selection_masks.h"
 #include "render/removal/selection_pick.h"
 #include "render/removal/selection_preview.h"
+#include "render/removal/selection_region.h"
+#include "render/removal/selection_view_masks.h"

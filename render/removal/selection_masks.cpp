@@ -5,13 +5,9 @@
 #include <map>
 #include <string>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
-#include "render/raster/rasterizer.h"
-#include "render/removal/select_view.h"
+#include "render/removal/selection_region.h"
 
 namespace goris {
 
@@ -44,11 +40,16 @@ MaskVotes labels_from_masks(const GaussianModel& model, const std::vector<Masked
   const std::size_t n = model.count();
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
   const std::vector<float> ls = model.tensor(Param::LogScale).value.to_host();
+  std::vector<glm::vec3> centres(n);
+  std::vector<float> sigma(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    centres[i] = glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    sigma[i] = std::exp(std::max({ls[3 * i], ls[3 * i + 1], ls[3 * i + 2]}));
+  }
   MaskVotes votes;
   votes.visible.assign(n, 0);
   votes.inside.assign(n, 0);
   votes.selected.assign(n, 0);
-  const GaussianView gv = plain_gaussian_view(model);
 
   for (const MaskedView& mv : views) {
     const Camera& cam = mv.camera;
@@ -58,25 +59,13 @@ MaskVotes labels_from_masks(const GaussianModel& model, const std::vector<Masked
                                std::to_string(mv.mask.channels) + ", expected a one-channel CPU image of " +
                                std::to_string(w) + "x" + std::to_string(h));
     if (n == 0) continue;
-    const RasterOutput out = rasterize(gv, cam, raster, model.device());
-    const std::vector<float> median = out.gbuffer.median_depth.to_host();
+    const std::vector<std::int32_t> px = visible_centre_pixels(model, centres, sigma, cam, raster, s.depth_tolerance);
     const float* mask = mv.mask.pixels.data();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        const glm::vec3 pc = cam.to_camera(glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
-        if (!(pc.z > raster.near_plane)) continue;
-        const glm::vec2 uv = cam.project_camera(pc);
-        if (!(uv.x >= 0.0f && uv.y >= 0.0f && uv.x < float(w) && uv.y < float(h))) continue;
-        const std::size_t px = std::size_t(int(uv.y)) * std::size_t(w) + std::size_t(int(uv.x));
-        const float md = median[px];
-        const float sigma = std::exp(std::max({ls[3 * i], ls[3 * i + 1], ls[3 * i + 2]}));
-        // md == 0: nothing was rendered at this pixel, so nothing hides the centre either.
-        const bool visible = md <= 0.0f || pc.z <= md + std::max(s.depth_tolerance * md, sigma);
-        if (!visible) continue;
-        ++votes.visible[i];  // each Gaussian is written by one thread only
-        if (mask[px] > s.mask_threshold) ++votes.inside[i];
-      }
-    });
+    for (std::size_t i = 0; i < n; ++i) {
+      if (px[i] < 0) continue;
+      ++votes.visible[i];
+      if (mask[px[i]] > s.mask_threshold) ++votes.inside[i];
+    }
     ++votes.views;
     if (on_view) on_view(votes.views, views.size());
   }

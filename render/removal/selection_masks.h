@@ -7,7 +7,8 @@
 // its camera depth z must not exceed the rasterized median depth at its pixel by more than
 // max(depth_tolerance * median, its own largest 1-sigma scale). Occluded Gaussians (the floor behind the
 // object, the object's own far side) therefore cast no vote in that view; a Gaussian visible in no view is
-// never selected by votes (the hull closure can still add it: see close_selection()).
+// never selected by votes (the hull closure can still add it: see close_selection()). The visibility test is
+// visible_centre_pixels (selection_region.h).
 #include <cstdint>
 #include <filesystem>
 #include <functional>

@@ -8,6 +8,7 @@
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
 #include "render/removal/select_view.h"
+#include "render/removal/selection_view_masks.h"
 
 namespace goris {
 
@@ -18,21 +19,15 @@ Image render_selection_preview(const GaussianModel& model, const SelectionMask& 
     throw Error("preview", "mask has " + std::to_string(mask.size()) + " entries for " + std::to_string(n) +
                                " Gaussians");
   const Device dev = model.device();
-  // The selection as one extra channel: the rasterizer blends it into its coverage per pixel.
-  std::vector<float> sel(n), opacity = model.tensor(Param::OpacityLogit).value.to_host();
-  for (std::size_t i = 0; i < n; ++i) {
-    sel[i] = mask[i] ? 1.0f : 0.0f;
-    if (mask[i]) opacity[i] = -30.0f;  // opacity ~1e-13: below the 1/255 cut, so the Gaussian is skipped
-  }
-  const Buffer<float> sel_buf(sel, dev), removed_opacity(opacity, dev);
-
-  GaussianView tinted_view = plain_gaussian_view(model);
-  tinted_view.extras = sel_buf.data();
-  tinted_view.n_extras = 1;
+  // Removed: opacity ~1e-13, below the 1/255 cut, so the selected Gaussians are skipped.
+  std::vector<float> opacity = model.tensor(Param::OpacityLogit).value.to_host();
+  for (std::size_t i = 0; i < n; ++i)
+    if (mask[i]) opacity[i] = -30.0f;
+  const Buffer<float> removed_opacity(opacity, dev);
   GaussianView removed_view = plain_gaussian_view(model);
   removed_view.opacity_logits = removed_opacity.data();
 
-  const RasterOutput a = rasterize(tinted_view, camera, raster, dev);
+  const RasterOutput a = render_selection_channel(model, mask, camera, raster);
   const RasterOutput b = rasterize(removed_view, camera, raster, dev);
   const std::vector<float> ca = a.gbuffer.color.to_host(), cov = a.gbuffer.extras.to_host(),
                            cb = b.gbuffer.color.to_host();

@@ -62,6 +62,21 @@ endforeach()
 file(MAKE_DIRECTORY "${WORK}/click0")
 goris_ok(select "${RUN}" --click 0 32 33 --grow 0 --device cpu --previews 0 --out "${WORK}/click0/sel.json")
 
+# Regions, alone and combined with a rule; masks of every training view from the selection, scored.
+file(MAKE_DIRECTORY "${WORK}/region")
+goris_ok(select "${RUN}" --rect r_000 16,16,48,48 --through all --max-fraction 1 --previews 0 --device cpu
+         --out "${WORK}/region/sel.json")
+expect_text("${OUT}" "in the regions")
+goris_ok(select "${RUN}" --masks --sphere 0,0,0,0.3 --box 0,0,0,0.1,0.1,0.1,0,0,45 --combine subtract --dilate 1
+         --previews 0 --device cpu --out "${WORK}/region/sel.json" --write-masks "${WORK}/region/masks" --masks-iou)
+expect_text("${OUT}" "wrote 40 object masks")
+expect_text("${OUT}" "masks IoU against the exact masks")
+foreach(f masks/mask_000.png masks/mask_039.png masks/iou.json)
+  if(NOT EXISTS "${WORK}/region/${f}")
+    message(FATAL_ERROR "--write-masks did not write ${f}")
+  endif()
+endforeach()
+
 # Errors that explain themselves; nothing already written is lost.
 file(READ "${RUN}/selection.json" before)
 goris_fails("shows background" select "${RUN}" --click r_000 0 0 --device cpu)
@@ -69,8 +84,12 @@ goris_fails("more than 50.0% of the scene" select "${RUN}" --click r_000 32 33 -
 # An untrained label channel (0.5 everywhere) selects everything: refused.
 goris_fails("raise --threshold" select "${RUN}" --labels --device cpu)
 goris_fails("no Gaussian has a label above" select "${RUN}" --labels --threshold 0.9 --device cpu)
-goris_fails("choose exactly one" select "${RUN}" --labels --masks --device cpu)
-goris_fails("choose exactly one" select "${RUN}" --device cpu)
+goris_fails("choose one of" select "${RUN}" --labels --masks --device cpu)
+goris_fails("choose one of" select "${RUN}" --device cpu)
+goris_fails("has 2 numbers, expected 6 or 9" select "${RUN}" --box 1,2 --device cpu)
+goris_fails("odd count of numbers" select "${RUN}" --polygon r_000 1,1,2 --device cpu)
+goris_fails("no training view 'r_999'" select "${RUN}" --rect r_999 1,1,2,2 --device cpu)
+goris_fails("needs --write-masks" select "${RUN}" --masks --masks-iou --device cpu)
 goris_fails("no training view 'r_999'" select "${RUN}" --click r_999 1 1 --device cpu)
 goris_fails("outside view r_000" select "${RUN}" --click r_000 64 3 --device cpu)
 goris_fails("mask folder not found" select "${RUN}" --masks "${WORK}/no_such_masks" --device cpu)

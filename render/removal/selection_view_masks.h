@@ -1,0 +1,42 @@
+#pragma once
+// Object masks from a 3D selection: per view, the rendered coverage of the selected Gaussians (the
+// selection rasterized as an extra channel of the full model, so their alpha * T already accounts for
+// everything in front of them: a depth test against the full render), thresholded and cleaned by a small
+// morphological close then open. Written as the data sets' object masks are named (mask_XXX.png for
+// view r_XXX, else <view name>.png), so `goris select --masks DIR`, the label loss and stage 2 read them.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/inpaint/mask.h"
+#include "core/io/camera.h"
+#include "core/io/dataset.h"
+#include "core/removal/selection_points.h"
+#include "render/raster/rasterizer.h"
+
+namespace goris {
+
+class GaussianModel;
+
+// The full render with the selection as its one extra channel: gbuffer.color is the view,
+// gbuffer.extras the selected Gaussians' coverage sum(alpha_i T_i) per pixel. Throws goris::Error when the
+// mask size differs from the model's.
+RasterOutput render_selection_channel(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
+                                      const RasterSettings& raster = {});
+
+struct ViewMaskSettings {
+  float threshold = 0.5f;  // coverage above which a pixel is the object
+  int close_radius = 1;    // pixels: fills pinholes between splats
+  int open_radius = 1;     // pixels: drops specks from stray selected Gaussians
+};
+
+Mask selection_view_mask(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
+                         const RasterSettings& raster = {}, const ViewMaskSettings& settings = {});
+
+// The file name a view's object mask has: mask_XXX.png for r_XXX, else <name>.png.
+std::string object_mask_file_name(const std::string& view_name);
+
+// Intersection over union of the set pixels (1 when both are empty). Different sizes: goris::Error.
+double mask_iou(const Mask& a, const Mask& b);
+
+}  // namespace goris
