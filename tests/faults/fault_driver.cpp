@@ -179,8 +179,10 @@ void train_trials(Driver& d, const std::string& mode, int kills, double usual_s,
     kills -= stops;
     const std::string name = "train " + mode + " trial " + std::to_string(trial++);
     auto next = [&]() -> std::vector<std::string> {
+      bool has_ckpt = false;  // a checkpoint file, not only the temporary file of one being written
       std::error_code ec;
-      const bool has_ckpt = fs::is_directory(run / "checkpoints", ec) && !fs::is_empty(run / "checkpoints", ec);
+      for (const auto& e : fs::directory_iterator(run / "checkpoints", ec))
+        has_ckpt = has_ckpt || (e.path().extension() == ".ckpt" && !Driver::is_temp_name(e.path().filename().string()));
       if (has_ckpt) return {"train", d.data.string(), "--out", run.string(), "--resume"};
       std::vector<std::string> a = s.train_args(d.data, run, mode);
       if (fs::exists(run / "config.json")) a.push_back("--restart");
