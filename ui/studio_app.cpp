@@ -195,9 +195,10 @@ void StudioApp::frame() {
     if (script_->step(*this) == ScriptRunner::Status::Failed) {
       std::fprintf(stderr, "error: %s\n", script_->error().c_str());
       exit_status_ = 1;
-      window_->request_close();
     }
   }
+  // A script ends the editor at its last line, with or without `quit`.
+  if (script_ && script_->status() != ScriptRunner::Status::Running) window_->request_close();
 
   draw_menu();
   if (settings_.show_sidebar) draw_sidebar();

@@ -22,6 +22,7 @@
 #include "app/goris/command.h"
 #include "app/goris/number_checks.h"
 #include "app/goris/stop_signals.h"
+#include "core/io/file_bytes.h"
 #include "core/io/splat_formats.h"
 #include "core/train/run_folder.h"
 #include "core/train/run_output_guard.h"
@@ -115,6 +116,9 @@ void run_export(const Options& o) {
   }  // not a run: RunExport below says so, after the paths' own problems
   for (const auto& f : files) check_output_file(f.first, guard);
   if (!o.renders.empty()) check_output_dir(o.renders, guard);
+  // Temporary files an earlier export left where it was killed mid-write go now.
+  for (const auto& f : files) remove_stale_temp_files(fs::absolute(f.first).parent_path());
+  if (!o.renders.empty()) remove_stale_temp_files(o.renders);
 
   const Device device = resolve_device(o.device);
   RunExport ex(o.run, device);

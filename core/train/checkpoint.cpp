@@ -24,7 +24,8 @@ namespace goris {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'O', 'R', 'I', 'S', 'C', 'K', 'P'};
-constexpr std::uint32_t kVersion = 3;  // 2: + learning-rate scale and skipped steps; 3: + adaptive densification record
+// 2: + learning-rate scale and skipped steps; 3: + adaptive densification record; 4: + emit weights
+constexpr std::uint32_t kVersion = 4;
 
 class Writer {
  public:
@@ -37,8 +38,8 @@ class Writer {
     pod(std::uint64_t(s.size()));
     out_ += s;
   }
-  void floats(const Buffer<float>& b) {
-    const std::vector<float> h = b.to_host();
+  void floats(const Buffer<float>& b) { floats(b.to_host()); }
+  void floats(const std::vector<float>& h) {
     pod(std::uint64_t(h.size()));
     out_.append(reinterpret_cast<const char*>(h.data()), h.size() * sizeof(float));
   }
@@ -74,6 +75,15 @@ class Reader {
     if (n) std::memcpy(cpu.data(), d_.data() + pos_, n * sizeof(float));
     pos_ += n * sizeof(float);
     return device == Device::CPU ? std::move(cpu) : cpu.copy_to(device);
+  }
+  std::vector<float> host_floats() {
+    const std::uint64_t n = pod<std::uint64_t>();
+    if (n > d_.size() / sizeof(float)) fail("is truncated");
+    need(n * sizeof(float));
+    std::vector<float> v(n);
+    if (n) std::memcpy(v.data(), d_.data() + pos_, n * sizeof(float));
+    pos_ += n * sizeof(float);
+    return v;
   }
   [[noreturn]] void fail(const std::string& problem) const { throw Error(path_.string(), "checkpoint " + problem); }
 
@@ -131,6 +141,7 @@ void write_checkpoint(const std::filesystem::path& path, const TrainConfig& conf
     w.pod(c.gaussians);
   }
   w.pod(std::int32_t(st.densify_stop.stopped_at));
+  w.floats(st.emit_weights);
   w.pod(fnv1a(w.bytes()));
 
   write_file_bytes(path, w.bytes().data(), w.bytes().size());
@@ -211,6 +222,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
     if (st.densify_stop.stopped_at < 0 || st.densify_stop.stopped_at > st.iteration)
       r.fail("adaptive densification stop iteration is invalid");
   }
+  if (version >= 4) st.emit_weights = r.host_floats();  // of the model when they were set: any count
   return ck;
 }
 

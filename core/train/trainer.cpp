@@ -108,6 +108,7 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
   const size_t n_views = views_.size();
   config_ = std::move(config);
   renderer_ = std::move(renderer);
+  emit_weights_given_ = false;
   state_.model.max_sh_degree = config_.max_sh_degree;
   if (update_views) update_views(views_);
   if (views_.size() != n_views) throw Error("training: switching modes must keep the training views");
@@ -166,9 +167,11 @@ StepStats Trainer::step() {
   // Forward.
   const bool with_extras = renderer_->wants_extras();
   renderer_->begin_iteration(it);
-  if (with_extras && config_.intrinsic.emit != "region" && (emit_weights_count_ != m.count() || it % 25 == 0)) {
-    renderer_->set_emit_weights(glossy_mask_emit_weights(m, views_), config_.intrinsic.emit == "max");
-    emit_weights_count_ = m.count();
+  if (with_extras && config_.intrinsic.emit != "region") {
+    const bool refresh = state_.emit_weights.size() != m.count() || it % 25 == 0;
+    if (refresh) state_.emit_weights = glossy_mask_emit_weights(m, views_);
+    if (refresh || !emit_weights_given_) renderer_->set_emit_weights(state_.emit_weights, config_.intrinsic.emit == "max");
+    emit_weights_given_ = true;
   }
   const GaussianView gv = m.view(with_extras);
   const RenderedImages fwd = renderer_->forward(gv, cam);

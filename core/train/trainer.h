@@ -67,6 +67,10 @@ struct TrainerState {
   double lr_scale = 1.0;                 // lowered by each step skipped for non-finite values
   int skipped_steps = 0;                 // in all; consecutive ones are counted in the trainer
   DensifyStopState densify_stop;         // the adaptive Gaussian budget's held-out checks and decision
+  // intrinsic_emit mask or max: the emit weights last given to the renderer (one per Gaussian, from the
+  // model of that iteration; empty = none yet). A resumed run gives the renderer these again instead of
+  // weights computed from its later model.
+  std::vector<float> emit_weights;
 };
 
 struct TrainProgress {
@@ -183,7 +187,7 @@ class Trainer {
   TrainConfig config_;
   std::vector<float> distortion_weights_;
   std::vector<TrainView> views_;
-  std::size_t emit_weights_count_ = std::size_t(-1);  // Gaussians when the emit weights were last set (intrinsic_emit = mask)
+  bool emit_weights_given_ = false;  // state_.emit_weights are the renderer's (intrinsic_emit mask or max)
   float extent_;
   std::shared_ptr<DifferentiableRenderer> renderer_;
   Device device_;

@@ -255,6 +255,11 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   report.out_dir = out;
   const RemoveIfLeftEmpty created(out);  // a removal refused below leaves no empty removal/ behind
   fs::create_directories(out);
+  // Temporary files of a removal killed mid-write (masks, maps, checkpoints) go, in every folder of it.
+  remove_stale_temp_files(out);
+  std::error_code walk;
+  for (const auto& e : fs::recursive_directory_iterator(out, walk))
+    if (e.is_directory()) remove_stale_temp_files(e.path());
   std::string model_source;
   GaussianModel model = load_run_model(run_dir, device, &model_source);
   report.gaussians_before = model.count();

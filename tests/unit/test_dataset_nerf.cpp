@@ -158,9 +158,11 @@ TEST(DatasetNerf, WrongKeysAndTypes) {
   j = good;
   j["frames"][0]["transform_matrix"][1][3] = 1e60;  // beyond float (found by fuzz_json)
   expect_error(with(j), {"transforms_train.json", "frame 0", "camera position out of range"});
-  j = good;
-  j["camera_angle_x"] = 1e-300;
-  expect_error(with(j), {"transforms_train.json", "intrinsics out of range"});
+  for (const double angle : {1e-300, 1e-30, 3.14159, 3.1}) {  // absurd fields of view: fx of 1e32 or ~0
+    j = good;
+    j["camera_angle_x"] = angle;
+    expect_error(with(j), {"transforms_train.json", "'camera_angle_x'", "field of view must lie between"});
+  }
   j = good;
   j["frames"][0].erase("file_path");
   expect_error(with(j), {"transforms_train.json", "frame 0", "no 'file_path'"});
@@ -228,6 +230,28 @@ TEST(DatasetNerf, Lego) {
   const Image im = load_view_image(d.train[0], o);
   EXPECT_EQ(im.width, 200);
   EXPECT_EQ(im.height, 200);
+}
+
+// Data sets that load but cannot train well say so, naming the camera file.
+TEST(DatasetNerf, WarnsOfOneViewOneCameraPositionAndDuplicateFrames) {
+  const auto dir = make_scene("nerf_degenerate");
+  auto warnings_with = [&](std::initializer_list<json> frames) {
+    json j;
+    j["camera_angle_x"] = 0.8;
+    j["frames"] = json::array();
+    for (const json& f : frames) j["frames"].push_back(f);
+    test::write_text(dir / "transforms_train.json", j.dump());
+    std::string all;
+    for (const std::string& w : load_dataset(dir).warnings) all += w + "\n";
+    return all;
+  };
+  std::string w = warnings_with({frame("./train/r_000", 0)});
+  EXPECT_NE(w.find("transforms_train.json: only one training view"), std::string::npos) << w;
+  w = warnings_with({frame("./train/r_000", 0), frame("./train/r_001", 0)});
+  EXPECT_NE(w.find("all 2 training cameras are at the same position"), std::string::npos) << w;
+  w = warnings_with({frame("./train/r_000", 0), frame("./train/r_000", 1)});
+  EXPECT_NE(w.find("r_000.png is listed 2 times"), std::string::npos) << w;
+  EXPECT_EQ(warnings_with({frame("./train/r_000", 0), frame("./train/r_001", 1)}), "");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <system_error>
 
 #include "core/io/dataset.h"
+#include "core/io/loaders/camera_warnings.h"
 #include "core/io/loaders/loader_common.h"
 #include "core/util/error.h"
 
@@ -83,6 +84,7 @@ Dataset load_dataset(const fs::path& path, const DatasetOptions& options) {
     for (auto* views : {&ds.train, &ds.test})
       for (View& v : *views)
         if (v.camera.has_distortion()) v.lens = v.camera.dist, v.camera.dist = Distortion{};
+  loaders::add_camera_warnings(ds);
   return ds;
 }
 

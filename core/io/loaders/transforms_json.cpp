@@ -9,6 +9,9 @@
 
 namespace goris {
 namespace {
+
+constexpr double kMinFieldOfView = 0.1 * M_PI / 180, kMaxFieldOfView = 175 * M_PI / 180;  // radians
+
 using nlohmann::json;
 
 class Reader {
@@ -61,7 +64,11 @@ class Reader {
     in.h = size(obj, "h", where);
     for (const char* k : {"camera_angle_x", "camera_angle_y"}) {
       auto v = number(obj, k, where);
-      if (v && (*v <= 0 || *v >= M_PI)) fail(where, std::string("'") + k + "' must be in (0, pi) radians");
+      // Between 0.1 and 175 degrees: outside, the focal length is absurd (1e-30 rad gives fx = 1e32, pi
+      // gives fx = 0) and the renders meaningless.
+      if (v && !(*v >= kMinFieldOfView && *v <= kMaxFieldOfView))
+        fail(where, std::string("'") + k + "' is " + std::to_string(*v) + " radians (" +
+                        std::to_string(*v * 180 / M_PI) + " degrees): a field of view must lie between 0.1 and 175 degrees");
     }
     for (const char* k : {"fl_x", "fl_y"}) {
       auto v = number(obj, k, where);
