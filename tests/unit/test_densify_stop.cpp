@@ -8,6 +8,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -376,34 +377,42 @@ TEST(DensifyStop, TooShortAnAdaptiveRunTrainsExactlyAsAFixedOne) {
 }
 
 TEST(DensifyStop, VersionTwoCheckpointsStillLoad) {
-  // A version-3 file with an empty record, turned into the version-2 layout: the record (8-byte count +
-  // 4-byte stop iteration) dropped, the version field and the checksum rewritten.
+  // A version-4 file with an empty record, turned into the version-3 layout (the emit-weight block, an 8-byte
+  // count and its floats, dropped) and the version-2 layout (also the record: 8-byte count + 4-byte stop
+  // iteration), the version field and the checksum rewritten each time.
   TinyRun run(-1000.0f, 20);
   Trainer t = run.trainer();
   for (int i = 0; i < 5; ++i) t.step();
   const auto dir = test::scratch_dir("densify_stop_v2");
-  t.save_checkpoint(dir / "v3.ckpt");
-  std::ifstream in(dir / "v3.ckpt", std::ios::binary);
+  t.save_checkpoint(dir / "v4.ckpt");
+  std::ifstream in(dir / "v4.ckpt", std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::uint32_t version;
   std::memcpy(&version, bytes.data() + 8, 4);
-  ASSERT_EQ(version, 3u);
-  std::string v2 = bytes.substr(0, bytes.size() - 8 - 12);
-  version = 2;
-  std::memcpy(v2.data() + 8, &version, 4);
-  const std::uint64_t sum = fnv1a(v2);
-  v2.append(reinterpret_cast<const char*>(&sum), 8);
-  std::ofstream(dir / "v2.ckpt", std::ios::binary) << v2;
-  const Checkpoint ck = read_checkpoint(dir / "v2.ckpt", Device::CPU);
-  EXPECT_EQ(ck.state.iteration, 5);
-  EXPECT_TRUE(ck.state.densify_stop.checks.empty());
-  EXPECT_FALSE(ck.state.densify_stop.stopped());
-  EXPECT_EQ(all_values(ck.state.model), all_values(t.model()));
+  ASSERT_EQ(version, 4u);
+  const std::size_t emit_block = 8 + 4 * t.state().emit_weights.size();
+  const auto older = [&](std::uint32_t v, std::size_t dropped, const char* name) {
+    std::string old = bytes.substr(0, bytes.size() - 8 - dropped);
+    std::memcpy(old.data() + 8, &v, 4);
+    const std::uint64_t sum = fnv1a(old);
+    old.append(reinterpret_cast<const char*>(&sum), 8);
+    std::ofstream(dir / name, std::ios::binary) << old;
+    return read_checkpoint(dir / name, Device::CPU);
+  };
+  for (const auto& [v, dropped, name] : {std::tuple{3u, emit_block, "v3.ckpt"}, std::tuple{2u, emit_block + 12, "v2.ckpt"}}) {
+    SCOPED_TRACE(name);
+    const Checkpoint ck = older(v, dropped, name);
+    EXPECT_EQ(ck.state.iteration, 5);
+    EXPECT_TRUE(ck.state.densify_stop.checks.empty());
+    EXPECT_FALSE(ck.state.densify_stop.stopped());
+    EXPECT_TRUE(ck.state.emit_weights.empty());
+    EXPECT_EQ(all_values(ck.state.model), all_values(t.model()));
+  }
 
   // A stop iteration past the checkpoint's own iteration is refused, naming the file.
   std::string bad = bytes.substr(0, bytes.size() - 8);
   const std::int32_t later = 999;
-  std::memcpy(bad.data() + bad.size() - 4, &later, 4);
+  std::memcpy(bad.data() + bad.size() - emit_block - 4, &later, 4);
   const std::uint64_t bad_sum = fnv1a(bad);
   bad.append(reinterpret_cast<const char*>(&bad_sum), 8);
   std::ofstream(dir / "bad.ckpt", std::ios::binary) << bad;
