@@ -1,13 +1,16 @@
-// `goris info PATH [--against REF]`: what a data set or a model file (.ply, .compressed.ply, .spz, .splat, .glb)
-// contains, without decoding any image (headers only). With --against, how far the model is from another
+// `goris info PATH [--against REF]`: what a data set, a run folder (`goris train` or its removal/) or a model
+// file (.ply, .compressed.ply, .spz, .splat, .glb) contains, without decoding any image (headers only). With --against, how far the model is from another
 // model file, attribute by attribute (core/io/splat_compare.h): what an export's quantization changed.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "app/goris/command.h"
 #include "app/goris/number_checks.h"
@@ -15,6 +18,8 @@
 #include "core/io/ply.h"
 #include "core/io/splat_compare.h"
 #include "core/io/splat_formats.h"
+#include "core/train/checkpoint.h"
+#include "core/train/run_folder.h"
 #include "core/util/error.h"
 
 namespace {
@@ -103,14 +108,76 @@ void print_dataset(const goris::Dataset& d, const goris::DatasetOptions& o) {
   std::printf("cameras:     centre (%.4g, %.4g, %.4g), extent %.4g\n", b.center.x, b.center.y, b.center.z, b.radius);
 }
 
+// The iteration in a checkpoint's name (iter_<8 digits>.ckpt), without reading the file; -1 when not one.
+int checkpoint_iteration(const fs::path& ckpt) {
+  const std::string stem = ckpt.stem().string();
+  if (stem.rfind("iter_", 0) != 0) return -1;
+  try {
+    return std::stoi(stem.substr(5));
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+// A run folder: where its data set is, what it trains, how far it got (finished, or the checkpoint a
+// --resume starts from), its model, and the state of a removal inside it.
+void print_run(const fs::path& run, bool nested = false) {
+  const goris::TrainConfig c = goris::read_run_config(run);
+  const char* in = nested ? "  " : "";
+  if (!nested) {
+    std::printf("run:         %s\n", run.string().c_str());
+    std::printf("data set:    %s%s\n", c.data.c_str(),
+                c.data.empty() || fs::exists(c.data) ? "" : "  (not found: moved? other commands read it from config.json)");
+    std::printf("mode:        %s\n", c.mode.c_str());
+  }
+  const fs::path ply = goris::run_ply_path(run);
+  const auto ckpt = goris::latest_checkpoint(run);
+  const int at = ckpt ? checkpoint_iteration(*ckpt) : -1;
+  const bool finished = fs::exists(ply) && (at < 0 || at >= c.iterations);
+  std::string progress;
+  if (finished)
+    progress = "finished, " + std::to_string(c.iterations) + " iterations";
+  else if (at >= 0)
+    progress = "stopped at iteration " + std::to_string(at) + " of " + std::to_string(c.iterations) + " (" +
+               ckpt->filename().string() + "); --resume carries on from there";
+  else
+    progress = "no checkpoint yet (" + std::to_string(c.iterations) + " iterations planned)";
+  std::printf("%s%-13s%s\n", in, "progress:", progress.c_str());
+  if (fs::exists(ply)) {
+    std::printf("%smodel:       %s\n", in, ply.string().c_str());
+    std::printf("%s", goris::gaussians_summary(ply).c_str());
+  }
+  if (nested) return;
+  const fs::path removal = run / "removal";
+  if (!fs::exists(goris::run_config_path(removal))) {
+    std::printf("removal:     %s\n", fs::is_directory(removal) ? "started, not fine-tuned yet (goris remove carries on)" : "none");
+    return;
+  }
+  std::printf("removal:     %s\n", removal.string().c_str());
+  std::ifstream rf(removal / "report.json");
+  if (rf) {
+    nlohmann::json r;
+    try {
+      r = nlohmann::json::parse(rf);
+      std::printf("  selected %d of %d Gaussians, %d after the fine-tune; %d mirror twins, %d reflection pixels\n",
+                  r.value("selected", 0), r.value("gaussians_before", 0), r.value("gaussians_after", 0),
+                  r.value("mirror_twins", 0), r.value("reflection_pixels", 0));
+    } catch (const nlohmann::json::exception&) {
+      std::printf("  report.json: not readable JSON\n");
+    }
+  }
+  print_run(removal, /*nested=*/true);
+}
+
 void setup_info(CLI::App& root) {
   auto* c = root.add_subcommand(
-      "info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF) or a model file (.ply, .compressed.ply, .spz, .splat, .glb)");
+      "info", "Summarise a data set (NeRF-synthetic, instant-ngp, COLMAP, LLFF), a run folder or a model file (.ply, "
+      ".compressed.ply, .spz, .splat, .glb)");
   static std::string path, against, match = "position";
   static int resolution = 0;
   static float downscale = 1.0f;
   static int test_every = 8;
-  c->add_option("path", path, "data set folder, one of its camera files, or a model file")->required();
+  c->add_option("path", path, "data set folder, one of its camera files, a run folder, or a model file")->required();
   auto* ag = c->add_option("--against", against,
                            "a model file to compare PATH with: max and mean error per attribute (position, log scale, "
                            "rotation angle, opacity, SH DC and rest)");
@@ -140,7 +207,11 @@ void setup_info(CLI::App& root) {
       }
       return;
     }
-    if (!against.empty()) throw goris::Error(p.string(), "--against needs a model file, not a data set");
+    if (!against.empty()) throw goris::Error(p.string(), "--against needs a model file, not a data set or a run");
+    if (fs::is_directory(p) && fs::exists(goris::run_config_path(p))) {
+      print_run(p);
+      return;
+    }
     goris::DatasetOptions o;
     o.target_width = resolution;
     o.downscale = downscale;

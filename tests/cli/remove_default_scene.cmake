@@ -28,6 +28,12 @@ goris_fails("--mode radiance" remove "${RUN}" --ablate elt)
 goris_fails("unknown ablation" remove "${RUN}" --ablate nonsense)
 goris_fails("--lighting-targets" remove "${RUN}" --lighting-targets nonsense)
 
+# goris info on the run folder: the data set, how far training got, the model, no removal yet.
+goris_ok(info "${RUN}")
+foreach(line "mode:        intrinsic" "progress:    finished, 60 iterations" "removal:     none")
+  expect_text("${OUT}" "${line}")
+endforeach()
+
 goris_ok(select "${RUN}" --masks --device cpu)
 goris_ok(remove "${RUN}" --iters 20 --device cpu)
 set(R "${RUN}/removal")
@@ -68,6 +74,10 @@ foreach(f config.json point_cloud.ply log.csv)
 endforeach()
 
 # The cleaned scene is a run: eval reads it (after-removal ground truth), render shades it.
+goris_ok(info "${RUN}")
+foreach(line "removal:     ${R}" "mirror twins" "  progress:    finished, 20 iterations")
+  expect_text("${OUT}" "${line}")
+endforeach()
 goris_ok(eval "${R}" --split test --device cpu)
 if(NOT EXISTS "${R}/metrics.json")
   message(FATAL_ERROR "eval of the removal run wrote no metrics.json")
