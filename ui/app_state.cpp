@@ -194,6 +194,10 @@ void AppState::add_override(const std::string& key, const std::string& value) {
   overrides_.emplace_back(key, value);
 }
 
+void AppState::drop_override(const std::string& key) {
+  std::erase_if(overrides_, [&](const auto& kv) { return kv.first == key; });
+}
+
 void AppState::start_training(int iterations, bool more) {
   if (!scene_) throw Error("train: open a data set or a run folder first");
   if (removal_.active()) throw Error("train: the removal is running on this run: wait for it or cancel it");

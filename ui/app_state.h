@@ -68,6 +68,8 @@ class AppState {
   // `set KEY VALUE` overrides for a new run (validated when added).
   void add_override(const std::string& key, const std::string& value);
   const std::vector<std::pair<std::string, std::string>>& overrides() const { return overrides_; }
+  // Forgets the overrides of `key`: the Training panel's own field for it was edited.
+  void drop_override(const std::string& key);
   // Trains until `iterations` in total, or `more` iterations beyond the run's current one.
   void start_training(int iterations, bool more);
   bool training_active() const;  // running, paused or stopping

@@ -3,10 +3,12 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
+#include "ui/train_options.h"
 
 namespace goris::ui {
 
@@ -41,21 +43,50 @@ void TrainingPanel::draw(AppState& st) {
                         c.resolution > 0 ? ("width " + std::to_string(c.resolution)).c_str() : "full size",
                         double(c.background.x), double(c.background.y), double(c.background.z));
   } else {
+    // The fields show the settings in effect: the panel's own, with a script's `set` overrides on top; editing
+    // a field drops the override of its key.
+    TrainConfig eff;
+    try {
+      eff = new_run_config(set, st.overrides());
+    } catch (const Error&) {  // an override that no longer fits the panel's settings: show the panel's own
+      eff = new_run_config(set, {});
+    }
+    auto overridden = [&](const char* key) {
+      if (!ImGui::IsItemHovered()) return;
+      for (const auto& [k, v] : st.overrides())
+        if (k == key) ImGui::SetTooltip("set by `set %s %s`", k.c_str(), v.c_str());
+    };
     static const char* kModes[] = {"radiance", "intrinsic", "auto"};
-    int mode = set.train_mode == "intrinsic" ? 1 : set.train_mode == "auto" ? 2 : 0;
+    int mode = eff.mode == "intrinsic" ? 1 : eff.mode == "auto" ? 2 : 0;
     ImGui::SetNextItemWidth(120);
-    if (ImGui::Combo("mode", &mode, kModes, 3)) set.train_mode = kModes[mode];
+    if (ImGui::Combo("mode", &mode, kModes, 3)) {
+      set.train_mode = kModes[mode];
+      st.drop_override("mode");
+    }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
           "auto: intrinsic when the data set has glossy masks");
+    overridden("mode");
+    int resolution = eff.resolution, points = eff.random_init_points;
     ImGui::SetNextItemWidth(120);
-    ImGui::InputInt("resolution (0 = full)", &set.train_resolution, 0);
+    if (ImGui::InputInt("resolution (0 = full)", &resolution, 0)) {
+      set.train_resolution = std::max(resolution, 0);
+      st.drop_override("resolution");
+    }
+    overridden("resolution");
     ImGui::SetNextItemWidth(120);
-    ImGui::InputInt("initial points", &set.train_init_points, 0);
-    set.train_resolution = std::max(set.train_resolution, 0);
-    set.train_init_points = std::max(set.train_init_points, 1);
-    ImGui::Checkbox("white background", &set.train_white_background);
+    if (ImGui::InputInt("initial points", &points, 0)) {
+      set.train_init_points = std::max(points, 1);
+      st.drop_override("random_init_points");
+    }
+    overridden("random_init_points");
+    bool white = eff.background == glm::vec3(1.0f);
+    if (ImGui::Checkbox("white background", &white)) {
+      set.train_white_background = white;
+      st.drop_override("background");
+    }
+    overridden("background");
   }
   static const char* kDevices[] = {"auto", "cpu", "cuda"};
   int dev = set.train_device == "cpu" ? 1 : set.train_device == "cuda" ? 2 : 0;
