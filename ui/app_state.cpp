@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "core/compute/device.h"
 #include "core/io/output_path.h"
@@ -88,19 +89,29 @@ void AppState::finish_open() {
     return;
   }
   settings_.add_recent(scene_->path.string());
+  const bool keep_view = std::exchange(keep_view_on_open_, false);
+  const OrbitCamera kept_orbit = orbit;
+  const std::optional<Camera> kept_snap = snapped;
+  const size_t kept_index = snapped_index;
+  const bool kept_test = snapped_test;
   session_version_seen_ = session_.snapshot_version();
   run_folder = scene_->kind == OpenedScene::Kind::Run ? scene_->path : fs::path();
   frame.reset();
   last_pick.reset();
   model_from_session_ = false;
+  showing_before_ = false;
   show_model(scene_->model);
   find_removal_masks();
   orbit.set_world(scene_->up, scene_->center, scene_->radius);
   snapped.reset();
-  if (scene_->dataset && !scene_->dataset->train.empty())
+  if (keep_view) {
+    orbit = kept_orbit;
+    if (kept_snap) snap(kept_index, kept_test);
+  } else if (scene_->dataset && !scene_->dataset->train.empty()) {
     snap(0, false);
-  else if (scene_->dataset && !scene_->dataset->test.empty())
+  } else if (scene_->dataset && !scene_->dataset->test.empty()) {
     snap(0, true);
+  }
   for (const std::string& w : scene_->warnings) message("warning: " + w, false);
   const std::string what = scene_->kind == OpenedScene::Kind::Run ? "run" : "data set";
   std::string text = "opened " + what + " " + scene_->path.string();
@@ -146,6 +157,8 @@ void AppState::find_removal_masks() {
   const fs::path cleaned = run / "removal";
   if (fs::exists(cleaned / "config.json") && (fs::exists(run_ply_path(cleaned)) || latest_checkpoint(cleaned)))
     removal_result_ = cleaned;
+  else if (is_cleaned_scene(run))
+    removal_result_ = run;
   auto has_masks = [](const fs::path& d) {
     return fs::is_directory(d / "lighting_masks") || fs::is_directory(d / "inpaint_masks");
   };
@@ -168,6 +181,7 @@ void AppState::poll() {
   if (v > session_version_seen_) {
     session_version_seen_ = v;
     model_from_session_ = true;
+    showing_before_ = false;
     show_model(session_.snapshot());
   }
   for (const auto& [text, error] : selection_.take_messages()) message(text, error);
@@ -180,6 +194,13 @@ void AppState::poll() {
   if (removal_.runs_ended() != removal_runs_seen_) {
     removal_runs_seen_ = removal_.runs_ended();
     find_removal_masks();
+    if (removal_.state() == RemovalState::Done && !removal_result_.empty() && removal_result_ != current_run() &&
+        !training_active() && !opening()) {
+      // The result replaces the scene with the target in the viewports; before / after toggles back.
+      keep_view_on_open_ = true;
+      open(removal_result_);
+      message("showing the cleaned scene " + removal_result_.string() + " (Display: before / after)");
+    }
   }
   if (exporter_.runs_ended() != export_runs_seen_) {
     export_runs_seen_ = exporter_.runs_ended();
@@ -192,6 +213,14 @@ void AppState::add_override(const std::string& key, const std::string& value) {
   TrainConfig probe = new_run_config(settings_, overrides_);
   apply_config_override(probe, key, value);  // throws for an unknown key or a bad value
   overrides_.emplace_back(key, value);
+}
+
+void AppState::show_before(bool before) {
+  if (before && !has_before())
+    throw Error("before / after: the shown scene is not a cleaned scene (RUN/removal) whose run is there");
+  if (showing_before() == before) return;
+  showing_before_ = before;
+  show_model(before ? scene_->before_model : scene_->model);
 }
 
 void AppState::drop_override(const std::string& key) {

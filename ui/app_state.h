@@ -104,6 +104,18 @@ class AppState {
   void start_removal(int iterations = 0);
   // Whether poll() has taken in the end of the last removal (masks folder, messages).
   bool removal_reported() const { return removal_.runs_ended() == removal_runs_seen_; }
+  // When a removal finishes, the cleaned scene (RUN/removal) is opened in its place, the view kept.
+
+  // --- Before / after of an opened cleaned scene (OpenedScene::before_model: the run with the target) ---
+  bool has_before() const { return scene_ && scene_->before_model; }
+  bool showing_before() const { return showing_before_ && has_before(); }
+  // Shows the scene with the target (true) or the cleaned one; throws goris::Error without a before model.
+  void show_before(bool before);
+  // The compare modes (side by side, slider) set the cleaned scene against the scene with the target when
+  // there is one and this is true; against the nearest photo otherwise.
+  bool compare_with_before = true;
+  bool comparing_with_before() const { return compare_with_before && has_before() && compare != CompareMode::Off; }
+
   // RUN/removal (or the opened cleaned scene itself) when it holds stage 2's masks; empty otherwise.
   const std::filesystem::path& removal_masks_dir() const { return removal_masks_dir_; }
 
@@ -190,6 +202,8 @@ class AppState {
   std::uint64_t removal_runs_seen_ = 0;
   std::filesystem::path removal_masks_dir_;
   std::filesystem::path removal_result_;
+  bool showing_before_ = false;
+  bool keep_view_on_open_ = false;  // the next finish_open keeps the camera (the cleaned scene after Remove)
   ExportJob exporter_;  // reads its own copy of the run from disk: nothing shared with the display
   std::uint64_t export_runs_seen_ = 0;
   std::string last_message_;

@@ -50,7 +50,42 @@ void frame_from_model(const ModelSnapshot& m, OpenedScene& s) {
   s.radius = d[k] > 0 ? d[k] : 1.0f;
 }
 
+// The model of the run in `path` as the viewports show it: shaded with the run's environment map and net
+// (kept beside its latest checkpoint) for an intrinsic run. `s` gives the data set (for the scene extent)
+// and takes the warnings; `source` the file the model came from.
+std::shared_ptr<const ModelSnapshot> run_snapshot(const fs::path& path, const TrainConfig& config, Device device,
+                                                  OpenedScene& s, std::string* source) {
+  GaussianModel model = load_run_model(path, device, source);
+  std::shared_ptr<const ShadingSource> shading;
+  std::shared_ptr<const std::string> renderer_state;
+  if (config.mode == "intrinsic") {
+    float extent = 0;
+    if (s.dataset && !s.dataset->train.empty()) {
+      extent = scene_extent(*s.dataset);
+    } else {
+      frame_from_model(ModelSnapshot(model, 0, {}), s);
+      extent = 2.0f * s.radius;
+      s.warnings.push_back("without the data set the scene extent (reflection ray offsets) is estimated");
+    }
+    try {
+      const auto renderer = load_run_renderer(path, config, extent, device);
+      renderer_state = std::make_shared<const std::string>(renderer->save_own_state());
+      shading = std::make_shared<const ShadingSource>(ShadingSource{config, extent});
+    } catch (const Error& e) {
+      s.warnings.push_back(std::string("shown unshaded (radiance only): ") + e.what());
+    }
+  }
+  return std::make_shared<const ModelSnapshot>(model, 0, RasterRenderer::settings_for(config), std::move(shading),
+                                               std::move(renderer_state));
+}
+
 }  // namespace
+
+bool is_cleaned_scene(const fs::path& input) {
+  const fs::path path = input.filename().empty() ? input.parent_path() : input;  // "RUN/removal/"
+  return path.filename() == "removal" && is_run_folder(path) && fs::exists(path / "report.json") &&
+         is_run_folder(path.parent_path());
+}
 
 OpenedScene open_scene(const fs::path& input, Device device) {
   if (input.empty()) throw Error("open: no path given");
@@ -62,35 +97,22 @@ OpenedScene open_scene(const fs::path& input, Device device) {
     s.kind = OpenedScene::Kind::Run;
     s.run_config = read_run_config(path);
     s.dataset_options = dataset_options(*s.run_config);
-    GaussianModel model = load_run_model(path, device, &s.model_source);
     try {
       s.dataset = load_dataset(s.run_config->data, s.dataset_options);
     } catch (const Error& e) {
       s.warnings.push_back(std::string("the run's data set cannot be opened (") + e.what() +
                            "): no cameras or photos to compare with");
     }
-    std::shared_ptr<const ShadingSource> shading;
-    std::shared_ptr<const std::string> renderer_state;
-    if (s.run_config->mode == "intrinsic") {
-      // Shaded with the run's environment map and net (kept beside its latest checkpoint).
-      float extent = 0;
-      if (s.dataset && !s.dataset->train.empty()) {
-        extent = scene_extent(*s.dataset);
-      } else {
-        frame_from_model(ModelSnapshot(model, 0, {}), s);
-        extent = 2.0f * s.radius;
-        s.warnings.push_back("without the data set the scene extent (reflection ray offsets) is estimated");
-      }
+    s.model = run_snapshot(path, *s.run_config, device, s, &s.model_source);
+    if (is_cleaned_scene(path)) {
+      // The run it was cleaned from, shown by the before / after toggle and compared against.
       try {
-        const auto renderer = load_run_renderer(path, *s.run_config, extent, device);
-        renderer_state = std::make_shared<const std::string>(renderer->save_own_state());
-        shading = std::make_shared<const ShadingSource>(ShadingSource{*s.run_config, extent});
+        s.before_model = run_snapshot(path.parent_path(), read_run_config(path.parent_path()), device, s, nullptr);
       } catch (const Error& e) {
-        s.warnings.push_back(std::string("shown unshaded (radiance only): ") + e.what());
+        s.warnings.push_back(std::string("no before / after: the run it was cleaned from cannot be opened (") +
+                             e.what() + ")");
       }
     }
-    s.model = std::make_shared<const ModelSnapshot>(model, 0, RasterRenderer::settings_for(*s.run_config),
-                                                    std::move(shading), std::move(renderer_state));
   } else {
     s.kind = OpenedScene::Kind::Dataset;
     s.dataset = load_dataset(path, s.dataset_options);

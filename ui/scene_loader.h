@@ -24,6 +24,8 @@ struct OpenedScene {
   std::optional<TrainConfig> run_config;
   std::shared_ptr<const ModelSnapshot> model;  // runs: the latest checkpoint or point_cloud.ply
   std::string model_source;                    // the file the model came from
+  // A cleaned scene (RUN/removal, see is_cleaned_scene): the model of RUN, with the target; else null.
+  std::shared_ptr<const ModelSnapshot> before_model;
   glm::vec3 up{0, 0, 1}, center{0.0f};         // for the orbit camera
   float radius = 1.0f;
   std::vector<std::string> warnings;
@@ -31,6 +33,10 @@ struct OpenedScene {
 
 // True when `path` is a run folder (holds config.json).
 bool is_run_folder(const std::filesystem::path& path);
+
+// True when `path` is the cleaned scene of a run: RUN/removal holding stage 2's finished result
+// (config.json and report.json) inside a run folder.
+bool is_cleaned_scene(const std::filesystem::path& path);
 
 // Opens a data set or a run folder; the model lives on `device`. Throws goris::Error naming the file and
 // the problem (missing path, unknown format, unreadable model...).

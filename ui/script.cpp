@@ -45,6 +45,8 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::ExportCancel, "export_cancel"},
                                {Kind::ExpectExportError, "expect_export_error"},
                                {Kind::Compare, "compare"},
+                               {Kind::CompareWith, "compare_with"},
+                               {Kind::BeforeAfter, "before_after"},
                                {Kind::Screenshot, "screenshot"},
                                {Kind::ScreenshotNow, "screenshot_now"},
                                {Kind::WaitFrames, "wait_frames"},
@@ -286,6 +288,16 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
         a.split = p.number(args[1], "split");
         if (a.split < 0 || a.split > 1) p.fail("split " + args[1] + " is outside 0..1");
       }
+      break;
+    case Kind::CompareWith:
+      p.expect_args(args, 1, 1, "compare_with photo|before");
+      a.what = args[0];
+      if (a.what != "photo" && a.what != "before") p.fail("expected photo or before, not '" + a.what + "'");
+      break;
+    case Kind::BeforeAfter:
+      p.expect_args(args, 1, 1, "before_after before|after");
+      a.what = args[0];
+      if (a.what != "before" && a.what != "after") p.fail("expected before or after, not '" + a.what + "'");
       break;
     case Kind::Quit:
       p.expect_args(args, 0, 0, "quit");

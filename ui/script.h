@@ -39,6 +39,10 @@
 //   export_cancel              cancels the running export and waits until it has stopped
 //   expect_export_error [TEXT] waits for the export to end; fails unless it failed with TEXT in its message
 //   compare MODE [SPLIT]       off | side_by_side | slider (SPLIT in 0..1 for the slider)
+//   compare_with photo|before  what the compare modes set the render against: the nearest input photo, or
+//                              (a cleaned scene) the scene with the target
+//   before_after before|after  a cleaned scene (opened, or shown when a removal finishes): show the scene
+//                              with the target, or the cleaned one
 //   screenshot PATH            the whole window as PNG, plus PATH's stem + .layout.json (viewport rectangles),
 //                              once nothing runs and the display has settled
 //   screenshot_now PATH        the same at the next frame, while work goes on (progress displays)
@@ -61,14 +65,14 @@ struct ScriptAction {
   enum class Kind {
     Open, Out, Set, Train, Grid, Panels, Channel, Snap, Click, SelectClick, SelectGrow, SelectLabels, SelectMasks, Undo, Redo,
     SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, ExportDialog, ExportFrom,
-    Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, Screenshot, ScreenshotNow,
+    Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, CompareWith, BeforeAfter, Screenshot, ScreenshotNow,
     WaitFrames, Quit
   };
   Kind kind = Kind::Quit;
   int line = 0;            // 1-based line in the script
   std::string path;        // open, out, screenshot, export
   std::string what;        // export: ply | baked | renders ("": the dialog's choices); export_from: run | removal;
-                           // export_dialog: open | close
+                           // export_dialog: open | close; compare_with: photo | before; before_after: before | after
   std::string render_path = "test";  // export renders
   std::string text;        // expect_export_error
   std::vector<std::string> names;  // panels

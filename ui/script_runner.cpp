@@ -116,6 +116,21 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
         phase_ = 1;
       }
       return host.settled();
+    case Kind::CompareWith:
+      if (phase_ == 0) {
+        if (a.what == "before" && !st.has_before())
+          throw Error("compare_with before: the shown scene is not a cleaned scene whose run is there");
+        st.compare_with_before = a.what == "before";
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::BeforeAfter:
+      if (phase_ == 0) {
+        if (!host.settled()) return false;
+        st.show_before(a.what == "before");
+        phase_ = 1;
+      }
+      return host.settled();
     case Kind::Click:
     case Kind::SelectClick: {
       const bool strict = a.kind == Kind::SelectClick;

@@ -51,6 +51,7 @@ StudioApp::StudioApp(const StudioOptions& options) : options_(options), limiter_
   renderer_ = std::make_unique<ChannelRenderer>(find_shader_dir());
   state_ = std::make_unique<AppState>(settings_);
   worker_ = std::make_unique<RenderWorker>();
+  before_worker_ = std::make_unique<RenderWorker>();
   for (int i = 0; i < AppState::kMaxGrid; ++i) grid_.push_back(std::make_unique<Viewport>(i));
   // The sidebar, top to bottom: the workflow's steps, then the view's settings.
   panels_.push_back(std::make_unique<OpenPanel>());
@@ -272,7 +273,43 @@ void StudioApp::receive_frame() {
   state_->frame = std::move(f);
 }
 
+// The final colour of a frame as an RGB image on the CPU (CUDA frames keep it on the device, RGBA).
+static Image frame_color(const DisplayFrame& f) {
+  Image img(f.width, f.height, 3);
+  if (!f.color.empty()) {
+    std::copy(f.color.begin(), f.color.end(), img.pixels.data());
+    return img;
+  }
+  const std::vector<float> rgba = f.gpu.color.to_host();
+  for (size_t i = 0; i < img.pixel_count() && 4 * i + 3 < rgba.size(); ++i)
+    for (int k = 0; k < 3; ++k) img.pixels[3 * i + k] = rgba[4 * i + k];
+  return img;
+}
+
+void StudioApp::update_before_image() {
+  const auto& before = state_->scene()->before_model;
+  if (requested_camera_ && (before.get() != before_requested_model_ || !before_requested_camera_ ||
+                            !same_camera(*requested_camera_, *before_requested_camera_))) {
+    before_requested_model_ = before.get();
+    before_requested_camera_ = requested_camera_;
+    before_requested_id_ = before_worker_->request({before, *requested_camera_, nullptr});
+  }
+  if (std::shared_ptr<const DisplayFrame> f = before_worker_->take()) {
+    textures_.upload_photo(frame_color(*f));
+    before_shown_id_ = f->id;
+    photo_scene_ = 0;  // a photo is uploaded again when the comparison goes back to photos
+  } else if (before_worker_->idle() && before_shown_id_ != before_requested_id_) {
+    const std::string err = before_worker_->error();
+    if (!err.empty()) {
+      state_->message("render of the scene with the target: " + err, true);
+      before_shown_id_ = before_requested_id_;  // nothing more will come for this request
+    }
+  }
+}
+
 void StudioApp::update_photo() {
+  if (state_->comparing_with_before()) return update_before_image();
+  before_requested_model_ = nullptr;
   const OpenedScene* scene = state_->scene();
   if (state_->compare == CompareMode::Off || !scene || !scene->dataset || scene->dataset->train.empty() ||
       !requested_camera_)
@@ -351,6 +388,9 @@ void StudioApp::handle_keys(double dt) {
   bool over_view = main_.hovered();
   for (const auto& g : grid_) over_view |= g->hovered();
   if (io.WantTextInput || !over_view) return;
+  // B: before / after of a cleaned scene (the scene with the target, the cleaned one).
+  if (!io.KeyCtrl && state_->has_before() && ImGui::IsKeyPressed(GLFW_KEY_B, false))
+    state_->show_before(!state_->showing_before());
   auto down = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
   const float speed = state_->orbit.scene_radius() * 0.6f * float(dt) * (io.KeyShift ? 4.0f : 1.0f);
   const float f = down(GLFW_KEY_W) - down(GLFW_KEY_S), r = down(GLFW_KEY_D) - down(GLFW_KEY_A),
@@ -388,6 +428,8 @@ bool StudioApp::settled() const {
       state_->model_version() != display_signature_.model)
     return false;
   if (state_->model() && requested_id_ != 0 && textures_.frame_id != requested_id_ && render_error_.empty())
+    return false;
+  if (state_->comparing_with_before() && (!before_worker_->idle() || before_shown_id_ != before_requested_id_))
     return false;
   return stable_frames_ >= 2;
 }

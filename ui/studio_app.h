@@ -57,6 +57,7 @@ class StudioApp final : public ScriptHost {
   void request_render();
   void receive_frame();
   void update_photo();
+  void update_before_image();  // update_photo when comparing with the scene with the target
   void update_removal_masks();
   void handle_keys(double dt);
   void draw_menu();
@@ -76,6 +77,7 @@ class StudioApp final : public ScriptHost {
   std::unique_ptr<StudioWindow> window_;  // first: GL objects below die before the context
   std::unique_ptr<AppState> state_;
   std::unique_ptr<RenderWorker> worker_;
+  std::unique_ptr<RenderWorker> before_worker_;  // the scene with the target, for the compare modes
   FrameTextures textures_;
   std::unique_ptr<ChannelRenderer> renderer_;
   Viewport main_{-1};
@@ -106,6 +108,11 @@ class StudioApp final : public ScriptHost {
   std::uint64_t photo_scene_ = 0;  // AppState::scene_version() of the photo
   std::optional<size_t> photo_index_;
   glm::vec3 photo_background_{0.0f};
+  // The comparison image when it is the scene with the target (AppState::comparing_with_before): what was
+  // asked of before_worker_ and which answer is on the GPU.
+  const ModelSnapshot* before_requested_model_ = nullptr;
+  std::optional<Camera> before_requested_camera_;
+  std::uint64_t before_requested_id_ = 0, before_shown_id_ = 0;
 
   // Settling for scripts: frames since anything shown last changed.
   struct DisplaySignature {

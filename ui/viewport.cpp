@@ -67,7 +67,8 @@ void Viewport::draw(const Rect& rect, ViewportContext& ctx, bool photo_half) {
       const Rect p = fit_aspect(right, float(ctx.textures.photo.width()) / float(ctx.textures.photo.height()));
       ImGui::SetCursorScreenPos(ImVec2(p.x, p.y));
       ImGui::Image(imgui_texture(ctx.textures.photo.id()), ImVec2(p.w, p.h));  // rows top first: uv as is
-      ImGui::GetWindowDrawList()->AddText(ImVec2(p.x + 6, p.y + p.h - 20), IM_COL32(255, 255, 255, 220), "input photo");
+      ImGui::GetWindowDrawList()->AddText(ImVec2(p.x + 6, p.y + p.h - 20), IM_COL32(255, 255, 255, 220),
+                                          st.comparing_with_before() ? "with the target" : "input photo");
     }
   } else {
     const ImVec2 size = ImGui::CalcTextSize(ctx.empty_text);

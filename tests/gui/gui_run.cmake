@@ -30,3 +30,21 @@ function(studio_run script prefix)
     set(GUI_SKIP TRUE PARENT_SCOPE)
   endif()
 endfunction()
+
+# target_view(): the training view of the embedded scene whose target mask has the deepest interior point
+# (the easiest click on the target). Sets VIEW (its index), CLICK_X, CLICK_Y (that point, in percent) and
+# MASK (its object mask file).
+macro(target_view)
+  execute_process(COMMAND "${SELECTION_CHECK}" target "${RESOURCES}/default_scene"
+                  RESULT_VARIABLE _rc OUTPUT_VARIABLE _target ERROR_VARIABLE _err OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "no view of the target:\n${_err}")
+  endif()
+  separate_arguments(_target)
+  list(GET _target 0 VIEW)
+  list(GET _target 1 CLICK_X)
+  list(GET _target 2 CLICK_Y)
+  math(EXPR _view3 "1000 + ${VIEW}")
+  string(SUBSTRING "${_view3}" 1 3 _view3)
+  set(MASK "${RESOURCES}/default_scene/train/mask_${_view3}.png")
+endmacro()

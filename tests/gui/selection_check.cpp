@@ -9,11 +9,20 @@
 //       enough of them, most lie inside the (dilated) object mask scaled onto the viewport, and they
 //       cover some of the mask (a click on a model of a few dozen iterations selects a few Gaussians, not
 //       the whole object). Prints the counts; exits 1 with the reason on failure.
+//   gui_selection_check removed WITH.png CLEANED.png RESTORED.png MASK.png
+//       three screenshots of the same view: the scene with the target, the cleaned scene the editor shows
+//       when the removal has finished, and the before / after toggle back to the scene with the target.
+//       Passes when the cleaned scene differs from the scene with the target over the (dilated) object mask
+//       in the main viewport, by more than elsewhere, and the toggle brings the scene with the target back.
+//   gui_selection_check slider WITH.png CLEANED.png SLIDER.png
+//       the compare slider at 0.5 against the scene with the target: left of it the main viewport shows the
+//       cleaned scene, right of it the scene with the target.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "core/io/dataset.h"
@@ -61,6 +70,89 @@ int target(const std::string& dataset) {
               100.0 * (best_at.y + 0.5) / best_size.height);
   std::fprintf(stderr, "view %d: deepest mask point (%d, %d), %.1f px from the edge\n", best, best_at.x, best_at.y,
                best_depth);
+  return 0;
+}
+
+struct MainViewport {
+  int x0 = 0, y0 = 0, w = 0, h = 0;
+};
+
+MainViewport main_viewport(const std::string& png) {
+  const nlohmann::json layout = goris::test::read_layout(png);
+  for (const auto& v : layout.at("viewports"))
+    if (v.at("name") == "main")
+      return {int(std::ceil(v.at("x").get<double>())), int(std::ceil(v.at("y").get<double>())), int(v.at("w").get<double>()),
+              int(v.at("h").get<double>())};
+  throw std::runtime_error("no main viewport in the layout of " + png);
+}
+
+// The object mask dilated by ~6 % of its size (a reconstruction of a few dozen iterations is blurry).
+cv::Mat dilated_mask(const std::string& mask_png) {
+  const cv::Mat m = binary_mask(goris::load_mask(mask_png));
+  const int r = std::max(1, int(std::lround(0.06 * std::max(m.cols, m.rows))));
+  cv::Mat dilated;
+  cv::dilate(m, dilated, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
+  return dilated;
+}
+
+// Mean |a - b| (RGB, 0..1) over the main viewport's pixels that the mask, scaled onto it, covers (every
+// pixel for an empty mask) between the fractions x_from and x_to of its width.
+double masked_difference(const goris::Image& a, const goris::Image& b, const MainViewport& v, const cv::Mat& m,
+                         double x_from = 0, double x_to = 1) {
+  if (a.width != b.width || a.height != b.height || a.channels != b.channels)
+    throw std::runtime_error("the screenshots differ in size");
+  double sum = 0;
+  long n = 0;
+  for (int y = v.y0; y < std::min(v.y0 + v.h, a.height); ++y)
+    for (int x = v.x0; x < std::min(v.x0 + v.w, a.width); ++x) {
+      const double fx = (x - v.x0 + 0.5) / v.w;
+      if (fx < x_from || fx > x_to) continue;
+      if (!m.empty()) {
+        const int mx = std::clamp(int(fx * m.cols), 0, m.cols - 1);
+        const int my = std::clamp(int((y - v.y0 + 0.5) * m.rows / v.h), 0, m.rows - 1);
+        if (!m.at<uint8_t>(my, mx)) continue;
+      }
+      for (int c = 0; c < std::min(3, a.channels); ++c) {
+        const size_t i = (size_t(y) * a.width + x) * a.channels + c;
+        sum += std::abs(double(a.pixels[i]) - double(b.pixels[i])) / 3.0;
+      }
+      ++n;
+    }
+  if (n == 0) throw std::runtime_error("the mask covers nothing of the main viewport");
+  return sum / double(n);
+}
+
+int removed(const std::string& with_png, const std::string& cleaned_png, const std::string& restored_png,
+            const std::string& mask_png) {
+  const MainViewport v = main_viewport(cleaned_png);
+  const cv::Mat m = dilated_mask(mask_png);
+  const goris::Image with = goris::read_image(with_png), cleaned = goris::read_image(cleaned_png),
+                     restored = goris::read_image(restored_png);
+  cv::Mat outside;
+  cv::bitwise_not(m, outside);
+  const double d_cleaned = masked_difference(with, cleaned, v, m), d_restored = masked_difference(with, restored, v, m);
+  const double d_elsewhere = masked_difference(with, cleaned, v, outside);
+  std::printf("mean |RGB| difference: cleaned %.4f over the target's mask, %.4f elsewhere; the toggle back %.4f\n",
+              d_cleaned, d_elsewhere, d_restored);
+  // A model of a few dozen iterations is a blur: removing the target changes its region by little, but
+  // there more than anywhere else.
+  if (d_cleaned < 0.003 || d_cleaned < 2 * d_elsewhere)
+    return fail("the main viewport does not show the cleaned scene: the target's region is not what changed");
+  if (d_restored > 0.3 * d_cleaned) return fail("before / after did not bring back the scene with the target");
+  return 0;
+}
+
+// The slider at 0.5: left of it the cleaned scene, right of it the scene with the target.
+int slider(const std::string& with_png, const std::string& cleaned_png, const std::string& slider_png) {
+  const MainViewport v = main_viewport(slider_png);
+  const goris::Image with = goris::read_image(with_png), cleaned = goris::read_image(cleaned_png),
+                     shown = goris::read_image(slider_png);
+  const double gap = 3.0 / v.w;  // the slider's line
+  const double left = masked_difference(shown, cleaned, v, {}, 0, 0.5 - gap);
+  const double right = masked_difference(shown, with, v, {}, 0.5 + gap, 1);
+  std::printf("slider: left of it %.4f from the cleaned scene, right of it %.4f from the scene with the target\n",
+              left, right);
+  if (left > 0.004 || right > 0.004) return fail("the slider does not set the cleaned scene against the scene with the target");
   return 0;
 }
 
@@ -116,8 +208,11 @@ int main(int argc, char** argv) {
   try {
     if (mode == "target" && argc == 3) return target(argv[2]);
     if (mode == "tint" && argc == 5) return tint(argv[2], argv[3], argv[4]);
+    if (mode == "slider" && argc == 5) return slider(argv[2], argv[3], argv[4]);
+    if (mode == "removed" && argc == 6) return removed(argv[2], argv[3], argv[4], argv[5]);
   } catch (const std::exception& e) {
     return fail(e.what());
   }
-  return fail("usage: gui_selection_check target DATASET | tint BEFORE.png AFTER.png MASK.png");
+  return fail("usage: gui_selection_check target DATASET | tint BEFORE.png AFTER.png MASK.png | removed WITH.png "
+              "CLEANED.png RESTORED.png MASK.png | slider WITH.png CLEANED.png SLIDER.png");
 }

@@ -8,20 +8,9 @@ if(GUI_SKIP)
   return()
 endif()
 
-# Where to click: the training view whose target mask has the deepest interior point.
-execute_process(COMMAND "${SELECTION_CHECK}" target "${RESOURCES}/default_scene"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE target ERROR_VARIABLE err OUTPUT_STRIP_TRAILING_WHITESPACE)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "no click target:\n${err}")
-endif()
-separate_arguments(target)
-list(GET target 0 view)
-list(GET target 1 click_x)
-list(GET target 2 click_y)
-math(EXPR view3 "1000 + ${view}")
-string(SUBSTRING "${view3}" 1 3 view3)
-set(mask "${RESOURCES}/default_scene/train/mask_${view3}.png")
-message("clicking view ${view} at ${click_x} ${click_y} (${mask})")
+# Where to click (gui_run.cmake).
+target_view()
+message("clicking view ${VIEW} at ${CLICK_X} ${CLICK_Y} (${MASK})")
 
 # Small viewport renders keep the intrinsic display quick on a loaded machine.
 file(WRITE "${WORK}/config/goris-studio/settings.json" "{\"display_max_side\": 192}\n")
@@ -43,10 +32,10 @@ channel 1 lind
 channel 2 visibility
 channel 3 env
 channel 4 screen_roughness
-snap ${view}
+snap ${VIEW}
 screenshot ${WORK}/intrinsic.png
 select_grow 0.05
-select_click ${click_x} ${click_y}
+select_click ${CLICK_X} ${CLICK_Y}
 screenshot ${WORK}/selected.png
 select_grow 0.01
 undo
@@ -75,6 +64,7 @@ expect_text("${R_OUT}" "trained to iteration 100")
 expect_text("${R_OUT}" "picked Gaussian")
 expect_text("${R_OUT}" "saved the selection to ${WORK}/run/selection.json")
 expect_text("${R_OUT}" "every stage-2 step reached 100 %")
+expect_text("${R_OUT}" "showing the cleaned scene")
 foreach(f intrinsic.png selected.png removed.png run/selection.json run/selection.npy run/removal/report.json
           run/removal/point_cloud.ply run/removal/reference.json)
   if(NOT EXISTS "${WORK}/${f}")
@@ -95,7 +85,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "intrinsic channels:\n${out}\n${err}")
 endif()
 # The selection tint lies over the target.
-execute_process(COMMAND "${SELECTION_CHECK}" tint "${WORK}/intrinsic.png" "${WORK}/selected.png" "${mask}"
+execute_process(COMMAND "${SELECTION_CHECK}" tint "${WORK}/intrinsic.png" "${WORK}/selected.png" "${MASK}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}")
 if(NOT rc EQUAL 0)

@@ -264,8 +264,19 @@ TEST(StudioAppState, ScriptSelectsAndRemoves) {
   ASSERT_EQ(run_script(st, host, "remove 3\nexpect_step_complete\nremove_wait\n"), ScriptRunner::Status::Finished)
       << last_error();
   EXPECT_TRUE(fs::exists(dir / "run" / "selection.json"));
-  EXPECT_TRUE(st.selection().view().saved);
   EXPECT_TRUE(fs::exists(dir / "run" / "removal" / "report.json"));
+  // The cleaned scene replaces the run in the viewports, the view kept; before / after shows the run again.
+  EXPECT_EQ(st.current_run(), dir / "run" / "removal");
+  ASSERT_TRUE(st.has_before());
+  EXPECT_EQ(st.model(), st.scene()->model);
+  EXPECT_GT(st.scene()->before_model->count(), st.model()->count());
+  EXPECT_EQ(st.removal_result(), dir / "run" / "removal");  // what `export_from removal` exports
+  ASSERT_EQ(run_script(st, host, "before_after before\n"), ScriptRunner::Status::Finished) << last_error();
+  EXPECT_EQ(st.model(), st.scene()->before_model);
+  ASSERT_EQ(run_script(st, host, "before_after after\ncompare_with photo\n"), ScriptRunner::Status::Finished)
+      << last_error();
+  EXPECT_EQ(st.model(), st.scene()->model);
+  EXPECT_FALSE(st.compare_with_before);
   EXPECT_EQ(st.removal_masks_dir(), dir / "run" / "removal");
   EXPECT_EQ(st.channel_unavailable(Channel::InpaintMask), nullptr);
   st.set_channel(0, Channel::InpaintMask);
@@ -278,6 +289,8 @@ TEST(StudioAppState, ScriptSelectsAndRemoves) {
   EXPECT_EQ(run_script(fresh, fresh_host, "expect_step_complete\n"), ScriptRunner::Status::Failed);
   EXPECT_NE(last_error().find("not every stage-2 step reached 100 %: selection at 0 %"), std::string::npos)
       << last_error();
+  EXPECT_EQ(run_script(fresh, fresh_host, "before_after before\n"), ScriptRunner::Status::Failed);
+  EXPECT_NE(last_error().find("not a cleaned scene"), std::string::npos) << last_error();
   EXPECT_EQ(run_script(fresh, fresh_host, "select_labels\n"), ScriptRunner::Status::Failed);
   EXPECT_NE(last_error().find("nothing to select in"), std::string::npos) << last_error();
 }
