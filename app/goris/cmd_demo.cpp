@@ -207,8 +207,35 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
                 m.value("psnr", 0.0), m.value("ssim", 0.0));
   md += line;
   md += "Run folder: `" + run.string() + "` (config, checkpoints, log.csv, point_cloud.ply, metrics.json)\n\n";
-  md += "Each row: ground truth | render | depth (TURBO on inverse depth) | normal (n*0.5+0.5)\n\n";
   const int n = std::min<int>(o.report_views, int(ds.test.size()));
+  const fs::path removed = run / "removal";
+  // First what the removal is for: the target and its reflection, before and after.
+  if (fs::exists(removed / "metrics.json")) {
+    std::ifstream rf(removed / "metrics.json");
+    const nlohmann::json r = nlohmann::json::parse(rf);
+    const nlohmann::json rm = r.value("removal", nlohmann::json::object());
+    if (!rm.empty()) {
+      char text[768];
+      std::snprintf(text, sizeof text,
+                    "## The target and its reflection, before and after\n\nThe changed region (pixels where the views with "
+                    "and without the target differ: the target, its reflection and its shadow; %.1f %% of the "
+                    "image): PSNR %.2f dB, FLIP %.3f, ghost %.2f (what is left of the target's imprint: 1 = all of "
+                    "it, 0 = none).\n\nEach row, cropped to that region: with the target | ground truth without it "
+                    "| render after removal\n\n",
+                    100.0 * goris::bench::json_number(rm, "region_fraction"), goris::bench::json_number(rm, "region_psnr"),
+                    goris::bench::json_number(rm, "region_flip"), goris::bench::json_number(rm, "ghost_ratio"));
+      md += text;
+      for (int i = 0; i < n; ++i) {
+        const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
+        const cv::Mat row = region_crop_row(v, out / "renders_removed" / (v.name + ".png"));
+        if (row.empty()) continue;
+        const std::string file = "region_" + v.name + ".png";
+        write_png(out / file, row);
+        md += "![" + v.name + " changed region](" + file + ")\n\n";
+      }
+    }
+  }
+  md += "## Stage 1\n\nEach row: ground truth | render | depth (TURBO on inverse depth) | normal (n*0.5+0.5)\n\n";
   for (int i = 0; i < n; ++i) {
     const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
     const fs::path gt = v.full_image ? *v.full_image : v.image;
@@ -219,7 +246,6 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
     goris::write_file_bytes(out / file, png.data(), png.size());
     md += "![" + v.name + "](" + file + ")\n\n";
   }
-  const fs::path removed = run / "removal";
   if (fs::exists(removed / "metrics.json")) {
     std::ifstream rf(removed / "metrics.json");
     const nlohmann::json r = nlohmann::json::parse(rf);
@@ -239,27 +265,6 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
       cv::imencode(".png", row, png);
       goris::write_file_bytes(out / file, png.data(), png.size());
       md += "![" + v.name + " after removal](" + file + ")\n\n";
-    }
-    const nlohmann::json rm = r.value("removal", nlohmann::json::object());
-    if (!rm.empty()) {
-      char text[768];
-      std::snprintf(text, sizeof text,
-                    "### Where the target and its reflection were\n\nThe changed region (pixels where the views with "
-                    "and without the target differ: the target, its reflection and its shadow; %.1f %% of the "
-                    "image): PSNR %.2f dB, FLIP %.3f, ghost %.2f (what is left of the target's imprint: 1 = all of "
-                    "it, 0 = none).\n\nEach row, cropped to that region: with the target | ground truth without it "
-                    "| render after removal\n\n",
-                    100.0 * goris::bench::json_number(rm, "region_fraction"), goris::bench::json_number(rm, "region_psnr"),
-                    goris::bench::json_number(rm, "region_flip"), goris::bench::json_number(rm, "ghost_ratio"));
-      md += text;
-      for (int i = 0; i < n; ++i) {
-        const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
-        const cv::Mat row = region_crop_row(v, out / "renders_removed" / (v.name + ".png"));
-        if (row.empty()) continue;
-        const std::string file = "region_" + v.name + ".png";
-        write_png(out / file, row);
-        md += "![" + v.name + " changed region](" + file + ")\n\n";
-      }
     }
     md += stage2_rows(ds, removed, out);
     // Stage 2's own steps, from its report.
@@ -288,7 +293,10 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
         "for web viewers and engines; videos: `cleaned_orbit.mp4` (a 10-second orbit of the cleaned scene) and "
         "`before_after.mp4` (the test views with the target | after removal)\n";
   goris::write_file_bytes(out / "report.md", md.data(), md.size());
-  std::printf("\n== demo: report %s\n", (out / "report.md").string().c_str());
+  double total = 0;
+  for (const auto& [title, sec] : times) total += sec;
+  std::printf("\n== demo: report %s (%.0f s in all, %s mode)\n", (out / "report.md").string().c_str(), total,
+              o.mode.c_str());
 }
 
 void run_demo(const Options& o) {
