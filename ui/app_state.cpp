@@ -99,7 +99,6 @@ void AppState::finish_open() {
   frame.reset();
   last_pick.reset();
   model_from_session_ = false;
-  showing_before_ = false;
   show_model(scene_->model);
   find_removal_masks();
   orbit.set_world(scene_->up, scene_->center, scene_->radius);
@@ -181,7 +180,6 @@ void AppState::poll() {
   if (v > session_version_seen_) {
     session_version_seen_ = v;
     model_from_session_ = true;
-    showing_before_ = false;
     show_model(session_.snapshot());
   }
   for (const auto& [text, error] : selection_.take_messages()) message(text, error);
@@ -219,7 +217,6 @@ void AppState::show_before(bool before) {
   if (before && !has_before())
     throw Error("before / after: the shown scene is not a cleaned scene (RUN/removal) whose run is there");
   if (showing_before() == before) return;
-  showing_before_ = before;
   show_model(before ? scene_->before_model : scene_->model);
 }
 

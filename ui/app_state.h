@@ -108,7 +108,7 @@ class AppState {
 
   // --- Before / after of an opened cleaned scene (OpenedScene::before_model: the run with the target) ---
   bool has_before() const { return scene_ && scene_->before_model; }
-  bool showing_before() const { return showing_before_ && has_before(); }
+  bool showing_before() const { return has_before() && model_ == scene_->before_model; }
   // Shows the scene with the target (true) or the cleaned one; throws goris::Error without a before model.
   void show_before(bool before);
   // The compare modes (side by side, slider) set the cleaned scene against the scene with the target when
@@ -202,7 +202,6 @@ class AppState {
   std::uint64_t removal_runs_seen_ = 0;
   std::filesystem::path removal_masks_dir_;
   std::filesystem::path removal_result_;
-  bool showing_before_ = false;
   bool keep_view_on_open_ = false;  // the next finish_open keeps the camera (the cleaned scene after Remove)
   ExportJob exporter_;  // reads its own copy of the run from disk: nothing shared with the display
   std::uint64_t export_runs_seen_ = 0;
