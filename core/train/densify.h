@@ -22,6 +22,11 @@ struct DensifySettings {
   float percent_dense = 0.01f;   // clone when max scale <= percent_dense * extent, else split
   int split_count = 2;           // children per split Gaussian, scale / (0.8 * split_count)
   float min_opacity = 0.05f;     // prune below (the paper's; 3DGS uses 0.005)
+  // Opacity resets, every this many iterations of a full densification window (until_iter). A window that
+  // a short run cuts shorter keeps the same number of resets per window: the interval shrinks with it, to
+  // a multiple of `interval` (TrainConfig::opacity_reset_every). A reset is what dissolves the semi-opaque
+  // fog a random start leaves between high cameras and a floor; a 2K run without one kept that fog
+  // (docs/design/deviations.md, Opacity resets of short runs).
   int opacity_reset_interval = 3000;
   float reset_opacity = 0.01f;      // opacities are clamped to this at a reset
   float max_screen_radius = 20.0f;  // pixels; prune above after the first reset (0 = never)

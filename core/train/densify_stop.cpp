@@ -17,7 +17,7 @@ DensifyStopPlan densify_stop_plan(const TrainConfig& config, int densify_until, 
   p.densify_interval = std::max(ds.interval, 1);
   // A full-schedule number like the warm-up: a 2K run checks every 33 iterations, a 30K run every 500.
   p.check_interval = std::max(config.scaled_iteration(ds.stop_check_interval), 1);
-  p.reset_interval = std::max(ds.opacity_reset_interval, 1);
+  p.reset_interval = std::max(config.opacity_reset_every(), 1);
   p.shading_from = intrinsic ? config.shading_from() : 0;
   p.window = ds.stop_window;
   p.min_gain = ds.stop_min_gain;

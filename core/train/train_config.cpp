@@ -239,6 +239,18 @@ int TrainConfig::scaled_iteration(int full) const {
   return int(std::lround(double(full) * double(iterations) / 30000.0));
 }
 
+int TrainConfig::densify_until() const {
+  return std::min(densify.until_iter, int(double(densify_until_fraction) * iterations));
+}
+
+int TrainConfig::opacity_reset_every() const {
+  const int until = densify_until();
+  if (until >= densify.until_iter || densify.until_iter <= 0) return densify.opacity_reset_interval;
+  const int step = std::max(densify.interval, 1);
+  const double scaled = double(densify.opacity_reset_interval) * double(std::max(until, 0)) / double(densify.until_iter);
+  return std::max(1, int(std::lround(scaled / step))) * step;
+}
+
 int TrainConfig::shading_from() const {
   const int floor = int(std::lround(double(intrinsic.warmup_min_fraction) * double(iterations)));
   return std::max(scaled_iteration(intrinsic.warmup), std::min(intrinsic.warmup, floor));

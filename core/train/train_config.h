@@ -237,6 +237,14 @@ struct TrainConfig {
 
   // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
   int scaled_iteration(int full_schedule_iteration) const;
+  // Last iteration of adaptive density control: densify.until_iter, but at most densify_until_fraction of
+  // the run, so that a shortened schedule ends with a stretch of pure optimisation instead of adding
+  // untrained Gaussians at the very end.
+  int densify_until() const;
+  // The interval of opacity resets in this run: densify.opacity_reset_interval scaled by the run's window
+  // (densify_until() / until_iter) when that is shorter than the full one, rounded to a whole number of
+  // densification intervals (at least one).
+  int opacity_reset_every() const;
   // The last radiance-only iteration of intrinsic mode: max(scaled warm-up, min(warm-up, min_fraction x run)).
   int shading_from() const;
   // Whether the mirror world is pruned after iteration `it` (1-based; `densified`: that iteration ran a

@@ -292,6 +292,7 @@ StepStats Trainer::step() {
   // the window (otherwise the Gaussians it silenced would never be removed, only dimmed).
   const DensifySettings& ds = config_.densify;
   const int until = densify_until();
+  const int reset_every = config_.opacity_reset_every();
   if (stop_plan.checks_at(it, state_.densify_stop)) {  // adaptive budget: measure, maybe stop growing
     const double psnr = held_out_psnr(*renderer_, m, views_, held_out_view_indices(views_.size(), ds.holdout_every));
     out.densify_note = record_held_out_check(state_.densify_stop, stop_plan, it, psnr, m.count());
@@ -299,7 +300,7 @@ StepStats Trainer::step() {
   }
   if (it <= until) {
     if (it >= ds.from_iter && it % ds.interval == 0) {
-      out.densify = densify_and_prune(m, state_.stats, ds, extent_, it > ds.opacity_reset_interval,
+      out.densify = densify_and_prune(m, state_.stats, ds, extent_, it > reset_every,
                                       config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it),
                                       /*grow=*/!state_.densify_stop.stopped());
       if (m.count() == 0)
@@ -309,7 +310,7 @@ StepStats Trainer::step() {
       state_.stats.reset(m.count(), device_);
       if (config_.filter_3d) compute_filter3d(m, cameras());
     }
-    if (it % ds.opacity_reset_interval == 0 && it + ds.interval <= until) reset_opacity(m, ds.reset_opacity);
+    if (it % reset_every == 0 && it + ds.interval <= until) reset_opacity(m, ds.reset_opacity);
   } else if (config_.filter_3d && it % config_.filter_3d_interval == 0 &&
              it < config_.iterations - config_.filter_3d_interval) {
     compute_filter3d(m, cameras());
@@ -414,9 +415,7 @@ void Trainer::load_renderer_state(const std::filesystem::path& checkpoint, Diffe
   renderer.load_own_state(std::string(bytes.begin(), bytes.end()), p.string());
 }
 
-int Trainer::densify_until() const {
-  return std::min(config_.densify.until_iter, int(double(config_.densify_until_fraction) * config_.iterations));
-}
+int Trainer::densify_until() const { return config_.densify_until(); }
 
 TrainProgress Trainer::progress(double it_per_s) const {
   TrainProgress p;

@@ -156,9 +156,7 @@ class Trainer {
   float extent() const { return extent_; }
   const std::vector<TrainView>& views() const { return views_; }
   TrainProgress progress(double it_per_s) const;
-  // Last iteration of adaptive density control: densify.until_iter, but at most densify_until_fraction of
-  // the run, so that a shortened schedule ends with a stretch of pure optimisation instead of adding
-  // untrained Gaussians at the very end.
+  // TrainConfig::densify_until() of the run's configuration.
   int densify_until() const;
 
  private:

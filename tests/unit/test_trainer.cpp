@@ -597,12 +597,13 @@ TEST(Trainer, DensificationScheduleFitsShortRuns) {
   config.densify_until_fraction = 0.5f;
   config.densify.from_iter = 10;
   config.densify.interval = 10;
-  config.densify.until_iter = 1000;
-  config.densify.opacity_reset_interval = 30;
+  config.densify.until_iter = 100;
+  config.densify.opacity_reset_interval = 60;  // of the full window of 100: every 30 in this one of 50
   config.densify.min_opacity = 0.005f;
   Scene s = make_scene(config, 24);
   Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(11)));
   EXPECT_EQ(t.densify_until(), 50);
+  EXPECT_EQ(config.opacity_reset_every(), 30);
   std::vector<int> densified;
   while (!t.finished()) {
     const StepStats st = t.step();
@@ -613,6 +614,26 @@ TEST(Trainer, DensificationScheduleFitsShortRuns) {
     if (t.state().iteration == 60) EXPECT_GT(max_logit, std::log(0.01f / 0.99f) + 0.1f) << "no reset at 60";
   }
   EXPECT_EQ(densified, (std::vector<int>{10, 20, 30, 40, 50}));
+}
+
+TEST(TrainConfig, OpacityResetsScaleWithTheDensificationWindow) {
+  // The defaults: 3000 of the full 12K window. A run whose window is shorter resets as often per window,
+  // at a whole number of 500-iteration densification steps (never less than one).
+  TrainConfig c;
+  c.iterations = 30000;
+  EXPECT_EQ(c.densify_until(), 12000);
+  EXPECT_EQ(c.opacity_reset_every(), 3000);
+  c.iterations = 8000;  // window 6000: half the full one
+  EXPECT_EQ(c.densify_until(), 6000);
+  EXPECT_EQ(c.opacity_reset_every(), 1500);
+  c.iterations = 2000;  // window 1500: 375 rounds to one densification step
+  EXPECT_EQ(c.densify_until(), 1500);
+  EXPECT_EQ(c.opacity_reset_every(), 500);
+  c.iterations = 500;
+  EXPECT_EQ(c.opacity_reset_every(), 500);
+  c.iterations = 2000;
+  c.densify.opacity_reset_interval = 12000;  // scaled: 1500, i.e. three steps
+  EXPECT_EQ(c.opacity_reset_every(), 1500);
 }
 
 TEST(TrainConfig, MirrorWorldPruneSchedule) {
