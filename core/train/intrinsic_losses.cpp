@@ -118,21 +118,6 @@ T region_loss(const T* region, const T* glossy_mask, int width, int height, T* g
 }
 
 template <class T>
-T rough_region_loss(const T* region, const T* alpha, const T* glossy_mask, int width, int height, T* grad_region,
-                    T weight) {
-  const std::size_t hw = std::size_t(width) * std::size_t(height);
-  if (hw == 0) return T(0);
-  const T norm = T(1) / T(hw);
-  T loss = T(0);
-  for (std::size_t p = 0; p < hw; ++p) {
-    const T rough = T(1) - glossy_mask[p];
-    loss += rough * (alpha[p] - region[p]);
-    if (grad_region) grad_region[p] -= weight * norm * rough;
-  }
-  return loss * norm;
-}
-
-template <class T>
 T label_bce_loss(const T* label, const T* object_mask, int width, int height, T* grad_label, T weight, T eps) {
   const std::size_t hw = std::size_t(width) * std::size_t(height);
   if (hw == 0) return T(0);
@@ -152,7 +137,6 @@ T label_bce_loss(const T* label, const T* object_mask, int width, int height, T*
   template T normal_prior_loss<T>(const T*, const T*, const T*, int, int, T*, T);                            \
   template T edge_aware_smoothness<T>(const T*, int, const T*, const T*, int, int, T*, T, bool);             \
   template T region_loss<T>(const T*, const T*, int, int, T*, T);                                            \
-  template T rough_region_loss<T>(const T*, const T*, const T*, int, int, T*, T);                           \
   template T label_bce_loss<T>(const T*, const T*, int, int, T*, T, T);
 GORIS_INTRINSIC_LOSSES(float)
 GORIS_INTRINSIC_LOSSES(double)

@@ -23,15 +23,6 @@ T edge_aware_smoothness(const T* x, int channels, const T* image, const T* mask,
 template <class T>
 T region_loss(const T* region, const T* glossy_mask, int width, int height, T* grad_region, T weight = T(1));
 
-// The other side of the region mask (our addition): L = (1/HW) sum_p (1 - Mgt_p)(alpha_p - M_p)
-// pushes the region weight to 1 (rough) where the glossy mask says "not glossy", weighted by coverage
-// (alpha - M = sum_i w_i (1 - m_i), so pixels nothing covers cost nothing). Gradient to M only (alpha is a
-// constant here). Why it exists and why it is off: docs/design/deviations.md, Optional two-sided region
-// and roughness losses.
-template <class T>
-T rough_region_loss(const T* region, const T* alpha, const T* glossy_mask, int width, int height, T* grad_region,
-                    T weight = T(1));
-
 // Label BCE (1/HW) sum_p -[y log l + (1 - y) log(1 - l)], l the rendered label clamped to [eps, 1 - eps]
 // (outside that range the gradient is zero), y the object mask in [0, 1].
 template <class T>

@@ -91,9 +91,7 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_net_ease_until", c.intrinsic.net_ease_until);
   f("intrinsic_screen_space_filter", c.intrinsic.screen_space_filter);
   f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
-  f("intrinsic_net_residual", c.intrinsic.net_residual);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
-  f("intrinsic_ray_offset_normal", c.intrinsic.ray_offset_normal);
   f("intrinsic_trace_glossy_transparent", c.intrinsic.trace_glossy_transparent);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
   f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);
@@ -106,9 +104,6 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_normal_prior", c.intrinsic.normal_prior);
   f("intrinsic_normal_prior_final", c.intrinsic.normal_prior_final);
   f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
-  f("intrinsic_region_rough", c.intrinsic.region_rough);
-  f("intrinsic_roughness_rough", c.intrinsic.roughness_rough);
-  f("intrinsic_roughness_follows_region", c.intrinsic.roughness_follows_region);
   f("intrinsic_material_losses_in_warmup", c.intrinsic.material_losses_in_warmup);
   f("intrinsic_emit", c.intrinsic.emit);
   f("intrinsic_smoothness", c.intrinsic.smoothness);
@@ -227,7 +222,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.emit != "region" && in.emit != "mask" && in.emit != "max")
     fail("intrinsic_emit must be region, mask or max");
   for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
-                  in.region, in.region_rough, in.roughness_rough, in.roughness_follows_region, in.label})
+                  in.region, in.label})
     if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");
   for (float lr : {lr.position_init, lr.position_final, lr.sh_dc, lr.sh_rest, lr.opacity, lr.scale, lr.rotation,
                    lr.materials, lr.region, lr.label})
@@ -326,6 +321,24 @@ void read_field(const nlohmann::json& x, T& v) {
   }
 }
 
+// Settings that earlier versions had and this one dropped because they measured no better than without
+// (docs/design/deviations.md, Removed settings). A run folder or checkpoint that holds one at the value it
+// was off at still loads; any other value is refused, since that run was trained with a behaviour this
+// version no longer has.
+struct RetiredKey {
+  const char* name;
+  nlohmann::json off;
+};
+const RetiredKey* retired_key(const std::string& name) {
+  static const RetiredKey kRetired[] = {
+      {"intrinsic_net_residual", false},   {"intrinsic_ray_offset_normal", false},
+      {"intrinsic_region_rough", 0.0},     {"intrinsic_roughness_rough", 0.0},
+      {"intrinsic_roughness_follows_region", 0.0}};
+  for (const RetiredKey& k : kRetired)
+    if (name == k.name) return &k;
+  return nullptr;
+}
+
 }  // namespace
 
 void from_json(const nlohmann::json& j, TrainConfig& c) {
@@ -348,8 +361,15 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
       throw Error(std::string("training configuration: key '") + name + "' has the wrong type (" + e.what() + ")");
     }
   });
-  for (auto it = j.begin(); it != j.end(); ++it)
-    if (!known.count(it.key())) throw Error("training configuration: unknown key '" + it.key() + "'");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (known.count(it.key())) continue;
+    const RetiredKey* retired = retired_key(it.key());
+    if (!retired) throw Error("training configuration: unknown key '" + it.key() + "'");
+    if (it.value() != retired->off)
+      throw Error("training configuration: '" + it.key() + "' = " + it.value().dump() +
+                  " is a setting this version no longer has (it measured no better than " + retired->off.dump() +
+                  "; docs/design/deviations.md, Removed settings): the run needs the version that trained it");
+  }
 }
 
 void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config) {
@@ -358,6 +378,9 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
     const size_t eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) throw Error("--set " + kv + ": expected KEY=VALUE");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+    if (!j.contains(key) && retired_key(key))
+      throw Error("--set " + kv + ": '" + key + "' was removed: it measured no better than without "
+                  "(docs/design/deviations.md, Removed settings)");
     if (!j.contains(key)) throw Error("--set " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
     nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
     j[key] = v.is_discarded() ? nlohmann::json(value) : v;

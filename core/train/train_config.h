@@ -60,9 +60,7 @@ struct IntrinsicSettings {
   int net_ease_until = 10000;
   bool screen_space_filter = true; // L_ind and V through the screen-space glossy filter (+ssf)
   int net_hidden_layers = 6;       // 3x3 layers of the roughness net
-  bool net_residual = false;       // R_s = sigmoid(net + logit(roughness)), starting at R_s = R (ssf::NetConfig)
   float ray_offset = 0.0f;         // world units; 0 = 0.02 x scene extent (ShadingSettings::default_ray_offset)
-  bool ray_offset_normal = false;  // the offset along the surface normal instead of along the ray
   // > 0: Gaussians whose emit weight is below this are transparent to the reflection rays (neither occlude
   // nor emit). A ray reflected off a plane never meets that plane again, but it starts inside the glossy
   // surface's own Gaussians, which the ray offset only partly skips and which then dim L_ind and V; skipping
@@ -104,18 +102,6 @@ struct IntrinsicSettings {
   // (docs/design/deviations.md, Material losses in the warm-up).
   bool material_losses_in_warmup = true;
   float region = 1.0f;             // mean(M_gt M)
-  float region_rough = 0.0f;       // mean((1 - M_gt)(alpha - M)): non-glossy pixels stay rough (our addition,
-                                   // off: it did not help on steel_snowman, docs/design/deviations.md)
-  float roughness_rough = 0.0f;    // mean((1 - M_gt)(alpha - R)): the same for the roughness R (our addition,
-                                   // off: it drove the glossy table's roughness to ~1 too;
-                                   // docs/design/deviations.md, Optional two-sided region and
-                                   // roughness losses)
-  // mean(M (alpha - R)), M the rendered region weight held constant: where the model itself shades a
-  // surface as rough (no glossy term), its roughness goes to 1. Nothing in the image sets the roughness
-  // there, so without it the objects keep whatever the start and the glossy pixels' gradients left them.
-  // Needs no glossy mask (our addition, off: it raised the glossy table's roughness to ~1 too and lost
-  // quality; docs/design/deviations.md, Optional two-sided region and roughness losses).
-  float roughness_follows_region = 0.0f;
   float label = 1.0f;              // BCE of the rendered label against the object masks
   // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed

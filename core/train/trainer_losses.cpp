@@ -1,7 +1,6 @@
 // The trainer's loss terms beyond the photo loss: stage 1's material and normal losses on the rendered maps
 // (intrinsic mode) and stage 2's inpainting targets. Split from trainer.cpp, which runs the step around them.
 #include <cmath>
-#include <optional>
 #include <utility>
 
 #include "core/compute/host_device_image.h"
@@ -35,19 +34,13 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   double total = 0;
   const bool glossy = !view.glossy_mask.empty();
   // Mask-driven losses only count where the photo losses do (stage 2: not under the target or its
-  // reflections): glossy' = glossy w, and for the rough side 1 - glossy'' = (1 - glossy) w.
-  std::vector<float> gl_w, gl_rough;
+  // reflections): glossy' = glossy w.
+  std::vector<float> gl_w;
   const float* gmask = glossy ? view.glossy_mask.data() : nullptr;
-  const float* gmask_rough = gmask;
   if (glossy && !view.loss_weight.empty()) {
     gl_w.resize(hw);
-    gl_rough.resize(hw);
-    for (size_t p = 0; p < hw; ++p) {
-      gl_w[p] = view.glossy_mask[p] * view.loss_weight[p];
-      gl_rough[p] = 1 - (1 - view.glossy_mask[p]) * view.loss_weight[p];
-    }
+    for (size_t p = 0; p < hw; ++p) gl_w[p] = view.glossy_mask[p] * view.loss_weight[p];
     gmask = gl_w.data();
-    gmask_rough = gl_rough.data();
   }
   // Losses on material maps train the materials alone (detached from the geometry that blends them: a
   // material loss must not be lowered by making the surface transparent); normal losses train geometry.
@@ -57,34 +50,6 @@ double Trainer::intrinsic_losses(const TrainView& view, const RenderedImages& fw
   if (glossy && materials && in.region > 0) {
     out.region = region_loss<float>(plane(extra::kRegion), gmask, w, h, dplane(extra::kRegion), in.region);
     total += in.region * out.region;
-  }
-  // The rough-side losses mean(rough (alpha - x)) (rough_region_loss weighs each pixel by 1 - its mask):
-  // off the glossy mask the region is rough (M -> 1) and, with roughness_rough, so is the roughness; with
-  // roughness_follows_region the roughness also goes to 1 wherever the rendered region M (a constant here,
-  // times the photo weight in stage 2) says rough, glossy mask or not.
-  std::vector<float> region_side;
-  if (materials && in.roughness_follows_region > 0) {
-    const float* region = plane(extra::kRegion);
-    region_side.resize(hw);
-    for (size_t p = 0; p < hw; ++p)
-      region_side[p] = 1 - region[p] * (view.loss_weight.empty() ? 1.0f : view.loss_weight[p]);
-  }
-  const float* mask_side = glossy ? gmask_rough : nullptr;
-  const struct {
-    int channel;
-    float weight;
-    const float* mask;
-  } rough_sides[] = {{extra::kRegion, in.region_rough, mask_side},
-                     {extra::kRoughness, in.roughness_rough, mask_side},
-                     {extra::kRoughness, in.roughness_follows_region, region_side.empty() ? nullptr : region_side.data()}};
-  std::optional<HostView> alpha;  // downloaded once, only when a rough-side loss is on
-  for (const auto& side : rough_sides) {
-    if (!materials || !(side.weight > 0) || !side.mask) continue;
-    if (!alpha) alpha.emplace(fwd.alpha, hw, device_);
-    const double r = rough_region_loss<float>(plane(side.channel), alpha->data(), side.mask, w, h,
-                                              dplane(side.channel), side.weight);
-    out.region += r;
-    total += side.weight * r;
   }
   if (glossy && materials && in.smoothness > 0) {
     const float s = in.smoothness;

@@ -94,15 +94,13 @@ IntrinsicRenderer::IntrinsicRenderer(const TrainConfig& config, float extent, De
       raster_settings_(RasterRenderer::settings_for(config)),
       env_(config.intrinsic.env_resolution, device, config.intrinsic.env_initial),
       env_adam_(env_.param_count(), device),
-      net_(ssf::NetConfig{3, 8, config.intrinsic.net_hidden_layers, config.intrinsic.net_residual ? 0 : -1}, device,
+      net_(ssf::NetConfig{3, 8, config.intrinsic.net_hidden_layers}, device,
            config.seed * 7919 + 17),
       net_adam_(net_.param_count(), device),
       tracer_(device) {
   if (!(extent > 0)) throw Error("intrinsic renderer", "the scene extent must be positive");
-  const float offset =
+  shading_settings_.ray_offset =
       config.intrinsic.ray_offset > 0 ? config.intrinsic.ray_offset : ShadingSettings::default_ray_offset(extent);
-  shading_settings_.ray_offset = config.intrinsic.ray_offset_normal ? 0.0f : offset;
-  shading_settings_.normal_offset = config.intrinsic.ray_offset_normal ? offset : 0.0f;
   for (int c = 0; c < 3; ++c) shading_settings_.env_center[c] = config.intrinsic.env_center[c];
   shading_settings_.env_radius = config.intrinsic.env_radius;
   traced_settings_.divide_opaque = config.intrinsic.divide_opaque;

@@ -33,8 +33,6 @@ inline void check_settings(const char* who, const ShadingSettings& s) {
   if (!(s.glossy_max_region > 0) || !std::isfinite(s.glossy_max_region))
     throw Error(who, "glossy_max_region must be positive and finite");
   if (!(s.ray_offset >= 0) || !std::isfinite(s.ray_offset)) throw Error(who, "ray_offset must be >= 0 and finite");
-  if (!(s.normal_offset >= 0) || !std::isfinite(s.normal_offset))
-    throw Error(who, "normal_offset must be >= 0 and finite");
   if (!(s.env_radius >= 0) || !std::isfinite(s.env_radius)) throw Error(who, "env_radius must be >= 0 and finite");
   for (float c : s.env_center)
     if (!std::isfinite(c)) throw Error(who, "env_center must be finite");

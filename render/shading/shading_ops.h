@@ -46,7 +46,7 @@ GORIS_HDI void reflection_ray(const Camera& cam, const SurfaceImagesT<T>& s, con
                               std::size_t p, Vec3<T>* origin, Vec3<T>* dir) {
   const std::size_t P = s.pixels();
   const PixelGeometry<T> g = pixel_geometry(cam, int(p % s.width), int(p / s.width), plane3(s.normal, P, p));
-  *origin = surface_point(cam, s, g, p) + T(st.ray_offset) * g.wr + T(st.normal_offset) * g.n;
+  *origin = surface_point(cam, s, g, p) + T(st.ray_offset) * g.wr;
   *dir = g.wr;
 }
 
@@ -93,10 +93,7 @@ void rays_backward(Device d, const Camera& cam, const SurfaceImagesT<T>& s, cons
     Vec3<T> dwr = T(st.ray_offset) * dorg;
     if (ddirections) dwr += Vec3<T>(ddirections[3 * i], ddirections[3 * i + 1], ddirections[3 * i + 2]);
     surface_point_vjp(s, g, geo, p, dorg);
-    if (g.normal)
-      add_plane3(g.normal, P, p,
-                 reflection_vjp_to_camera_normal(geo, dwr) +
-                     unit_normal_vjp_to_camera_normal(geo, T(st.normal_offset) * dorg));
+    if (g.normal) add_plane3(g.normal, P, p, reflection_vjp_to_camera_normal(geo, dwr));
   });
 }
 

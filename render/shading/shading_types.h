@@ -45,12 +45,10 @@ struct ShadingSettings {
   float min_alpha = 0.5f;
   // Surface pixels with region weight M >= this are rough (M ~ 1): they are not traced.
   float glossy_max_region = 0.99f;
-  // Ray origins start at x + ray_offset * omega_r + normal_offset * n (world units); see default_ray_offset().
-  // Along the ray a grazing ray barely leaves the surface's own Gaussians yet skips whatever stands within
-  // ray_offset of the point (an object's foot and its reflection); along the normal every ray gets the same
-  // clearance and skips nothing (pbrt's practice; measured in docs/lab/bench/NOTES.md, 2026-11-29).
+  // Ray origins start at x + ray_offset * omega_r (world units); see default_ray_offset(). A grazing ray
+  // barely leaves the surface's own Gaussians yet skips whatever stands within ray_offset of the point (an
+  // object's foot and its reflection); an offset along the normal instead measured no better.
   float ray_offset = 0.1f;
-  float normal_offset = 0.0f;
   // Divide M, F0 and roughness by alpha (per-surface values instead of coverage-weighted sums), the way
   // depth is divided by alpha and the normal normalised. Off: use the rasterized sums as they are.
   bool normalize_materials = true;

@@ -69,9 +69,6 @@ RoughnessNet<T>::RoughnessNet(NetConfig cfg, Device device, std::uint64_t seed) 
                          ", features " + std::to_string(cfg.features) + ", hidden_layers " +
                          std::to_string(cfg.hidden_layers) + ")");
   if (device == Device::CUDA && !std::is_same_v<T, float>) throw Error(kOp, "double precision runs on the CPU only");
-  if (cfg.residual_channel >= cfg.in_channels)
-    throw Error(kOp, "residual channel " + std::to_string(cfg.residual_channel) + " is not one of the " +
-                         std::to_string(cfg.in_channels) + " input channels");
   layers_.push_back(ConvShape{cfg.in_channels, cfg.features, 1});
   for (int i = 0; i < cfg.hidden_layers; ++i) layers_.push_back(ConvShape{cfg.features, cfg.features, 3});
   layers_.push_back(ConvShape{cfg.features, 1, 1});
@@ -95,25 +92,7 @@ void RoughnessNet<T>::init(std::uint64_t seed) {
     std::normal_distribution<double> normal(0.0, std::sqrt(2.0 / double(s.cin * s.k * s.k)));
     for (int i = 0; i < s.weight_count(); ++i) host[offsets_[l] + std::size_t(i)] = T(normal(rng));
   }
-  if (cfg_.residual_channel >= 0) std::fill(host.begin() + std::ptrdiff_t(offsets_.back()), host.end(), T(0));
   params_.upload(host.data(), host.size());
-}
-
-template <class T>
-void RoughnessNet<T>::add_residual_logit(Buffer<T>& pre_sigmoid) {
-  // Clamped so that an empty pixel (roughness 0 after alpha blending) stays finite. Computed on the host:
-  // one plane per frame, next to the host-side assembly of the net's input (IntrinsicRenderer::net_forward).
-  constexpr T kEps = T(1e-3);
-  const std::size_t plane = std::size_t(h_) * std::size_t(w_);
-  const std::vector<T> x = download(acts_[0].data() + std::size_t(cfg_.residual_channel) * plane, plane, device_);
-  std::vector<T> z = pre_sigmoid.to_host();
-  residual_slope_.assign(plane, T(0));
-  for (std::size_t p = 0; p < plane; ++p) {
-    const T r = std::clamp(x[p], kEps, T(1) - kEps);
-    z[p] += std::log(r / (T(1) - r));
-    if (x[p] > kEps && x[p] < T(1) - kEps) residual_slope_[p] = T(1) / (r * (T(1) - r));
-  }
-  pre_sigmoid.upload(z.data(), z.size());
 }
 
 template <class T>
@@ -149,7 +128,6 @@ void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buf
       run.relu(out.data(), out.size());
       continue;
     }
-    if (cfg_.residual_channel >= 0) add_residual_logit(out);
     run.sigmoid(out.data(), out.data(), out.size());
   }
   ensure(rs, plane, device_);
@@ -175,13 +153,6 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
   // g_a_ holds dL/d(output of layer l) before its activation is undone; g_b_ receives dL/d(its input).
   device_copy(g_a_.data(), device_, grad_rs.data(), device_, grad_rs.bytes());
   run.sigmoid_back(acts_.back().data(), g_a_.data(), plane);
-  if (grad_input && cfg_.residual_channel >= 0) {  // through the logit offset; host-side like the forward
-    const std::vector<T> g = download(g_a_.data(), plane, device_);
-    std::vector<T> gi = grad_input->to_host();
-    T* gc = gi.data() + std::size_t(cfg_.residual_channel) * plane;
-    for (std::size_t p = 0; p < plane; ++p) gc[p] += g[p] * residual_slope_[p];
-    grad_input->upload(gi.data(), gi.size());
-  }
   for (int l = L - 1; l >= 0; --l) {
     const ConvShape s = shape(l);
     const std::size_t off = offsets_[std::size_t(l)];

@@ -19,20 +19,12 @@ struct NetConfig {
   int in_channels = 3;
   int features = 8;
   int hidden_layers = 6;  // paper: 8 layers in all = 1x1 in + 6 x 3x3 + 1x1 out
-  // >= 0: R_s = sigmoid(net + logit(input[residual_channel])), the net learning a correction to that input
-  // (the roughness) in logit space, with its output layer starting at zero so that R_s = R at first. The
-  // paper's plain net starts as a random function of its inputs; at lr 1e-5 it hardly moves in a short
-  // run, so the screen roughness stayed near its random start and the material roughness, which reaches
-  // the image only through it and the environment map, stayed near 0.5 on mirror tables
-  // (docs/design/deviations.md, The roughness CNN's inputs). -1 = the paper's net.
-  int residual_channel = -1;
 };
 
 template <class T>
 class RoughnessNet {
  public:
-  // Parameters are He-initialised from `seed` (normal, std sqrt(2 / fan_in); biases zero); with a residual
-  // channel the output layer starts at zero.
+  // Parameters are He-initialised from `seed` (normal, std sqrt(2 / fan_in); biases zero).
   RoughnessNet(NetConfig cfg, Device device, std::uint64_t seed);
 
   void init(std::uint64_t seed);
@@ -60,7 +52,6 @@ class RoughnessNet {
 
  private:
   ConvShape shape(int l) const;
-  void add_residual_logit(Buffer<T>& pre_sigmoid);
 
   NetConfig cfg_;
   Device device_;
@@ -70,7 +61,6 @@ class RoughnessNet {
   int h_ = 0, w_ = 0;
   std::vector<Buffer<T>> acts_;  // acts_[0] = input, acts_[l + 1] = output of layer l after its activation
   Buffer<T> g_a_, g_b_, partials_;
-  std::vector<T> residual_slope_;  // d logit(x) / dx of the residual input per pixel (0 where clamped)
 };
 
 extern template class RoughnessNet<float>;

@@ -114,17 +114,6 @@ TEST(RegionLoss, ValueAndGradient) {
   for (int p = 0; p < HW; ++p) EXPECT_NEAR(g[p], 1.0 + 2.0 * gloss[p] / HW, 1e-14);
 }
 
-TEST(RoughRegionLoss, ValueAndGradient) {
-  std::mt19937_64 rng(9);
-  const auto m = random_image(HW, rng, 0.0, 0.5), a = random_image(HW, rng, 0.5, 1.0), gloss = random_mask(rng);
-  double expect = 0;
-  for (int p = 0; p < HW; ++p) expect += (1 - gloss[p]) * (a[p] - m[p]);
-  std::vector<double> g(HW, 0.0);
-  EXPECT_NEAR(rough_region_loss<double>(m.data(), a.data(), gloss.data(), W, H, g.data(), 0.5), expect / HW, 1e-14);
-  expect_gradient([&](const auto& x) { return 0.5 * rough_region_loss<double>(x.data(), a.data(), gloss.data(), W, H, nullptr); },
-                  m, g);
-}
-
 TEST(LabelBce, ValueGradientAndClamp) {
   std::mt19937_64 rng(8);
   const auto y = random_mask(rng);

@@ -98,13 +98,6 @@ TEST(Shading, RayGeometryUsesDepthAlongZ) {
   s.cam.t = glm::vec3(1.0f, 0.0f, 0.0f);  // centre at (-1, 0, 0)
   const auto moved = make_reflection_rays(s.cam, s.view(), st, Device::CPU);
   EXPECT_NEAR(moved.origins[3 * i], -1.0f, 1e-6f);
-  // The offset along the normal instead: the origin leaves the surface along n, the direction is unchanged.
-  st.ray_offset = 0.0f;
-  st.normal_offset = 0.2f;
-  const auto along_n = make_reflection_rays(s.cam, s.view(), st, Device::CPU);
-  EXPECT_NEAR(along_n.origins[3 * i + 1] - moved.origins[3 * i + 1], -0.2f / std::sqrt(2.0f) + 0.1f, 1e-5f);
-  EXPECT_NEAR(along_n.origins[3 * i + 2], 3.0f - 0.2f / std::sqrt(2.0f), 1e-5f);
-  EXPECT_NEAR(along_n.directions[3 * i + 1], -1.0f, 1e-6f);
 }
 
 TEST(Shading, TracedImagesFillUntracedPixelsAndDivideOpaqueRays) {
@@ -179,9 +172,6 @@ TEST(Shading, BadInputIsRejected) {
   ShadingSettings bad;
   bad.ray_offset = -1.0f;
   expect_error([&] { make_reflection_rays(s.cam, s.view(), bad, Device::CPU); }, "ray_offset");
-  bad = ShadingSettings{};
-  bad.normal_offset = std::nanf("");
-  expect_error([&] { make_reflection_rays(s.cam, s.view(), bad, Device::CPU); }, "normal_offset");
   expect_error([&] { shade(s.cam, s.view(), L, V, envmap::CubeMipsT<float>{}, st, Device::CPU); }, "environment");
   // Traced results that do not match the rays.
   const auto rays = make_reflection_rays(s.cam, s.view(), st, Device::CPU);

@@ -105,7 +105,6 @@ TEST(ShadingGradients, ReflectionRaysBackward) {
   ShadingScene s = ShadingScene::make(5, false, true);
   ShadingSettings st;
   st.ray_offset = 0.3f;
-  st.normal_offset = 0.2f;  // both offsets: the origin depends on the normal twice
   const auto rays0 = make_reflection_rays(s.cam, s.view(), st, Device::CPU);
   ASSERT_EQ(rays0.count, s.P() - 3);  // the three rough / empty pixels are skipped
   const auto wo = random_weights(3 * rays0.count, 6), wd = random_weights(3 * rays0.count, 7);

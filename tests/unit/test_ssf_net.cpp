@@ -190,24 +190,6 @@ TEST(SsfNet, WholeNetGradientsMatchFiniteDifferences) {
     ASSERT_NEAR(twice[i], 2 * g.g_params[i], 1e-12 * (1 + std::abs(g.g_params[i])));
 }
 
-TEST(SsfNet, ResidualNetStartsAtItsInputAndGradientsMatchFiniteDifferences) {
-  NetConfig cfg{3, 8, 1};
-  cfg.residual_channel = 0;
-  const int H = 5, W = 6;
-  const std::size_t plane = std::size_t(H) * W;
-  RoughnessNet<double> net(cfg, Device::CPU, 9);
-  std::mt19937 rng(17);
-  std::vector<double> in = random_vec(3 * plane, rng, 0.0, 2.0);
-  for (std::size_t p = 0; p < plane; ++p) in[p] = 0.05 + 0.9 * double(p) / double(plane);  // roughness in (0, 1)
-  Buffer<double> rs;
-  net.forward(Buffer<double>(in, Device::CPU), H, W, rs);
-  const std::vector<double> start = rs.to_host();
-  for (std::size_t p = 0; p < plane; ++p) ASSERT_NEAR(start[p], in[p], 1e-12) << p;  // R_s = R at first
-  // The zero output layer and the biases take part with other values.
-  expect_net_gradients(net, in, H, W, random_vec(plane, rng), [](std::size_t i) { return 0.07 * double(i % 5) - 0.12; });
-  EXPECT_THROW(RoughnessNet<double>(NetConfig{2, 8, 1, 2}, Device::CPU, 1), Error);  // no channel 2
-}
-
 TEST(SsfNet, HeInitialisationIsSeededAndScaled) {
   const NetConfig cfg;  // 3 -> 8, 6 x 3x3, 8 -> 1
   RoughnessNet<float> a(cfg, Device::CPU, 7), b(cfg, Device::CPU, 7), c(cfg, Device::CPU, 8);

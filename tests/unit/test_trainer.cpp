@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <random>
 #include <set>
@@ -410,6 +411,34 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   EXPECT_NO_THROW(TrainConfig{}.validate("cfg"));
 }
 
+// A run folder from a version that still had a removed setting loads when the setting was off there; one
+// trained with it on is refused by name, and --set names it as removed rather than unknown.
+TEST(TrainConfig, RemovedSettingsLoadWhenOffAndAreRefusedWhenOn) {
+  nlohmann::json j = TrainConfig{};
+  j["intrinsic_net_residual"] = false;
+  j["intrinsic_region_rough"] = 0;
+  j["intrinsic_roughness_follows_region"] = 0.0;
+  TrainConfig back;
+  EXPECT_NO_THROW(from_json(j, back));
+  EXPECT_EQ(nlohmann::json(back), nlohmann::json(TrainConfig{}));  // and writes no removed key back
+  auto message = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  j["intrinsic_region_rough"] = 0.3;
+  const std::string on = message([&] { from_json(j, back); });
+  EXPECT_NE(on.find("'intrinsic_region_rough' = 0.3"), std::string::npos) << on;
+  EXPECT_NE(on.find("no longer has"), std::string::npos) << on;
+  TrainConfig c;
+  const std::string set = message([&] { apply_config_overrides({"intrinsic_ray_offset_normal=true"}, c); });
+  EXPECT_NE(set.find("was removed"), std::string::npos) << set;
+  const std::string typo = message([&] { apply_config_overrides({"intrinsic_ray_offset_nromal=true"}, c); });
+  EXPECT_NE(typo.find("unknown setting"), std::string::npos) << typo;
+}
 // `goris train --preset planar-glossy`: the measured stage-1 setting, applied like --set (later --set lines
 // win), and an unknown name is an error that lists the known ones.
 TEST(TrainConfig, PlanarGlossyPresetSetsTheMeasuredSetting) {
