@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/io/camera.h"
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 #include "ui/display_frame.h"
 #include "ui/export_job.h"
 #include "ui/model_snapshot.h"
@@ -156,7 +156,7 @@ class AppState {
   // that cannot be shown now (naming why).
   void set_channel(int viewport, Channel c);
   ChannelContext channel_context() const;
-  const char* channel_unavailable(Channel c) const { return ui::channel_unavailable(c, channel_context()); }
+  const char* channel_unavailable(Channel c) const { return goris::channel_unavailable(c, channel_context()); }
   void set_grid_count(int n);
   bool label_overlay = false;
   CompareMode compare = CompareMode::Off;

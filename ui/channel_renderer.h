@@ -3,7 +3,7 @@
 // shaders/ (colormaps.glsl + channel.frag.glsl), with the selection tint and the label overlay.
 #include <filesystem>
 
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 #include "ui/frame_textures.h"
 #include "ui/gl/framebuffer.h"
 #include "ui/gl/shader_program.h"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/io/image.h"
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 #include "ui/display_frame.h"
 #include "ui/gl/cuda_texture_interop.h"
 #include "ui/gl/gl_texture.h"

@@ -56,7 +56,7 @@
 #include <string>
 #include <vector>
 
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 #include "ui/selection_edit.h"
 
 namespace goris::ui {

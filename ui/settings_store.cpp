@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/util/error.h"
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 
 namespace goris::ui {
 

@@ -1,6 +1,6 @@
 // `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--spz OUT.spz] [--compressed-ply OUT.compressed.ply]
 // [--splat OUT.splat] [--glb OUT.glb] [--renders DIR [--frames N]] [--video OUT.mp4 [--seconds S] [--fps F]
-// [--before RUN0]] [--path test|train|orbit] [--iters N] [--device D]`: the
+// [--before RUN0]] [--path test|train|orbit] [--channel C] [--iters N] [--device D]`: the
 // exports of a run folder (RUN or RUN/removal), see render/export/run_export.h. The standard formats (SPZ,
 // compressed PLY, .splat, GLB: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
 // run the distilled one (one distillation serves --baked and all of them).
@@ -37,6 +37,7 @@ using namespace goris;
 struct Options {
   std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, video, before, device = "auto";
   std::string path;  // empty: test for --renders, orbit for --video
+  std::string channel = "final";
   int frames = 0, iters = 2000, extra_views = -1;
   double seconds = 10.0, fps = 24.0;
   float geometry_lr_scale = 0.0f;
@@ -78,6 +79,8 @@ std::vector<FormatOutput> format_outputs(const Options& o) {
 void run_export(const Options& o) {
   if (!o.path.empty() && o.renders.empty() && o.video.empty())
     throw Error("--path", "--path chooses the cameras of --renders or --video: give one of them");
+  if (o.channel != "final" && o.renders.empty() && o.video.empty())
+    throw Error("--channel", "--channel chooses what --renders and --video show: give one of them");
   const std::vector<FormatOutput> formats = format_outputs(o);
   if (o.ply.empty() && o.baked.empty() && o.renders.empty() && o.video.empty() && formats.empty())
     throw Error("goris export", "nothing to export: give at least one of --ply OUT.ply (intrinsic PLY), --baked OUT.ply "
@@ -122,6 +125,9 @@ void run_export(const Options& o) {
 
   const Device device = resolve_device(o.device);
   RunExport ex(o.run, device);
+  const Channel channel = *channel_from_id(o.channel);  // checked by the option
+  ex.require_channel(channel);  // before any distillation
+  const std::string of_channel = channel == Channel::Final ? "" : " of " + o.channel;
   std::printf("exporting %s (%s run, %zu Gaussians from %s) on %s\n", ex.run_dir().string().c_str(),
               ex.config().mode.c_str(), ex.model().count(), ex.model_source().c_str(), device_name(device));
   std::fflush(stdout);  // before the progress on stderr
@@ -189,9 +195,10 @@ void run_export(const Options& o) {
   if (!o.renders.empty()) {
     const RendersReport r = ex.write_renders(o.renders, renders_path, o.frames, [tty](size_t done, size_t total) {
       if (tty) std::fprintf(stderr, "\rrendering %zu/%zu%s", done, total, done == total ? "\n" : "");
-    });
-    std::printf("renders: %zu %s frames at %dx%d (%.1f ms each) -> %s, contact sheet %s\n", r.frames.size(),
-                render_path_name(renders_path), r.width, r.height, r.ms_per_frame, r.dir.string().c_str(),
+    }, channel);
+    std::printf("renders: %zu %s frames%s at %dx%d (%.1f ms each) -> %s, contact sheet %s\n", r.frames.size(),
+                render_path_name(renders_path), of_channel.c_str(), r.width, r.height, r.ms_per_frame,
+                r.dir.string().c_str(),
                 r.contact_sheet.filename().string().c_str());
   }
   if (!o.video.empty()) {
@@ -201,12 +208,13 @@ void run_export(const Options& o) {
     vs.path = video_path;
     vs.seconds = o.seconds;
     vs.fps = o.fps;
+    vs.channel = channel;
     const VideoReport v = write_video(ex, o.video, vs, before.get(), [tty](size_t done, size_t total) {
       if (tty) std::fprintf(stderr, "\rvideo frame %zu/%zu%s", done, total, done == total ? "\n" : "");
     });
-    std::printf("video: %d %s frames at %dx%d, %.3g fps (%.1f s)%s -> %s\n", v.frames, render_path_name(video_path),
-                v.width, v.height, v.fps, double(v.frames) / v.fps, v.side_by_side ? ", before | after" : "",
-                v.file.string().c_str());
+    std::printf("video: %d %s frames%s at %dx%d, %.3g fps (%.1f s)%s -> %s\n", v.frames,
+                render_path_name(video_path), of_channel.c_str(), v.width, v.height, v.fps,
+                double(v.frames) / v.fps, v.side_by_side ? ", before | after" : "", v.file.string().c_str());
   }
 }
 
@@ -248,6 +256,13 @@ void setup_export(CLI::App& root) {
                 "train, or orbit (a circle around the scene at the cameras' mean height and distance, looking at "
                 "where they look)")
       ->check(CLI::IsMember({"test", "train", "orbit"}));
+  c->add_option("--channel", o->channel,
+                "What --renders and --video show: final (default), or a channel of the render as the editor's "
+                "viewports show it: " + channel_id_list() + " (intrinsic channels need an intrinsic run; the two "
+                "masks are files of the training views, not renders)")
+      ->check([](const std::string& s) {
+        return channel_from_id(s) ? std::string() : "unknown channel '" + s + "' (known: " + channel_id_list() + ")";
+      });
   c->add_option("--frames", o->frames, "Orbit: number of frames (default 36); test/train: that many evenly spaced views")
       ->check(cli::whole(0, 100000))
       ->needs(renders);

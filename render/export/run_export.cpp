@@ -21,6 +21,9 @@
 #include "core/util/error.h"
 #include "render/export/camera_path.h"
 #include "render/export/frame_grid.h"
+#include "render/maps/channel_image.h"
+#include "render/raster/rasterizer.h"
+#include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
 
 namespace goris {
@@ -75,6 +78,36 @@ std::vector<float> RunExport::render(const Camera& camera) {
   std::vector<float> color(size_t(3) * size_t(camera.width) * size_t(camera.height));
   device_copy(color.data(), Device::CPU, r.color, device_, color.size() * sizeof(float));
   return color;
+}
+
+const char* RunExport::channel_unavailable(Channel channel) const {
+  if (channel_info(channel).needs == ChannelNeeds::RemovalMasks)
+    return "is a mask of the training views (RUN/removal/), not a render along a path";
+  ChannelContext ctx;
+  ctx.intrinsic = intrinsic();
+  ctx.screen_filter = config_.intrinsic.screen_space_filter;
+  return goris::channel_unavailable(channel, ctx);
+}
+
+void RunExport::require_channel(Channel channel) const {
+  if (const char* why = channel_unavailable(channel))
+    throw Error(run_dir_.string(), std::string("channel '") + channel_info(channel).id + "' " + why);
+}
+
+std::vector<float> RunExport::render(const Camera& camera, Channel channel) {
+  require_channel(channel);
+  if (channel == Channel::Final) {
+    std::vector<float> color = render(camera);
+    for (float& v : color) v = std::clamp(v, 0.0f, 1.0f);
+    return color;
+  }
+  const GaussianView gv = model_.view(/*with_extras=*/true);
+  if (IntrinsicRenderer* in = as_intrinsic(renderer_.get())) {
+    const IntrinsicMaps maps = in->render_maps(gv, camera);
+    return channel_image(channel, in->last().gbuffer, &maps);
+  }
+  const RasterOutput r = rasterize(gv, camera, RasterRenderer::settings_for(config_), device_);
+  return channel_image(channel, r.gbuffer, nullptr);
 }
 
 void RunExport::write_ply(const fs::path& out) const {
@@ -193,7 +226,8 @@ void RunExport::write_baked_files(BakedReport& rep, const fs::path& out) const {
 }
 
 RendersReport RunExport::write_renders(const fs::path& dir, RenderPath path, int frames,
-                                       const std::function<void(size_t, size_t)>& on_frame) {
+                                       const std::function<void(size_t, size_t)>& on_frame, Channel channel) {
+  require_channel(channel);
   RendersReport rep;
   rep.dir = fs::absolute(dir);
   check_output_dir(dir, run_output_guard(run_dir_, config_));
@@ -207,7 +241,7 @@ RendersReport RunExport::write_renders(const fs::path& dir, RenderPath path, int
   for (size_t i = 0; i < cams.size(); ++i) {
     const Camera& c = cams[i];
     const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<float> color = render(c);
+    const std::vector<float> color = render(c, channel);
     ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const Image img = from_planar(color.data(), 3, c.width, c.height);
     save_png(rep.dir / (rep.frames[i] + ".png"), img);
@@ -225,6 +259,7 @@ RendersReport RunExport::write_renders(const fs::path& dir, RenderPath path, int
   save_png(rep.contact_sheet, compose_frame_grid(grid, cells));
   nlohmann::json j = {{"run", run_dir_.string()},
                       {"path", render_path_name(path)},
+                      {"channel", channel_info(channel).id},
                       {"convention", "world-to-camera x_cam = R x_world + t, OpenCV axes (x right, y down, z forward)"},
                       {"cameras", jc}};
   if (path == RenderPath::Orbit) {

@@ -30,6 +30,7 @@
 #include "core/train/differentiable_renderer.h"
 #include "core/train/train_config.h"
 #include "render/export/distill.h"
+#include "render/maps/channels.h"
 
 namespace goris {
 
@@ -73,6 +74,13 @@ class RunExport {
 
   // The run's renderer's colour from `camera`: planar RGB [3][H][W] on the host (not clamped).
   std::vector<float> render(const Camera& camera);
+  // One channel of that view as a viewable planar RGB image in [0, 1] (render/maps/channel_image.h);
+  // Channel::Final is render() clamped. Throws goris::Error naming the run when it cannot show the channel.
+  std::vector<float> render(const Camera& camera, Channel channel);
+  // Null when the run's renderer can show `channel` along a camera path; else why not.
+  const char* channel_unavailable(Channel channel) const;
+  // Throws goris::Error naming the run and the channel when channel_unavailable() says why not.
+  void require_channel(Channel channel) const;
 
   void write_ply(const std::filesystem::path& out) const;
   BakedReport write_baked(const std::filesystem::path& out, const DistillSettings& settings,
@@ -92,7 +100,8 @@ class RunExport {
   // frames: orbit frame count (0 = kDefaultOrbitFrames), or for test / train an evenly spaced subset of
   // that many views (0 = all). on_frame(done, total) reports progress.
   RendersReport write_renders(const std::filesystem::path& dir, RenderPath path, int frames,
-                              const std::function<void(size_t, size_t)>& on_frame = {});
+                              const std::function<void(size_t, size_t)>& on_frame = {},
+                              Channel channel = Channel::Final);
 
   // The cameras a render path visits (names beside them), at the run's resolution.
   std::vector<Camera> path_cameras(RenderPath path, int frames, std::vector<std::string>* names = nullptr) const;

@@ -59,6 +59,8 @@ VideoReport write_video(RunExport& run, const fs::path& out, const VideoSettings
   if (ext != ".mp4") throw Error(out.string(), "a video is written as MPEG-4: the name must end in .mp4");
   check_output_file(out, run_output_guard(run.run_dir(), run.config()));  // never into the data set or the run
 
+  run.require_channel(s.channel);
+  if (before) before->require_channel(s.channel);
   const int frames = s.path == RenderPath::Orbit ? std::max(1, int(std::lround(s.seconds * s.fps))) : 0;
   const std::vector<Camera> cams = run.path_cameras(s.path, frames);
   if (cams.empty()) throw Error(out.string(), std::string("the ") + render_path_name(s.path) + " path has no cameras");
@@ -87,10 +89,10 @@ VideoReport write_video(RunExport& run, const fs::path& out, const VideoSettings
       if (cams[i].width != w || cams[i].height != h)
         throw Error(out.string(), "the path's cameras differ in size: a video needs one frame size");
       if (before) {
-        put_frame(frame, before->render(cams[i]), w, h, 0);
-        put_frame(frame, run.render(cams[i]), w, h, w);
+        put_frame(frame, before->render(cams[i], s.channel), w, h, 0);
+        put_frame(frame, run.render(cams[i], s.channel), w, h, w);
       } else {
-        put_frame(frame, run.render(cams[i]), w, h, 0);
+        put_frame(frame, run.render(cams[i], s.channel), w, h, 0);
       }
       writer.write(frame);
       if (on_frame) on_frame(i + 1, cams.size());

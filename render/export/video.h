@@ -5,8 +5,10 @@
 //
 // The orbit path has seconds * fps frames, evenly spaced around the circle (one full turn); the test and
 // train paths show every view of that split once, at fps. With a `before` run (the scene with the
-// target), each frame is before | after side by side from the same camera. Frames are 8-bit sRGB as the
-// PNG renders are, padded by one black pixel where a side is odd (the codec needs even sizes).
+// target), each frame is before | after side by side from the same camera. Any rendered channel can be
+// shown instead of the final colour (albedo, F0, roughness, normal, depth, G, ...: RunExport::render).
+// Frames are 8-bit sRGB as the PNG renders are, padded by one black pixel where a side is odd (the codec
+// needs even sizes).
 // The file is written under a temporary name, read back (frame count and size must match what was
 // written) and only then renamed into place, so a failed or cut-short encode never leaves a half video.
 #include <filesystem>
@@ -20,6 +22,7 @@ struct VideoSettings {
   RenderPath path = RenderPath::Orbit;
   double seconds = 10.0;  // orbit: the length of one turn
   double fps = 24.0;
+  Channel channel = Channel::Final;  // what each frame shows (render/maps/channels.h), both sides alike
 };
 
 struct VideoReport {

@@ -73,3 +73,20 @@ goris_ok(export "${WORK}/radiance" --video "${OUTD}/ba.mp4" --before "${RUN}" --
 expect_text("${OUT}" "test frames at 96x")
 expect_text("${OUT}" "before | after")
 goris_fails("the name must end in .mp4" export "${WORK}/radiance" --video "${OUTD}/orbit.avi" --device cpu)
+
+# Channels (--channel): the intrinsic run's glossy term as a video, the radiance run's depth as PNG frames
+# (cameras.json names the channel); an intrinsic channel of a radiance run, a removal mask, an unknown name
+# and --channel without --renders or --video are refused.
+goris_ok(export "${RUN}" --video "${OUTD}/glossy.mp4" --channel glossy --seconds 1 --fps 4 --device cpu)
+expect_text("${OUT}" "video: 4 orbit frames of glossy at")
+goris_ok(export "${WORK}/radiance" --renders "${OUTD}/depth" --channel depth --frames 2 --device cpu)
+expect_text("${OUT}" "renders: 2 test frames of depth")
+file(READ "${OUTD}/depth/cameras.json" cams)
+string(FIND "${cams}" "\"channel\": \"depth\"" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "cameras.json of --channel depth does not name its channel:\n${cams}")
+endif()
+goris_fails("channel 'glossy' needs an intrinsic run" export "${WORK}/radiance" --video "${OUTD}/g.mp4" --channel glossy --device cpu)
+goris_fails("channel 'inpaint_mask' is a mask of the training views" export "${RUN}" --renders "${OUTD}/m" --channel inpaint_mask --device cpu)
+goris_fails("unknown channel 'shiny'" export "${RUN}" --video "${OUTD}/s.mp4" --channel shiny --device cpu)
+goris_fails("--channel chooses what --renders and --video show" export "${RUN}" --ply "${OUTD}/c.ply" --channel depth --device cpu)

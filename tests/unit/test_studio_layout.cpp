@@ -6,11 +6,12 @@
 
 #include "core/util/duration_text.h"
 #include "tests/support/test_support.h"
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 #include "ui/frame_limiter.h"
 #include "ui/panel_layout.h"
 #include "ui/training_history.h"
 
+using namespace goris;
 using namespace goris::ui;
 
 TEST(StudioLayout, SplitsTheWindow) {

@@ -1,15 +1,16 @@
 #pragma once
-// The channels a viewport can show (docs/user/editor.md, What the viewports show). Most come from the
-// rasterizer's G-buffer with the material extras; the glossy term, light and visibility come from the
-// intrinsic renderer (intrinsic runs only), the two masks of the removal from the files stage 2 leaves in
-// RUN/removal/ (for the training camera the view is snapped to). Whether a channel can be shown depends on
-// what is open: see channel_unavailable().
+// The channels of a rendered view that the editor's viewports and `goris export --channel` show
+// (docs/user/editor.md, What the viewports show). Most come from the rasterizer's G-buffer with the material
+// extras; the glossy term, light and visibility come from the intrinsic renderer (intrinsic runs only), the
+// two masks of the removal from the files stage 2 leaves in RUN/removal/ (for the training camera the view
+// is snapped to). Whether a channel can be shown depends on what is open: see channel_unavailable(). The
+// colours of each map: render/maps/channel_image.h on the CPU, shaders/channel.frag.glsl in the editor.
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
-namespace goris::ui {
+namespace goris {
 
 enum class Channel {
   Final,            // rendered colour (the shaded C for intrinsic runs)
@@ -64,4 +65,4 @@ std::string channel_id_list();
 // Null when `c` can be shown in `ctx`; else why not (tooltip and error text, e.g. "needs an intrinsic run").
 const char* channel_unavailable(Channel c, const ChannelContext& ctx);
 
-}  // namespace goris::ui
+}  // namespace goris

@@ -1,8 +1,8 @@
-#include "ui/channels.h"
+#include "render/maps/channels.h"
 
 #include <array>
 
-namespace goris::ui {
+namespace goris {
 
 namespace {
 using N = ChannelNeeds;
@@ -65,4 +65,4 @@ const char* channel_unavailable(Channel c, const ChannelContext& ctx) {
   return nullptr;
 }
 
-}  // namespace goris::ui
+}  // namespace goris
