@@ -649,7 +649,15 @@ void Bench::publish_suite(std::vector<goris::bench::SuiteResult> results, const 
   std::string cmd = "goris bench pipeline --suite " + o_.suite + " --configs " + o_.configs + " --schedule " + schedule;
   if (o_.init_points != 30000) cmd += " --init-points " + std::to_string(o_.init_points);
   if (o_.resolution > 0) cmd += " --resolution " + std::to_string(o_.resolution);
-  cmd += " --device " + o_.device + " --out DIR --publish " + o_.publish;
+  if (!o_.suite_scenes.empty()) {
+    std::string names;
+    for (const std::string& n : o_.suite_scenes) names += (names.empty() ? "" : ",") + n;
+    cmd += " --scenes " + names;
+  }
+  // The folder as a reader finds it: relative to where the bench ran when it lies below (docs/results).
+  const fs::path rel = dir.lexically_relative(fs::current_path());
+  const bool below = !rel.empty() && *rel.begin() != "..";
+  cmd += " --device " + o_.device + " --out DIR --publish " + (below ? rel.generic_string() : o_.publish);
   std::string head = "Reproduce with `" + cmd + "` (scenes: `goris synth`, rendered once into DIR/scenes or "
                      "--scene-cache). Machine: " + cpu + ", " + std::to_string(std::thread::hardware_concurrency()) +
                      " threads; times are " + (time_axis_is_cpu_ ? "CPU" : "wall") + " seconds of train + select + remove.\n\n";
