@@ -86,9 +86,6 @@ const std::vector<ConfigSpec>& ladder() {
        "--mode auto with the glossy masks hidden: glossy regions detected from the photos once the geometry has settled"},
       {"sh1", "intrinsic_sh1", {"--mode", "intrinsic", "--set", "max_sh_degree=1"}, "", false,
        "full with SH degree 1 (the glossy term carries the view dependence)"},
-      {"budget", "intrinsic_budget",
-       {"--mode", "intrinsic", "--set", "densify_stop=adaptive", "--set", "densify_stop_min_steps=1"}, "", false,
-       "full with the adaptive Gaussian budget (densification stops when held-out PSNR stops improving)"},
       {"coarse", "intrinsic_coarse", {"--mode", "intrinsic", "--set", "intrinsic_coarse_tracing=true"}, "", false,
        "full with coarse tracing (one reflection ray per block where the glossy filter blurs)"},
   };
@@ -466,7 +463,7 @@ std::string choices_table(const std::vector<Row>& rows, const TimeAxis& axis) {
 }
 
 // What the stage-1 runs said about the choices (read from their logs, so reused rows have them too): rays
-// traced and saved per shaded frame, the adaptive budget's stop, --mode auto's decision.
+// traced and saved per shaded frame, --mode auto's decision.
 std::string Bench::stage1_notes(const std::vector<Row>& rows) const {
   std::set<fs::path> seen;
   std::string t;
@@ -477,8 +474,7 @@ std::string Bench::stage1_notes(const std::vector<Row>& rows) const {
     if (!seen.insert(log).second || !fs::exists(log)) continue;
     std::ifstream in(log);
     for (std::string line; std::getline(in, line);) {
-      const bool wanted = line.rfind("reflection rays:", 0) == 0 || line.rfind("adaptive densification", 0) == 0 ||
-                          line.rfind("--mode auto", 0) == 0;
+      const bool wanted = line.rfind("reflection rays:", 0) == 0 || line.rfind("--mode auto", 0) == 0;
       if (wanted) t += "- " + md_cell(r.scene) + " / " + r.schedule + " / stage 1 `" + spec->stage1 + "`: " + md_cell(line) + "\n";
     }
   }

@@ -72,6 +72,7 @@ void reject_changes_on_resume(const Options& o) {
 void remove_training_run(const fs::path& run_dir) {
   std::error_code ec;
   fs::remove_all(run_dir / "checkpoints", ec);
+  // densify_stop.json: the record of a removed setting that older versions wrote.
   for (const fs::path& f : {run_config_path(run_dir), run_ply_path(run_dir), run_dir / "log.csv", run_dir / "densify_stop.json"})
     fs::remove(f, ec);
 }

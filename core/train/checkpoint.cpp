@@ -24,8 +24,9 @@ namespace goris {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'O', 'R', 'I', 'S', 'C', 'K', 'P'};
-// 2: + learning-rate scale and skipped steps; 3: + adaptive densification record; 4: + emit weights
-constexpr std::uint32_t kVersion = 4;
+// 2: + learning-rate scale and skipped steps; 3: + adaptive densification record; 4: + emit weights;
+// 5: - the adaptive densification record (a removed setting: versions 3 and 4 still load, the record skipped)
+constexpr std::uint32_t kVersion = 5;
 
 class Writer {
  public:
@@ -134,13 +135,6 @@ void write_checkpoint(const std::filesystem::path& path, const TrainConfig& conf
   w.floats(st.stats.max_radii);
   w.pod(st.lr_scale);
   w.pod(std::int32_t(st.skipped_steps));
-  w.pod(std::uint64_t(st.densify_stop.checks.size()));
-  for (const HeldOutCheck& c : st.densify_stop.checks) {
-    w.pod(std::int32_t(c.iteration));
-    w.pod(c.psnr);
-    w.pod(c.gaussians);
-  }
-  w.pod(std::int32_t(st.densify_stop.stopped_at));
   w.floats(st.emit_weights);
   w.pod(fnv1a(w.bytes()));
 
@@ -209,18 +203,16 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
     st.skipped_steps = r.pod<std::int32_t>();
     if (!(st.lr_scale > 0 && st.lr_scale <= 1)) r.fail("learning-rate scale is invalid");
   }
-  if (version >= 3) {  // older checkpoints: no held-out checks yet, not stopped
+  if (version == 3 || version == 4) {  // the adaptive densification record: held-out checks, stop iteration
     const auto checks = r.pod<std::uint64_t>();
     if (checks > data.size()) r.fail("adaptive densification record is invalid");
-    st.densify_stop.checks.resize(checks);
-    for (HeldOutCheck& c : st.densify_stop.checks) {
-      c.iteration = r.pod<std::int32_t>();
-      c.psnr = r.pod<double>();
-      c.gaussians = r.pod<std::uint64_t>();
+    for (std::uint64_t c = 0; c < checks; ++c) {
+      r.pod<std::int32_t>();
+      r.pod<double>();
+      r.pod<std::uint64_t>();
     }
-    st.densify_stop.stopped_at = r.pod<std::int32_t>();
-    if (st.densify_stop.stopped_at < 0 || st.densify_stop.stopped_at > st.iteration)
-      r.fail("adaptive densification stop iteration is invalid");
+    const auto stopped_at = r.pod<std::int32_t>();
+    if (stopped_at < 0 || stopped_at > st.iteration) r.fail("adaptive densification stop iteration is invalid");
   }
   if (version >= 4) st.emit_weights = r.host_floats();  // of the model when they were set: any count
   return ck;

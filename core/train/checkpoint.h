@@ -1,8 +1,7 @@
 #pragma once
 // Training checkpoints: one binary file with the configuration, the iteration, the view-order RNG, every
-// parameter with its Adam moments and step counts, the densification statistics, the 3D filter and the
-// adaptive densification record (held-out checks, stop iteration) and intrinsic mode's emit weights, ending
-// in a checksum; older format versions still load. Written to a temporary file and renamed, so a crash
+// parameter with its Adam moments and step counts, the densification statistics, the 3D filter and
+// intrinsic mode's emit weights, ending in a checksum; older format versions still load. Written to a temporary file and renamed, so a crash
 // never leaves a half-written checkpoint under the final name. Resuming from one continues bit for bit as
 // if never interrupted.
 #include <filesystem>

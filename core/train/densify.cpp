@@ -126,10 +126,10 @@ void DensifyStats::add_view(const float* view_grad_norm, const std::int32_t* rad
 float ndc_gradient_scale(int width, int height) { return 0.5f * std::sqrt(float(width) * float(height)); }
 
 DensifyCounts densify_and_prune(GaussianModel& model, const DensifyStats& stats, const DensifySettings& st,
-                                float extent, bool prune_large, std::uint64_t seed, bool grow) {
+                                float extent, bool prune_large, std::uint64_t seed) {
   if (model.device() != Device::CPU) {
     GaussianModel host = model.copy_to(Device::CPU);
-    const DensifyCounts c = densify_and_prune(host, stats_on_host(stats), st, extent, prune_large, seed, grow);
+    const DensifyCounts c = densify_and_prune(host, stats_on_host(stats), st, extent, prune_large, seed);
     model = host.copy_to(model.device());
     return c;
   }
@@ -155,7 +155,7 @@ DensifyCounts densify_and_prune(GaussianModel& model, const DensifyStats& stats,
     const bool low = kernels::sigmoid(opl[i]) < st.min_opacity;
     const bool too_big = prune_large && ((st.max_screen_radius > 0 && stats.max_radii[i] > st.max_screen_radius) ||
                                          (st.max_world_scale > 0 && max_scale > world_limit));
-    const bool selected = grow && g >= st.grad_threshold;
+    const bool selected = g >= st.grad_threshold;
     if (selected && max_scale > clone_limit) {
       action[i] = kChild;
       const bool child_too_big = prune_large && st.max_world_scale > 0 && std::exp(max_ls - split_shrink) > world_limit;

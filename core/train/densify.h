@@ -31,21 +31,6 @@ struct DensifySettings {
   float reset_opacity = 0.01f;      // opacities are clamped to this at a reset
   float max_screen_radius = 20.0f;  // pixels; prune above after the first reset (0 = never)
   float max_world_scale = 0.1f;     // x extent; prune above after the first reset (0 = never)
-
-  // When to stop adding Gaussians (model no more than a scene needs). "fixed": at the end of the
-  // window (Trainer::densify_until). "adaptive": every holdout_every-th training view (at least one) is
-  // left out of the sampler while densification runs; their PSNR is measured every stop_check_interval
-  // iterations (a full-schedule number, scaled with the run) and at each densification step, and once the
-  // best of the last stop_window checks beats the best before them by less than stop_min_gain dB, density
-  // control only prunes and the held-out views rejoin training (core/train/densify_stop.h). Holding views
-  // out costs training signal, so "adaptive" acts only when at least stop_min_steps densification steps
-  // lie after the earliest possible stop (not in a 2K run, where it only cost quality: docs/lab/history.md).
-  std::string stop = "fixed";
-  int holdout_every = 8;
-  int stop_check_interval = 500;
-  int stop_window = 2;
-  float stop_min_gain = 0.1f;
-  int stop_min_steps = 2;
 };
 
 // The densification statistic per Gaussian, on the model's device.
@@ -77,9 +62,9 @@ struct DensifyCounts {
 //        max scale > max_world_scale * extent))                -> removed (with its clone / children).
 // Row order afterwards: surviving originals in order, then clones and children in parent order. The 3D
 // filter is carried along (recompute it afterwards), `stats` must be reset by the caller. `seed` makes
-// the split samples deterministic. grow = false prunes only (no clone, no split: the adaptive stop).
+// the split samples deterministic.
 DensifyCounts densify_and_prune(GaussianModel& model, const DensifyStats& stats, const DensifySettings& settings,
-                                float extent, bool prune_large, std::uint64_t seed, bool grow = true);
+                                float extent, bool prune_large, std::uint64_t seed);
 
 // Keeps the rows where keep[i] != 0 (moments carried along); returns the number removed.
 size_t prune_gaussians(GaussianModel& model, const std::vector<std::uint8_t>& keep);

@@ -67,12 +67,6 @@ void visit_fields(Config& c, F&& f) {
   f("reset_opacity", c.densify.reset_opacity);
   f("prune_max_screen_radius", c.densify.max_screen_radius);
   f("prune_max_world_scale", c.densify.max_world_scale);
-  f("densify_stop", c.densify.stop);
-  f("densify_holdout_every", c.densify.holdout_every);
-  f("densify_stop_check_interval", c.densify.stop_check_interval);
-  f("densify_stop_window", c.densify.stop_window);
-  f("densify_stop_min_gain", c.densify.stop_min_gain);
-  f("densify_stop_min_steps", c.densify.stop_min_steps);
   f("filter_3d", c.filter_3d);
   f("filter_3d_interval", c.filter_3d_interval);
   f("filter_2d", c.filter_2d);
@@ -164,12 +158,6 @@ void TrainConfig::validate(const std::string& what) const {
   if (max_sh_degree < 0 || max_sh_degree > 3) fail("max_sh_degree must lie in 0..3");
   if (densify.interval < 1) fail("densify_interval must be at least 1");
   if (!(densify_until_fraction >= 0 && densify_until_fraction <= 1)) fail("densify_until_fraction must lie in [0, 1]");
-  if (densify.stop != "fixed" && densify.stop != "adaptive") fail("densify_stop must be fixed or adaptive");
-  if (densify.holdout_every < 2) fail("densify_holdout_every must be at least 2 (some views must stay in training)");
-  if (densify.stop_check_interval < 1) fail("densify_stop_check_interval must be at least 1");
-  if (densify.stop_window < 1) fail("densify_stop_window must be at least 1");
-  if (densify.stop_min_steps < 1) fail("densify_stop_min_steps must be at least 1");
-  if (!std::isfinite(densify.stop_min_gain)) fail("densify_stop_min_gain must be finite (dB)");
   if (densify.opacity_reset_interval < 1) fail("opacity_reset_interval must be at least 1");
   if (densify.split_count < 1 || densify.split_count > 8) fail("split_count must lie in 1..8");
   if (!(densify.min_opacity >= 0 && densify.min_opacity < 1)) fail("prune_min_opacity must lie in [0, 1)");
@@ -324,16 +312,19 @@ void read_field(const nlohmann::json& x, T& v) {
 // Settings that earlier versions had and this one dropped because they measured no better than without
 // (docs/design/deviations.md, Removed settings). A run folder or checkpoint that holds one at the value it
 // was off at still loads; any other value is refused, since that run was trained with a behaviour this
-// version no longer has.
+// version no longer has. Settings that only acted through another one (`off` null) load at any value.
 struct RetiredKey {
   const char* name;
-  nlohmann::json off;
+  nlohmann::json off;  // null: any value
 };
 const RetiredKey* retired_key(const std::string& name) {
   static const RetiredKey kRetired[] = {
       {"intrinsic_net_residual", false},   {"intrinsic_ray_offset_normal", false},
       {"intrinsic_region_rough", 0.0},     {"intrinsic_roughness_rough", 0.0},
-      {"intrinsic_roughness_follows_region", 0.0}};
+      {"intrinsic_roughness_follows_region", 0.0}, {"densify_stop", "fixed"},
+      {"densify_holdout_every", nullptr},          {"densify_stop_check_interval", nullptr},
+      {"densify_stop_window", nullptr},            {"densify_stop_min_gain", nullptr},
+      {"densify_stop_min_steps", nullptr}};
   for (const RetiredKey& k : kRetired)
     if (name == k.name) return &k;
   return nullptr;
@@ -365,7 +356,7 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
     if (known.count(it.key())) continue;
     const RetiredKey* retired = retired_key(it.key());
     if (!retired) throw Error("training configuration: unknown key '" + it.key() + "'");
-    if (it.value() != retired->off)
+    if (!retired->off.is_null() && it.value() != retired->off)
       throw Error("training configuration: '" + it.key() + "' = " + it.value().dump() +
                   " is a setting this version no longer has (it measured no better than " + retired->off.dump() +
                   "; docs/design/deviations.md, Removed settings): the run needs the version that trained it");

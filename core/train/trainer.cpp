@@ -9,17 +9,16 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numeric>
 #include <optional>
 #include <utility>
 
 #include "core/compute/memory.h"
 #include "core/io/file_bytes.h"
-#include "core/io/json_file.h"
 #include "core/scene/filter3d.h"
 #include "core/train/checkpoint.h"
 #include "core/train/depth_normal_loss.h"
 #include "core/train/finite_check.h"
-#include "core/train/held_out_views.h"
 #include "core/train/image_losses.h"
 #include "core/train/intrinsic_losses.h"
 #include "core/train/lr_schedule.h"
@@ -73,8 +72,6 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
   config_.validate("training configuration");
   if (config_.mode == "auto") throw Error("training: mode 'auto' must be resolved from the data set before training");
   if (views_.empty()) throw Error("training: no training views");
-  if (densify_stop_plan(config_, densify_until(), intrinsic()).active())
-    held_out_view_indices(views_.size(), config_.densify.holdout_every);  // throws for a single view
   for (const TrainView& v : views_)
     if (v.image.size() != size_t(3) * v.camera.width * v.camera.height)
       throw Error(v.name, "training image size does not match its camera");
@@ -148,13 +145,10 @@ StepStats Trainer::step() {
 
   if (it % config_.sh_degree_interval == 0) m.sh_degree = std::min(m.sh_degree + 1, m.max_sh_degree);
 
-  // The next view of a random permutation of all views (a new one each epoch), without the views the
-  // adaptive Gaussian budget holds out while it densifies.
-  const DensifyStopPlan stop_plan = densify_stop_plan(config_, densify_until(), intrinsic());
+  // The next view of a random permutation of all views (a new one each epoch).
   if (state_.view_stack.empty()) {
-    state_.view_stack = epoch_views(views_.size(), stop_plan.holds_out(it, state_.densify_stop)
-                                                       ? held_out_view_indices(views_.size(), stop_plan.holdout_every)
-                                                       : std::vector<std::uint32_t>{});
+    state_.view_stack.resize(views_.size());
+    std::iota(state_.view_stack.begin(), state_.view_stack.end(), std::uint32_t(0));
     std::shuffle(state_.view_stack.begin(), state_.view_stack.end(), state_.rng);
   }
   out.view = int(state_.view_stack.back());
@@ -293,16 +287,10 @@ StepStats Trainer::step() {
   const DensifySettings& ds = config_.densify;
   const int until = densify_until();
   const int reset_every = config_.opacity_reset_every();
-  if (stop_plan.checks_at(it, state_.densify_stop)) {  // adaptive budget: measure, maybe stop growing
-    const double psnr = held_out_psnr(*renderer_, m, views_, held_out_view_indices(views_.size(), ds.holdout_every));
-    out.densify_note = record_held_out_check(state_.densify_stop, stop_plan, it, psnr, m.count());
-    out.held_out_check = true;
-  }
   if (it <= until) {
     if (it >= ds.from_iter && it % ds.interval == 0) {
       out.densify = densify_and_prune(m, state_.stats, ds, extent_, it > reset_every,
-                                      config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it),
-                                      /*grow=*/!state_.densify_stop.stopped());
+                                      config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it));
       if (m.count() == 0)
         throw Error(format_iteration_problem(
             it, "pruning removed every Gaussian (opacities below " + std::to_string(ds.min_opacity) +
@@ -489,25 +477,13 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
     save_checkpoint(checkpoint_path(o.run_dir, state_.iteration));
     remove_old_checkpoints(o.run_dir, config_.keep_checkpoints);
   };
-  // The adaptive Gaussian budget's record (RUN/densify_stop.json) and decisions for the user.
+  // What the density control did, for the user.
   auto tell = [&](const std::string& note) {
     if (o.on_note)
       o.on_note(note);
     else
       std::printf("\n%s\n", note.c_str());
   };
-  auto write_densify_record = [&] {
-    if (o.run_dir.empty()) return;
-    const DensifyStopPlan plan = densify_stop_plan(config_, densify_until(), intrinsic());
-    std::vector<std::string> names;
-    if (plan.active())
-      for (std::uint32_t i : held_out_view_indices(views_.size(), plan.holdout_every)) names.push_back(views_[i].name);
-    write_json_file(o.run_dir / "densify_stop.json", densify_stop_json(state_.densify_stop, plan, names));
-  };
-  if (const std::string why = densify_stop_plan(config_, densify_until(), intrinsic()).inactive_reason(); !why.empty()) {
-    write_densify_record();
-    tell("adaptive densification inactive: " + why);
-  }
   // Interval means for the log; a smoothed iteration time (about the last 50 iterations) for the rate.
   double sum_loss = 0, sum_psnr = 0;
   int n_sum = 0;
@@ -539,7 +515,6 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
       last = clock::now();
       continue;
     }
-    if (s.held_out_check) write_densify_record();
     if (!s.densify_note.empty()) tell(s.densify_note);
     const auto now = clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();

@@ -17,7 +17,6 @@
 #include "core/scene/gaussians.h"
 #include "core/train/adam.h"
 #include "core/train/densify.h"
-#include "core/train/densify_stop.h"
 #include "core/train/differentiable_renderer.h"
 #include "core/train/glossy_plane.h"
 #include "core/train/param_groups.h"
@@ -66,7 +65,6 @@ struct TrainerState {
   double elapsed_s = 0;                  // training time so far, over all sessions
   double lr_scale = 1.0;                 // lowered by each step skipped for non-finite values
   int skipped_steps = 0;                 // in all; consecutive ones are counted in the trainer
-  DensifyStopState densify_stop;         // the adaptive Gaussian budget's held-out checks and decision
   // intrinsic_emit mask or max: the emit weights last given to the renderer (one per Gaussian, from the
   // model of that iteration; empty = none yet). A resumed run gives the renderer these again instead of
   // weights computed from its later model.
@@ -88,10 +86,7 @@ struct StepStats {
   double appearance = 0, material = 0;  // stage 2 (0 when off)
   DensifyCounts densify;  // after == 0 when this step did not densify
   int view = -1;          // the training view of this step
-  // The adaptive Gaussian budget measured its held-out views in this step; densify_note says what it
-  // decided when it stopped densification or the window closed (core/train/densify_stop.h), or how many
-  // Gaussians the mirror-world pruning removed.
-  bool held_out_check = false;
+  // How many Gaussians the mirror-world pruning removed in this step (empty: none).
   std::string densify_note;
   // A step skipped for non-finite values (nan_policy recover): what was found, where; nothing was updated.
   bool skipped = false;

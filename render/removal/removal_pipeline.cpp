@@ -219,6 +219,7 @@ std::string selection_fingerprint(const SelectionMask& mask) {
 void remove_stale_finetune(const fs::path& out) {
   std::error_code ec;
   fs::remove_all(out / "checkpoints", ec);
+  // densify_stop.json: the record of a removed setting that older versions wrote.
   for (const char* f : {"point_cloud.ply", "report.json", "log.csv", "densify_stop.json", "config.json"})
     fs::remove(out / f, ec);
 }

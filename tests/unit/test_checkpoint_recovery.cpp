@@ -3,13 +3,18 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <tuple>
 
 #include "core/io/file_bytes.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/train/trainer.h"
+#include "core/util/fnv1a.h"
 #include "tests/support/test_support.h"
 
 namespace goris {
@@ -57,6 +62,50 @@ TEST(CheckpointRecovery, TemporaryFilesOfADeadWriterAreRemoved) {
   EXPECT_FALSE(fs::exists(dead));
   EXPECT_TRUE(fs::exists(mine));
   EXPECT_TRUE(fs::exists(other));
+}
+
+
+// Older format versions still load. A version-5 file turned into the version-4 layout (the adaptive
+// densification record of a removed setting - an 8-byte check count, 20 bytes per check, a 4-byte stop
+// iteration - inserted before the emit weights), version 3 (also without the emit-weight block: an 8-byte
+// count and its floats) and version 2 (also without the record), the version field and checksum rewritten.
+TEST(CheckpointFormat, OlderVersionsStillLoad) {
+  const fs::path dir = test::scratch_dir("checkpoint_versions");
+  TrainerState st = small_state(5);
+  st.emit_weights = {0.5f, 0.25f, 1.0f};
+  write_checkpoint(dir / "v5.ckpt", TrainConfig{}, st);
+  std::ifstream in(dir / "v5.ckpt", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::uint32_t version;
+  std::memcpy(&version, bytes.data() + 8, 4);
+  ASSERT_EQ(version, 5u);
+  const std::size_t emit_block = 8 + 4 * st.emit_weights.size();
+  const std::string body = bytes.substr(0, bytes.size() - 8);
+  const std::string head = body.substr(0, body.size() - emit_block), emit = body.substr(body.size() - emit_block);
+  auto pod = [](auto v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); };
+  const std::string empty_record = pod(std::uint64_t(0)) + pod(std::int32_t(0));
+  const std::string one_check = pod(std::uint64_t(1)) + pod(std::int32_t(4)) + pod(30.0) + pod(std::uint64_t(4)) +
+                                pod(std::int32_t(0));
+  auto older = [&](std::uint32_t v, std::string file, const char* name) {
+    std::memcpy(file.data() + 8, &v, 4);
+    file += pod(fnv1a(file));
+    std::ofstream(dir / name, std::ios::binary) << file;
+    return dir / name;
+  };
+  for (const auto& [v, file, name, emits] :
+       {std::tuple{4u, head + empty_record + emit, "v4.ckpt", true}, std::tuple{4u, head + one_check + emit, "v4_check.ckpt", true},
+        std::tuple{3u, head + empty_record, "v3.ckpt", false}, std::tuple{2u, head, "v2.ckpt", false}}) {
+    SCOPED_TRACE(name);
+    const Checkpoint ck = read_checkpoint(older(v, file, name), Device::CPU);
+    EXPECT_EQ(ck.state.iteration, 5);
+    EXPECT_EQ(ck.state.emit_weights, emits ? st.emit_weights : std::vector<float>{});
+    EXPECT_EQ(ck.state.model.count(), 4u);
+    EXPECT_EQ(ck.state.model.tensor(Param::Position).value.to_host(), st.model.tensor(Param::Position).value.to_host());
+  }
+  // A stop iteration past the checkpoint's own iteration is a damaged file, named in the error.
+  const std::string late = pod(std::uint64_t(0)) + pod(std::int32_t(999));
+  const fs::path bad = older(4u, head + late + emit, "bad.ckpt");
+  test::expect_error([&] { read_checkpoint(bad, Device::CPU); }, "bad.ckpt");
 }
 
 }  // namespace

@@ -418,6 +418,8 @@ TEST(TrainConfig, RemovedSettingsLoadWhenOffAndAreRefusedWhenOn) {
   j["intrinsic_net_residual"] = false;
   j["intrinsic_region_rough"] = 0;
   j["intrinsic_roughness_follows_region"] = 0.0;
+  j["densify_stop"] = "fixed";
+  j["densify_holdout_every"] = 4;  // acted only through densify_stop=adaptive: any value loads
   TrainConfig back;
   EXPECT_NO_THROW(from_json(j, back));
   EXPECT_EQ(nlohmann::json(back), nlohmann::json(TrainConfig{}));  // and writes no removed key back
@@ -433,6 +435,10 @@ TEST(TrainConfig, RemovedSettingsLoadWhenOffAndAreRefusedWhenOn) {
   const std::string on = message([&] { from_json(j, back); });
   EXPECT_NE(on.find("'intrinsic_region_rough' = 0.3"), std::string::npos) << on;
   EXPECT_NE(on.find("no longer has"), std::string::npos) << on;
+  j["intrinsic_region_rough"] = 0;
+  j["densify_stop"] = "adaptive";
+  const std::string adaptive = message([&] { from_json(j, back); });
+  EXPECT_NE(adaptive.find("'densify_stop' = \"adaptive\""), std::string::npos) << adaptive;
   TrainConfig c;
   const std::string set = message([&] { apply_config_overrides({"intrinsic_ray_offset_normal=true"}, c); });
   EXPECT_NE(set.find("was removed"), std::string::npos) << set;
