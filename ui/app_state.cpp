@@ -112,8 +112,7 @@ void AppState::finish_open() {
     snap(0, true);
   }
   for (const std::string& w : scene_->warnings) message("warning: " + w, false);
-  const std::string what = scene_->kind == OpenedScene::Kind::Run ? "run" : "data set";
-  std::string text = "opened " + what + " " + scene_->path.string();
+  std::string text = std::string("opened ") + scene_kind_name(scene_->kind) + " " + scene_->path.string();
   if (scene_->dataset)
     text += " (" + scene_->dataset->format + ", " + std::to_string(scene_->dataset->train.size()) + " training / " +
             std::to_string(scene_->dataset->test.size()) + " test views)";
@@ -226,6 +225,8 @@ void AppState::drop_override(const std::string& key) {
 
 void AppState::start_training(int iterations, bool more) {
   if (!scene_) throw Error("train: open a data set or a run folder first");
+  if (scene_->kind == OpenedScene::Kind::Model)
+    throw Error(scene_->path.string(), "train: a model file has no photos to train on: open its data set or run folder");
   if (removal_.active()) throw Error("train: the removal is running on this run: wait for it or cancel it");
   TrainRequest rq;
   rq.iterations = iterations;
@@ -402,6 +403,9 @@ fs::path AppState::save_selection() {
 
 void AppState::start_removal(int iterations) {
   const fs::path run = current_run();
+  if (run.empty() && scene_ && scene_->kind == OpenedScene::Kind::Model)
+    throw Error(scene_->path.string(), "remove: a model file has no photos to fill the hole from: open the run "
+                                       "folder it was trained in");
   if (run.empty()) throw Error("remove: no run to remove from (train a model, or open a run folder)");
   if (training_active()) throw Error("remove: training runs on this run: stop it first");
   if (!latest_checkpoint(run)) throw Error(run.string(), "remove: the run has no checkpoint yet (train it first)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/io/splat_formats.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/util/error.h"
@@ -13,6 +14,18 @@
 namespace goris::ui {
 
 namespace fs = std::filesystem;
+
+const char* scene_kind_name(OpenedScene::Kind kind) {
+  switch (kind) {
+    case OpenedScene::Kind::Run:
+      return "run";
+    case OpenedScene::Kind::Model:
+      return "model";
+    case OpenedScene::Kind::Dataset:
+      break;
+  }
+  return "data set";
+}
 
 bool is_run_folder(const fs::path& path) { return fs::is_directory(path) && fs::exists(run_config_path(path)); }
 
@@ -113,6 +126,15 @@ OpenedScene open_scene(const fs::path& input, Device device) {
                              e.what() + ")");
       }
     }
+  } else if (fs::is_regular_file(path)) {
+    // A model file: read by its content (any splat format), rendered with the default settings (black
+    // background, the filters of a trained run), framed by its own extent.
+    s.kind = OpenedScene::Kind::Model;
+    const GaussianModel model = GaussianModel::from_ply(read_gaussians(path), device);
+    s.model = std::make_shared<const ModelSnapshot>(model, 0, RasterRenderer::settings_for(TrainConfig{}));
+    s.model_source = path.string();
+    s.warnings.push_back("a model file has no photos: it can be viewed and selected on; training and removal need "
+                         "the data set or the run folder it came from");
   } else {
     s.kind = OpenedScene::Kind::Dataset;
     s.dataset = load_dataset(path, s.dataset_options);

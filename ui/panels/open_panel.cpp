@@ -18,7 +18,8 @@ void try_open(AppState& st, const std::string& path) {
 }  // namespace
 
 void OpenPanel::draw(AppState& st) {
-  ImGui::TextWrapped("A data set folder (NeRF-synthetic, COLMAP, ...) or a run folder (config.json).");
+  ImGui::TextWrapped("A data set folder (NeRF-synthetic, COLMAP, ...), a run folder (config.json) or a model file "
+                     "(.ply, .compressed.ply, .spz, .splat, .glb).");
   ImGui::SetNextItemWidth(-60);
   const bool enter = ImGui::InputTextWithHint("##path", "path", &path_, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
@@ -42,7 +43,7 @@ void OpenPanel::draw(AppState& st) {
   if (!st.open_error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", st.open_error().c_str());
   if (const OpenedScene* s = st.scene()) {
     ImGui::Separator();
-    ImGui::TextWrapped("%s: %s", s->kind == OpenedScene::Kind::Run ? "run" : "data set", s->path.string().c_str());
+    ImGui::TextWrapped("%s: %s", scene_kind_name(s->kind), s->path.string().c_str());
     if (s->dataset)
       ImGui::Text("%s, %zu train / %zu test views", s->dataset->format.c_str(), s->dataset->train.size(),
                   s->dataset->test.size());

@@ -22,6 +22,10 @@ void TrainingPanel::draw(AppState& st) {
     ImGui::TextDisabled("Open a data set or a run first.");
     return;
   }
+  if (scene->kind == OpenedScene::Kind::Model) {
+    ImGui::TextDisabled("A model file has no photos to train on: open its data set or run folder.");
+    return;
+  }
   const bool is_run = scene->kind == OpenedScene::Kind::Run;
 
   // The run folder: editable for a data set (empty = a new folder under the runs root).
