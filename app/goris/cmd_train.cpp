@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string data, out, mode = "radiance", device = "auto", normals;
+  std::string data, out, mode = "radiance", device = "auto", normals, init;
   std::optional<int> iters, resolution, init_points, checkpoint_every;
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;
@@ -62,6 +62,7 @@ void reject_changes_on_resume(const Options& o) {
   no(o.downscale.has_value(), "--downscale");
   no(o.seed.has_value(), "--seed");
   no(o.init_points.has_value(), "--init-points");
+  no(!o.init.empty(), "--init");
   no(o.mode != "radiance", "--mode");
   no(!o.normals.empty(), "--normals");
   no(!o.sets.empty(), "--set");
@@ -115,6 +116,11 @@ void run_train(const Options& o) {
     if (o.resolution) config.resolution = *o.resolution;
     if (o.downscale) config.downscale = *o.downscale;
     if (o.init_points) config.random_init_points = *o.init_points;
+    if (!o.init.empty()) {  // read by prepare_training; a missing file fails now, before the images load
+      const fs::path init = fs::weakly_canonical(fs::absolute(o.init));
+      if (!fs::is_regular_file(init)) throw Error(init.string(), "--init: no such model file");
+      config.init_model = init.string();
+    }
     if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
     apply_config_overrides(o.sets, config);
   }
@@ -232,6 +238,9 @@ void setup_train(CLI::App& root) {
   c->add_option("--seed", o->seed, "Random seed (initial points, view order, splits)")->check(cli::whole(0, cli::kSeedMax));
   c->add_option("--init-points", o->init_points, "Random initial points when the data has no SfM points (100000)")
       ->check(cli::whole(1, kMaxRandomInitPoints));
+  c->add_option("--init", o->init,
+                "Start from this model file (.ply, .compressed.ply, .spz, .splat, .glb) in the data set's frame, "
+                "instead of the SfM or random points");
   c->add_option("--checkpoint-every", o->checkpoint_every, "Checkpoint interval in iterations (2000; 0 = end only)")
       ->check(cli::whole(0, cli::kIntMax));
   c->add_option("--preset", o->preset,

@@ -32,6 +32,7 @@ void visit_fields(Config& c, F&& f) {
   f("glossy_mask_dir", c.glossy_mask_dir);
   f("auto_detect_glossy", c.auto_detect_glossy);
   f("random_init_points", c.random_init_points);
+  f("init_model", c.init_model);
   f("random_init_box_ratio", c.random_init_box_ratio);
   f("lr_position_init", c.lr.position_init);
   f("lr_position_final", c.lr.position_final);

@@ -165,6 +165,11 @@ struct TrainConfig {
   // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
   int random_init_points = 100000;  // at most kMaxRandomInitPoints
   float random_init_box_ratio = 0.33f;
+  // A model file to start from instead (`goris train --init`: 3DGS PLY, compressed PLY, SPZ, .splat or GLB,
+  // core/io/splat_formats.h), in the data set's world frame: say, a scene made by another tool, refined here,
+  // or trained further in intrinsic mode. Its Gaussians start as they are (materials at the intrinsic start
+  // values unless the file has them); the SH degree grows from 0 as for any start. "" = SfM or random points.
+  std::string init_model;
 
   // Optimisation.
   LearningRates lr;

@@ -1,5 +1,6 @@
 #include "core/train/train_setup.h"
 
+#include "core/io/splat_formats.h"
 #include "core/scene/gaussian_init.h"
 #include "core/util/error.h"
 
@@ -77,6 +78,12 @@ GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, D
   GaussianInit init;
   init.roughness = config.intrinsic.init_roughness;
   init.fresnel = config.intrinsic.init_fresnel;
+  if (!config.init_model.empty()) {
+    const GaussianPly ply = read_gaussians(config.init_model);
+    if (ply.count == 0) throw Error(config.init_model, "the model to start from holds no Gaussians");
+    if (how) *how = std::to_string(ply.count) + " Gaussians from " + config.init_model;
+    return GaussianModel::from_ply(ply, device, init);
+  }
   if (!dataset.points.xyz.empty()) {
     if (how) *how = std::to_string(dataset.points.size()) + " SfM points";
     return init_from_points(dataset.points.xyz, dataset.points.rgb, device, init);

@@ -90,3 +90,28 @@ goris_fails("channel 'glossy' needs an intrinsic run" export "${WORK}/radiance" 
 goris_fails("channel 'inpaint_mask' is a mask of the training views" export "${RUN}" --renders "${OUTD}/m" --channel inpaint_mask --device cpu)
 goris_fails("unknown channel 'shiny'" export "${RUN}" --video "${OUTD}/s.mp4" --channel shiny --device cpu)
 goris_fails("--channel chooses what --renders and --video show" export "${RUN}" --ply "${OUTD}/c.ply" --channel depth --device cpu)
+
+# Training from an exported model (--init): the run starts from its Gaussians, so one iteration from the
+# radiance run's SPZ renders the test views far better than one from random points; a missing file and
+# --init on a resume are refused.
+goris_ok(info "${OUTD}/r.spz")
+string(REGEX MATCH "([0-9]+) Gaussians" m "${OUT}")
+set(r_count "${CMAKE_MATCH_1}")
+goris_ok(train "${RESOURCES}/default_scene" --out "${WORK}/from_spz" --init "${OUTD}/r.spz" --iters 1 --resolution 48
+         --device cpu --checkpoint-every 0)
+expect_text("${OUT}" "initial model: ${r_count} Gaussians from ${OUTD}/r.spz")
+goris_ok(train "${RESOURCES}/default_scene" --out "${WORK}/from_random" --iters 1 --resolution 48 --device cpu
+         --init-points 2000 --checkpoint-every 0)
+foreach(run from_spz from_random)
+  goris_ok(eval "${WORK}/${run}" --split test --device cpu)
+  string(REGEX MATCH "PSNR ([0-9.]+) dB" m "${OUT}")
+  set(psnr_${run} "${CMAKE_MATCH_1}")
+endforeach()
+if(NOT psnr_from_spz GREATER psnr_from_random)  # both parse as real numbers
+  message(FATAL_ERROR "one iteration from the SPZ (${psnr_from_spz} dB) is not better than from random points (${psnr_from_random} dB)")
+endif()
+message("one iteration: from the SPZ ${psnr_from_spz} dB, from random points ${psnr_from_random} dB")
+goris_fails("no_such.spz: --init: no such model file" train "${RESOURCES}/default_scene" --out "${WORK}/nothing"
+            --init "${WORK}/no_such.spz" --iters 1 --device cpu)
+goris_fails("--init cannot change when resuming" train "${RESOURCES}/default_scene" --out "${WORK}/from_random"
+            --resume --init "${OUTD}/r.spz" --iters 2 --device cpu)
