@@ -2,6 +2,7 @@
 #include "render/trace/embree_accel.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -17,6 +18,12 @@ struct EmbreeAccel::Impl {
   RTCGeometry geometry = nullptr;
   std::size_t count = 0;
   std::vector<RTCBounds> boxes;
+  // Which boxes were empty (lo > hi: a Gaussian that cannot reach 1/255) at the last full build. A refit
+  // over another set of empty boxes traces differently in the last bits from a build over them, so a run
+  // resumed from a checkpoint (whose first build is a fresh one) would drift from the uninterrupted run:
+  // the set changing (an opacity crossing 1/255, the reflection rays' transparency following new emit
+  // weights) rebuilds instead.
+  std::vector<std::uint8_t> empty;
 };
 
 namespace {
@@ -76,8 +83,9 @@ bool EmbreeAccel::build(const float* lo, const float* hi, std::size_t n, bool al
   Impl& m = *impl_;
   if (n > std::size_t(std::numeric_limits<unsigned>::max() - 1))
     throw Error("tracer (Embree)", std::to_string(n) + " Gaussians exceed Embree's primitive count");
-  const bool refit = allow_refit && m.scene && n == m.count;
+  bool refit = allow_refit && m.scene && n == m.count;
   m.boxes.resize(n);
+  m.empty.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     RTCBounds& b = m.boxes[i];
     b.lower_x = lo[3 * i];
@@ -87,6 +95,9 @@ bool EmbreeAccel::build(const float* lo, const float* hi, std::size_t n, bool al
     b.upper_y = hi[3 * i + 1];
     b.upper_z = hi[3 * i + 2];
     b.align0 = b.align1 = 0.0f;
+    const std::uint8_t empty = b.lower_x > b.upper_x ? 1 : 0;
+    if (refit && empty != m.empty[i]) refit = false;
+    m.empty[i] = empty;
   }
   if (refit) {
     // Two-level scene (quality LOW) so that the geometry's REFIT quality is honoured.

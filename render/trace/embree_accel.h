@@ -18,8 +18,8 @@ class EmbreeAccel {
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
 
-  // Builds (or, with allow_refit and an unchanged count, refits) over n boxes lo/hi [n][3] (host memory,
-  // copied). Returns true when it refitted.
+  // Builds (or, with allow_refit, an unchanged count and the same empty boxes as at the last build,
+  // refits) over n boxes lo/hi [n][3] (host memory, copied). Returns true when it refitted.
   bool build(const float* lo, const float* hi, std::size_t n, bool allow_refit);
 
   // A collector (trace_ray.h) over `prims` (host memory, the same order as the boxes).
