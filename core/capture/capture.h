@@ -4,7 +4,8 @@
 // undistortion to PINHOLE cameras); the result is COLMAP's undistorted layout, images/ + sparse/0 (+ masks/
 // when a masks folder was given), with capture_report.json and capture_report.txt beside it. Everything is
 // written into a temporary folder next to the output, renamed into place at the end: a failed or stopped
-// capture leaves no half data set. Shared by `goris capture` and the editor's Open panel.
+// capture leaves no half data set. Used by `goris capture`; written so that a background job (the editor's
+// Open panel, not yet) can run it with progress and a stop flag.
 #include <atomic>
 #include <filesystem>
 #include <functional>
