@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/train/train_config.h"
 #include "core/util/error.h"
 #include "render/maps/channels.h"
 
@@ -84,6 +85,7 @@ StudioSettings load_settings(const fs::path& path) {
   read_key(j, "display_max_side", s.display_max_side, path);
   read_key(j, "compare_mode", s.compare_mode, path);
   read_key(j, "train_mode", s.train_mode, path);
+  read_key(j, "train_preset", s.train_preset, path);
   read_key(j, "train_iterations", s.train_iterations, path);
   read_key(j, "train_resolution", s.train_resolution, path);
   read_key(j, "train_init_points", s.train_init_points, path);
@@ -128,6 +130,9 @@ StudioSettings load_settings(const fs::path& path) {
   check_member(s.compare_mode, {"off", "side_by_side", "slider"}, "compare_mode", path);
   check_member(s.train_device, {"auto", "cpu", "cuda"}, "train_device", path);
   check_member(s.train_mode, {"radiance", "intrinsic", "auto"}, "train_mode", path);
+  const std::vector<std::string> presets = config_preset_names();
+  if (!s.train_preset.empty() && std::find(presets.begin(), presets.end(), s.train_preset) == presets.end())
+    throw Error(path.string(), "'train_preset': unknown preset '" + s.train_preset + "'");
   if (s.recent_paths.size() > StudioSettings::kMaxRecent) s.recent_paths.resize(StudioSettings::kMaxRecent);
   return s;
 }
@@ -145,6 +150,7 @@ void save_settings(const fs::path& path, const StudioSettings& s) {
                   {"display_max_side", s.display_max_side},
                   {"compare_mode", s.compare_mode},
                   {"train_mode", s.train_mode},
+                  {"train_preset", s.train_preset},
                   {"train_iterations", s.train_iterations},
                   {"train_resolution", s.train_resolution},
                   {"train_init_points", s.train_init_points},

@@ -16,8 +16,8 @@ namespace goris::ui {
 // as plain text. Throws goris::Error for an unknown key or a value the configuration rejects.
 void apply_config_override(TrainConfig& config, const std::string& key, const std::string& value);
 
-// The panel's options (mode, iterations, resolution, initial points, device, background), then `overrides`
-// in order.
+// The panel's options (mode, iterations, resolution, initial points, device, background), its preset's
+// settings (config_preset, as `goris train --preset`), then `overrides` in order.
 TrainConfig new_run_config(const StudioSettings& settings,
                            const std::vector<std::pair<std::string, std::string>>& overrides);
 

@@ -389,7 +389,11 @@ std::vector<std::string> config_preset(const std::string& name) {
     return {"intrinsic_material_losses_in_warmup=false", "alpha_weight=0.3", "intrinsic_glossy_plane=true",
             "intrinsic_glossy_plane_prune_sinkers=true", "intrinsic_trace_glossy_transparent=0.5",
             "intrinsic_glossy_plane_align=true", "intrinsic_env_distance=1.4"};
-  throw Error("--preset " + name + ": unknown preset (known: planar-glossy)");
+  std::string known;
+  for (const std::string& n : config_preset_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("--preset " + name + ": unknown preset (known: " + known + ")");
 }
+
+std::vector<std::string> config_preset_names() { return {"planar-glossy"}; }
 
 }  // namespace goris

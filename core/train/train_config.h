@@ -266,5 +266,7 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
 // docs/design/deviations.md, The glossy surface held to its plane, with its evidence). Throws goris::Error
 // listing the names for an unknown one.
 std::vector<std::string> config_preset(const std::string& name);
+// The names config_preset() knows (for choosers and messages).
+std::vector<std::string> config_preset_names();
 
 }  // namespace goris

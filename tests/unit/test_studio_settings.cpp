@@ -3,6 +3,7 @@
 // and the key for a bad one, the XDG locations, and the training options built from the panel.
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
@@ -177,4 +178,27 @@ TEST(StudioSettings, TrainingOptionsOfANewRun) {
   EXPECT_THROW(apply_config_override(c, "iterations", "-5"), Error);  // validate() rejects it
   EXPECT_THROW(apply_config_override(c, "", "1"), Error);
   EXPECT_EQ(c.iterations, 77);  // failed overrides change nothing
+}
+
+// The Training panel's preset: the settings of `goris train --preset` on top of the panel's fields, a
+// script's `set` lines on top of both; kept in settings.json, an unknown name there is refused by name.
+TEST(StudioSettings, PresetOfANewRun) {
+  StudioSettings s;
+  s.train_mode = "intrinsic";
+  s.train_preset = "planar-glossy";
+  TrainConfig c = new_run_config(s, {{"intrinsic_env_distance", "1.2"}});
+  EXPECT_EQ(c.mode, "intrinsic");
+  EXPECT_TRUE(c.intrinsic.glossy_plane);
+  EXPECT_FLOAT_EQ(c.alpha_weight, 0.3f);
+  EXPECT_FLOAT_EQ(c.intrinsic.env_distance, 1.2f);  // the override wins over the preset
+  // The same run as the panel's fields with `goris train --preset planar-glossy`.
+  TrainConfig by_cli = new_run_config(StudioSettings{}, {});
+  by_cli.mode = "intrinsic";
+  apply_config_overrides(config_preset("planar-glossy"), by_cli);
+  EXPECT_EQ(nlohmann::json(new_run_config(s, {})).dump(), nlohmann::json(by_cli).dump());
+  const fs::path dir = test::scratch_dir("studio_settings_preset");
+  save_settings(dir / "settings.json", s);
+  EXPECT_EQ(load_settings(dir / "settings.json").train_preset, "planar-glossy");
+  std::ofstream(dir / "bad.json") << "{\"train_preset\": \"shiny\"}";
+  test::expect_error([&] { load_settings(dir / "bad.json"); }, "unknown preset 'shiny'");
 }

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
@@ -72,6 +74,22 @@ void TrainingPanel::draw(AppState& st) {
           "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
           "auto: intrinsic when the data set has glossy masks");
     overridden("mode");
+    // Presets: named groups of settings (as `goris train --preset`), applied before a script's `set` lines.
+    const std::vector<std::string> presets = config_preset_names();
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::BeginCombo("preset", set.train_preset.empty() ? "none" : set.train_preset.c_str())) {
+      if (ImGui::Selectable("none", set.train_preset.empty())) set.train_preset.clear();
+      for (const std::string& p : presets)
+        if (ImGui::Selectable(p.c_str(), set.train_preset == p)) set.train_preset = p;
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) {
+      std::string lines = "settings applied on top of the fields above (goris train --preset):";
+      for (const std::string& kv : set.train_preset.empty() ? std::vector<std::string>{} : config_preset(set.train_preset))
+        lines += "\n  " + kv;
+      if (set.train_preset.empty()) lines += "\n  none; planar-glossy: one planar glossy surface with glossy masks (intrinsic)";
+      ImGui::SetTooltip("%s", lines.c_str());
+    }
     int resolution = eff.resolution, points = eff.random_init_points;
     ImGui::SetNextItemWidth(120);
     if (ImGui::InputInt("resolution (0 = full)", &resolution, 0)) {
