@@ -384,16 +384,35 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
   }
 }
 
+namespace {
+// Every preset: its name and its `--set` lines (the name's meaning: train_config.h, config_preset).
+struct Preset {
+  const char* name;
+  std::vector<std::string> sets;
+};
+const std::vector<Preset>& presets() {
+  static const std::vector<Preset> kPresets = {
+      {"planar-glossy",
+       {"intrinsic_material_losses_in_warmup=false", "alpha_weight=0.3", "intrinsic_glossy_plane=true",
+        "intrinsic_glossy_plane_prune_sinkers=true", "intrinsic_trace_glossy_transparent=0.5",
+        "intrinsic_glossy_plane_align=true", "intrinsic_env_distance=1.4"}}};
+  return kPresets;
+}
+}  // namespace
+
 std::vector<std::string> config_preset(const std::string& name) {
-  if (name == "planar-glossy")
-    return {"intrinsic_material_losses_in_warmup=false", "alpha_weight=0.3", "intrinsic_glossy_plane=true",
-            "intrinsic_glossy_plane_prune_sinkers=true", "intrinsic_trace_glossy_transparent=0.5",
-            "intrinsic_glossy_plane_align=true", "intrinsic_env_distance=1.4"};
   std::string known;
-  for (const std::string& n : config_preset_names()) known += (known.empty() ? "" : ", ") + n;
+  for (const Preset& p : presets()) {
+    if (name == p.name) return p.sets;
+    known += (known.empty() ? "" : ", ") + std::string(p.name);
+  }
   throw Error("--preset " + name + ": unknown preset (known: " + known + ")");
 }
 
-std::vector<std::string> config_preset_names() { return {"planar-glossy"}; }
+std::vector<std::string> config_preset_names() {
+  std::vector<std::string> names;
+  for (const Preset& p : presets()) names.emplace_back(p.name);
+  return names;
+}
 
 }  // namespace goris

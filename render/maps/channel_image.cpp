@@ -49,6 +49,11 @@ std::vector<float> channel_image(Channel c, const GBuffer& gb, const IntrinsicMa
   if ((channel_info(c).needs == ChannelNeeds::Intrinsic || channel_info(c).needs == ChannelNeeds::ScreenFilter) && !maps)
     throw missing(c, "needs an intrinsic run (train with mode intrinsic or auto)");
   const std::vector<float> alpha = gb.alpha.to_host();
+  // The screen-space filter's own images: empty without the filter.
+  auto filtered = [&](const std::vector<float>& v, size_t size) -> const std::vector<float>& {
+    if (v.size() != size) throw missing(c, "needs the screen-space filter (intrinsic_screen_space_filter)");
+    return v;
+  };
   auto extra_plane = [&](int first, int count) {
     if (gb.n_extras != extra::kCount) throw missing(c, "the model has no material channels");
     const std::vector<float> e = gb.extras.to_host();
@@ -84,14 +89,11 @@ std::vector<float> channel_image(Channel c, const GBuffer& gb, const IntrinsicMa
       if (maps->visibility.size() != hw) throw missing(c, "the render holds no visibility");
       return grey(maps->visibility.data(), hw);
     case Channel::ScreenRoughness:
-      if (maps->screen_roughness.size() != hw) throw missing(c, "needs the screen-space filter (intrinsic_screen_space_filter)");
-      return grey(maps->screen_roughness.data(), hw);
+      return grey(filtered(maps->screen_roughness, hw).data(), hw);
     case Channel::TracedIndirect:
-      if (maps->indirect_traced.size() != 3 * hw) throw missing(c, "needs the screen-space filter (intrinsic_screen_space_filter)");
-      return clamped(maps->indirect_traced, c, hw);
+      return clamped(filtered(maps->indirect_traced, 3 * hw), c, hw);
     case Channel::TracedVisibility:
-      if (maps->visibility_traced.size() != hw) throw missing(c, "needs the screen-space filter (intrinsic_screen_space_filter)");
-      return grey(maps->visibility_traced.data(), hw);
+      return grey(filtered(maps->visibility_traced, hw).data(), hw);
     case Channel::LightingMask:
     case Channel::InpaintMask:
       break;

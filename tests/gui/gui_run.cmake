@@ -48,3 +48,26 @@ macro(target_view)
   string(SUBSTRING "${_view3}" 1 3 _view3)
   set(MASK "${RESOURCES}/default_scene/train/mask_${_view3}.png")
 endmacro()
+
+# studio_run_ok(<script file> <result var prefix>): studio_run, then returns from the calling test when no
+# window could be had (GUI_SKIP) and fails it when the editor exited non-zero.
+macro(studio_run_ok script prefix)
+  studio_run("${script}" ${prefix})
+  if(GUI_SKIP)
+    return()
+  endif()
+  if(NOT ${prefix}_RC EQUAL 0)
+    message(FATAL_ERROR "goris-studio --script exited with ${${prefix}_RC}\n${${prefix}_OUT}\n${${prefix}_ERR}")
+  endif()
+endmacro()
+
+# expect_tiles(<screenshot> <viewport count> <what>): gui_screenshot_check on it (every viewport non-blank,
+# no two alike); prints its report and fails the test, naming `what`, when the check fails.
+function(expect_tiles png count what)
+  execute_process(COMMAND "${CHECK}" "${png}" --expect ${count} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  message("${out}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what}:\n${out}\n${err}")
+  endif()
+endfunction()

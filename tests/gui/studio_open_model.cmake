@@ -28,22 +28,11 @@ select_grow 0.05
 select_click 50% 50%
 quit
 ")
-studio_run("${WORK}/model.txt" R)
-if(GUI_SKIP)
-  return()
-endif()
-if(NOT R_RC EQUAL 0)
-  message(FATAL_ERROR "goris-studio --script exited with ${R_RC}\n${R_OUT}\n${R_ERR}")
-endif()
+studio_run_ok("${WORK}/model.txt" R)
 expect_text("${R_OUT}" "opened model ${WORK}/scene.spz")
 expect_text("${R_OUT}" "a model file has no photos")
 expect_text("${R_OUT}" "picked Gaussian")
-execute_process(COMMAND "${CHECK}" "${WORK}/model.png" --expect 3 RESULT_VARIABLE rc OUTPUT_VARIABLE out
-                ERROR_VARIABLE err)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the model's channels:\n${out}\n${err}")
-endif()
+expect_tiles("${WORK}/model.png" 3 "the model's channels")
 
 foreach(action "train 10" "remove 10")
   file(WRITE "${WORK}/refused.txt" "open ${WORK}/scene.spz\n${action}\nquit\n")

@@ -78,12 +78,7 @@ if(NOT mode STREQUAL "intrinsic")
 endif()
 
 # The intrinsic channels: final colour and five grid tiles, all non-blank and different.
-execute_process(COMMAND "${CHECK}" "${WORK}/intrinsic.png" --expect 6 RESULT_VARIABLE rc OUTPUT_VARIABLE out
-                ERROR_VARIABLE err)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "intrinsic channels:\n${out}\n${err}")
-endif()
+expect_tiles("${WORK}/intrinsic.png" 6 "intrinsic channels")
 # The selection tint lies over the target.
 execute_process(COMMAND "${SELECTION_CHECK}" tint "${WORK}/intrinsic.png" "${WORK}/selected.png" "${MASK}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
