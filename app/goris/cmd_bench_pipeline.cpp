@@ -59,6 +59,7 @@ struct ConfigSpec {
   const char* ablate;  // remove --ablate, "" = none
   bool distill;
   const char* description;
+  std::vector<std::string> remove_args = {};  // further `goris remove` options
 };
 
 const std::vector<ConfigSpec>& ladder() {
@@ -69,11 +70,27 @@ const std::vector<ConfigSpec>& ladder() {
       {"default-noplanar", "default", {}, "twins,reflection", false,
        "default without what the glossy plane gives a radiance run (no planar reflection mask, no surface-only "
        "fill): the removal as it was before them"},
+      {"default-fill1", "default", {}, "", false, "default, every other view's own fill of its hole weighted 1",
+       {"--view-fill", "1"}},
+      {"default-fill03", "default", {}, "", false, "default, every other view's own fill of its hole weighted 0.3",
+       {"--view-fill", "0.3"}},
+      {"default-fill3", "default", {}, "", false, "default, every other view's own fill of its hole weighted 3",
+       {"--view-fill", "3"}},
+      {"default-fill1-twin", "default", {}, "", false, "default-fill1 with the radiance model's mirror twin removed",
+       {"--view-fill", "1", "--radiance-twin"}},
+      {"default-plane", "default", {}, "", false, "default, the reference fill of the glossy surface lifted onto its plane",
+       {"--fill-on-plane"}},
+      {"default-planefill", "default", {}, "", false, "default-plane with every other view's own fill weighted 1",
+       {"--fill-on-plane", "--view-fill", "1"}},
+      {"default-planefilltwin", "default", {}, "", false, "default-planefill with the radiance model's mirror twin removed",
+       {"--fill-on-plane", "--view-fill", "1", "--radiance-twin"}},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
        "intrinsic stage 1 with the screen-space filter"},
       {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks (reflections and the target's shadow) and the target's mirror twin"},
+      {"full-fill1", "intrinsic", {"--mode", "intrinsic"}, "", false,
+       "full, every other view's own fill of its hole weighted 1", {"--view-fill", "1"}},
       {"planar", "intrinsic_planar", {"--mode", "intrinsic", "--preset", "planar-glossy"}, "", false,
        "full with `--preset planar-glossy` (the table opaque and held to its plane, exact normals)"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
@@ -284,6 +301,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                         {"resolution", o_.resolution},
                         {"device", o_.device}};
   if (o_.init_points > 0) options["init_points"] = o_.init_points;  // absent by default: older results stay reusable
+  if (!c.remove_args.empty()) options["remove"] = c.remove_args;
   if (c.train_args.empty()) options["defaults"] = defaults_fingerprint();
   if (const auto row = goris::bench::reusable_row(dir, options, o_.report_only)) {
     Row old = row_from_json(*row);
@@ -326,6 +344,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       std::vector<std::string> rm = {"remove", run.string(), "--iters", std::to_string(s.remove_iters), "--device",
                                      o_.device};
       if (*c.ablate) rm.insert(rm.end(), {"--ablate", c.ablate});
+      rm.insert(rm.end(), c.remove_args.begin(), c.remove_args.end());
       const StepRun rem = run_child("remove", rm, logs / "remove.log");
       r.remove_s = rem.seconds;
       r.cpu_s += rem.cpu_seconds;

@@ -49,9 +49,10 @@ void run_detect(const Options& o) {
   const GlossyDetection det = detect_glossy_regions(c.state.model.view(false), views,
                                                     RasterRenderer::settings_for(config), device, s);
   std::printf("%s (iteration %d): %.2f %% of the covered pixels look view-dependent (threshold %.2f %%), "
-              "%zu detected of %zu scored, %d plane(s), masks %zu pixels -> %s\n",
+              "%zu detected of %zu scored, %d plane(s) (grown over %zu pixels on them, %zu seen behind them), "
+              "masks %zu pixels -> %s\n",
               ck.c_str(), c.state.iteration, 100.0 * det.fraction, 100.0 * s.min_fraction, det.detected, det.scored,
-              det.planes, det.in_masks, det.glossy ? "intrinsic" : "radiance");
+              det.planes, det.on_planes, det.behind_planes, det.in_masks, det.glossy ? "intrinsic" : "radiance");
   MaskAgreement all;
   for (size_t i = 0; i < views.size(); ++i) {
     if (views[i].glossy_mask.size() != det.masks[i].size()) continue;

@@ -28,6 +28,9 @@ struct Options {
               lighting_targets = "dereflect";
   std::vector<std::string> ablate;
   int iters = 0;
+  double view_fill = RemovalOptions{}.view_fill_weight;
+  bool radiance_twin = false;
+  bool fill_on_plane = false;
 };
 
 void run_remove(const Options& o) {
@@ -39,6 +42,9 @@ void run_remove(const Options& o) {
     while (std::getline(ss, item, ',')) ro.ablate.insert(item);
   }
   ro.finetune_iterations = o.iters;
+  ro.view_fill_weight = float(o.view_fill);
+  ro.radiance_twin = o.radiance_twin;
+  ro.fill_on_plane = o.fill_on_plane;
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = o.device;
@@ -114,6 +120,15 @@ void setup_remove(CLI::App& root) {
       ->check(CLI::IsMember({"dereflect", "exclude"}));
   c->add_option("--iters", o->iters, "Fine-tune iterations (default: 4000 scaled like stage 1)")
       ->check(cli::whole(1, cli::kIntMax));
+  c->add_option("--view-fill", o->view_fill,
+                "Weight of every other view's own 2D fill of its hole in the fine-tune, where no lifted reference "
+                "point lands (0 = the reference views alone)")
+      ->capture_default_str()
+      ->check(cli::real(0.0, 10.0));
+  c->add_flag("--radiance-twin", o->radiance_twin,
+              "Remove a radiance model's mirror twin below a glossy plane as well (intrinsic models always lose it)");
+  c->add_flag("--fill-on-plane", o->fill_on_plane,
+              "Lift the reference views' fill of the glossy surface onto the glossy plane");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   c->callback([o] { run_remove(*o); });
 }

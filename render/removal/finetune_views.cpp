@@ -1,6 +1,7 @@
 #include "render/removal/finetune_views.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -69,23 +70,25 @@ FinetuneViewStats prepare_finetune_views(std::vector<TrainView>& views, const st
 
     std::shared_ptr<InpaintTargets> t = empty_targets(hw);
     bool any = false;
-    if (in.reference >= 0) {
-      const ReferenceTargets& r = references.at(std::size_t(in.reference));
+    // The targets of an inpainted map set on its hole, at the pixels `take` accepts.
+    auto from_maps = [&](const ReferenceTargets& r, const std::function<bool(std::size_t)>& take) {
       check_size(v, r.hole->width, r.hole->height, "the inpainting mask");
       const HostMap rgb(r.maps->rgb), region(r.maps->region), f0(r.maps->fresnel), rough(r.maps->roughness),
           normal(r.maps->normal);
       if (!rgb.present()) throw Error(v.name, "the inpainted colour map is missing");
+      std::size_t n = 0;
       for (std::size_t p = 0; p < hw; ++p) {
-        if (!r.hole->data[p]) continue;
+        if (!r.hole->data[p] || !take(p)) continue;
         any = true;
+        ++n;
         const bool rough_px = !region.present() || region.at(p, 0) > st.rough_threshold;
         for (int c = 0; c < 3; ++c) t->color[c * hw + p] = t->base_color[c * hw + p] = rgb.at(p, c);
         if (rough_px) {
-          t->appearance_weight[p] = 1.0f;
+          t->appearance_weight[p] = r.weight;
           ++stats.appearance_pixels;
           continue;
         }
-        t->material_weight[p] = 1.0f;
+        t->material_weight[p] = r.weight;
         ++stats.material_pixels;
         for (int c = 0; c < 3; ++c) {
           t->f0[c * hw + p] = f0.present() ? f0.at(p, c) : 0.5f;
@@ -93,28 +96,34 @@ FinetuneViewStats prepare_finetune_views(std::vector<TrainView>& views, const st
         }
         t->roughness[p] = rough.present() ? rough.at(p, 0) : 0.5f;
       }
-    } else if (points.size() > 0) {
+      return n;
+    };
+    if (in.reference >= 0) {
+      from_maps(references.at(std::size_t(in.reference)), [](std::size_t) { return true; });
+    } else {
       // Nearest reference point per pixel, only where the photo loss is off and nothing kept is in front.
-      std::vector<float> zbuf(hw, std::numeric_limits<float>::infinity());
       std::vector<int> who(hw, -1);
-      std::vector<float> removed_depth;
-      if (in.removed_depth) {
-        check_size(v, in.removed_depth->width, in.removed_depth->height, "the removed depth");
-        removed_depth = in.removed_depth->pixels.to_host();
-      }
-      for (std::size_t k = 0; k < points.size(); ++k) {
-        const glm::vec3 c = v.camera.to_camera(points.position[k]);
-        if (!(c.z > 1e-4f)) continue;
-        const int x = int(std::floor(v.camera.fx * c.x / c.z + v.camera.cx));
-        const int y = int(std::floor(v.camera.fy * c.y / c.z + v.camera.cy));
-        if (x < 0 || y < 0 || x >= W || y >= H) continue;
-        const std::size_t p = std::size_t(y) * W + x;
-        if (v.loss_weight[p] > 0) continue;
-        if (!removed_depth.empty() && removed_depth[p] > 0 && removed_depth[p] * (1 + st.depth_tolerance) < c.z)
-          continue;
-        if (c.z < zbuf[p]) {
-          zbuf[p] = c.z;
-          who[p] = int(k);
+      if (points.size() > 0) {
+        std::vector<float> zbuf(hw, std::numeric_limits<float>::infinity());
+        std::vector<float> removed_depth;
+        if (in.removed_depth) {
+          check_size(v, in.removed_depth->width, in.removed_depth->height, "the removed depth");
+          removed_depth = in.removed_depth->pixels.to_host();
+        }
+        for (std::size_t k = 0; k < points.size(); ++k) {
+          const glm::vec3 c = v.camera.to_camera(points.position[k]);
+          if (!(c.z > 1e-4f)) continue;
+          const int x = int(std::floor(v.camera.fx * c.x / c.z + v.camera.cx));
+          const int y = int(std::floor(v.camera.fy * c.y / c.z + v.camera.cy));
+          if (x < 0 || y < 0 || x >= W || y >= H) continue;
+          const std::size_t p = std::size_t(y) * W + x;
+          if (v.loss_weight[p] > 0) continue;
+          if (!removed_depth.empty() && removed_depth[p] > 0 && removed_depth[p] * (1 + st.depth_tolerance) < c.z)
+            continue;
+          if (c.z < zbuf[p]) {
+            zbuf[p] = c.z;
+            who[p] = int(k);
+          }
         }
       }
       for (std::size_t p = 0; p < hw; ++p) {
@@ -135,6 +144,9 @@ FinetuneViewStats prepare_finetune_views(std::vector<TrainView>& views, const st
         }
         t->roughness[p] = points.roughness[k];
       }
+      if (in.fill >= 0)
+        stats.filled_pixels += from_maps(references.at(std::size_t(in.fill)),
+                                         [&](std::size_t p) { return who[p] < 0 && v.loss_weight[p] == 0.0f; });
     }
     if (any) v.inpaint = std::move(t);
   }

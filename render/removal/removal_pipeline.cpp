@@ -203,6 +203,9 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["lighting_tau"] = o.lighting_tau;
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
+  if (o.view_fill_weight > 0) j["view_fill_weight"] = o.view_fill_weight;  // absent at 0: older records match
+  if (o.radiance_twin) j["radiance_twin"] = true;
+  if (o.fill_on_plane) j["fill_on_plane"] = true;
   return j;
 }
 
@@ -317,7 +320,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       // On a radiance model the twin stays: removing it opened see-through holes in the mirror world that the
       // fill did not close (on the generalization suite, docs/lab/2026-12-02-generalization-suite.md), while
       // the planar reflection mask below repaints the reflection wherever the model keeps it.
-      if (o.ablate.count("twins") || !intrinsic) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
+      if (o.ablate.count("twins") || (!intrinsic && !o.radiance_twin)) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
       twins = t.twins;
       report.mirror_twins = t.count;
@@ -460,8 +463,16 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     s.finish(std::to_string(choice.views.size()) + " views");
   }
 
-  // 5. 2D inpainting (cached for resuming).
-  std::vector<MapSet> inpainted(choice.views.size());
+  // 5. 2D inpainting (cached for resuming): the reference views, then (view_fill_weight > 0) every other view
+  // with a hole.
+  std::vector<std::size_t> fill_views;  // in the order of `inpainted` after the reference views
+  if (o.view_fill_weight > 0) {
+    std::vector<bool> is_reference(cameras.size(), false);
+    for (int v : choice.views) is_reference[std::size_t(v)] = true;
+    for (std::size_t v = 0; v < cameras.size(); ++v)
+      if (!is_reference[v] && count_set(holes[v].mask) > 0) fill_views.push_back(v);
+  }
+  std::vector<MapSet> inpainted(choice.views.size() + fill_views.size());
   {
     StepScope s(report, RemovalStep::Inpaint2D, on_progress);
     const fs::path dir = out / "inpainted";
@@ -476,15 +487,18 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
     const std::size_t maps_per_view = materials ? 6 : 2;
     const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
-    const std::size_t total = choice.views.size() * maps_per_view;
+    const std::size_t total = inpainted.size() * maps_per_view;
     std::size_t done = 0;
-    for (std::size_t k = 0; k < choice.views.size(); ++k) {
-      const std::size_t v = std::size_t(choice.views[k]);
+    for (std::size_t k = 0; k < inpainted.size(); ++k) {
+      const bool reference = k < choice.views.size();
+      const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
       const std::string& name = ds.train[v].name;
+      // The other views' fills are only targets, kept apart from the reference views' maps (the lift's input).
+      const std::string stem = reference ? name : name + "_fill";
       MapSet& m = inpainted[k];
       if (cached) {
         for (const MapSlot& slot : map_slots()) {
-          const fs::path p = dir / (name + "_" + slot.name + ".npy");
+          const fs::path p = dir / (stem + "_" + slot.name + ".npy");
           if (fs::exists(p)) m.*slot.member = load_map(p);
         }
         done += maps_per_view;
@@ -504,6 +518,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         maps.roughness = Image();
         maps.region = Image();
       }
+      if (!reference) maps.depth = Image();  // nothing is lifted from these views
       MapSetInpaintOptions mo;
       if (own_depth) mo.depth_inpainter = &harmonic;
       mo.on_map = [&](const std::string& map) {
@@ -511,11 +526,14 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         s.tell(done++, total, name + " " + map);
       };
       m = inpaint_map_set(*inp, maps, holes[v].mask, name, mo);
+      if (!reference) ++done;  // the depth map it skipped
       if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)
         std::vector<float> g = removed_glossy_mask(views[v], holes[v]);
         if (!g.empty()) {
           const MapInfo info{name, "rgb", MapKind::Color};
           m.rgb = refill_inside_region(*inp, maps.rgb, m.rgb, holes[v].mask, g, info);
+          if (reference && o.fill_on_plane && glossy_plane.found)
+            put_glossy_hole_on_plane(m.depth, holes[v].mask, g, cameras[v], glossy_plane);
           for (float& x : g) x = 1.0f - x;
           m.rgb = refill_inside_region(*inp, maps.rgb, m.rgb, holes[v].mask, g, info);
         }
@@ -523,14 +541,15 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       for (const MapSlot& slot : map_slots()) {
         const Image& im = m.*slot.member;
         if (im.pixels.size() == 0) continue;
-        save_map(dir, name + "_" + slot.name, im);
-        save_preview(dir / (name + "_" + slot.name + ".png"), im, slot.name);
+        save_map(dir, stem + "_" + slot.name, im);
+        if (reference) save_preview(dir / (stem + "_" + slot.name + ".png"), im, slot.name);
       }
     }
     if (!cached) {
       write_made_from(opts_path, opts);
     }
-    s.finish();
+    s.finish(fill_views.empty() ? std::string()
+                                : std::to_string(fill_views.size()) + " other views filled as targets");
   }
 
   // 6. 3D lift.
@@ -581,6 +600,11 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       const std::size_t v = std::size_t(choice.views[k]);
       inputs[v].reference = int(k);
       refs.push_back({&holes[v].mask, &inpainted[k]});
+    }
+    for (std::size_t k = 0; k < fill_views.size(); ++k) {
+      const std::size_t v = fill_views[k];
+      inputs[v].fill = int(refs.size());
+      refs.push_back({&holes[v].mask, &inpainted[choice.views.size() + k], o.view_fill_weight});
     }
     const FinetuneViewStats fs_stats = prepare_finetune_views(views, inputs, refs, lift.points);
 
@@ -654,7 +678,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["finetune_targets"] = {{"excluded_pixels", fs_stats.excluded_pixels},
                              {"appearance_pixels", fs_stats.appearance_pixels},
                              {"material_pixels", fs_stats.material_pixels},
-                             {"projected_points", fs_stats.projected_points}};
+                             {"projected_points", fs_stats.projected_points},
+                             {"filled_pixels", fs_stats.filled_pixels}};
     j["options"] = options_json(o);
     j["made_from"] = finetune_from;
     j["peak_host_memory_mib"] = peak_host_memory_mib();

@@ -53,6 +53,15 @@ struct RemovalOptions {
                                     // "shadows" (keep the target's cast shadow, core/removal/target_shadow.h),
                                     // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
+  // Every other training view's hole (its unseen pixels and the target's planar reflection) is inpainted in
+  // 2D as well, and the fine-tune trains it towards that fill with this weight where no lifted reference
+  // point lands (finetune_views.h). 0 = only the reference views and their points supervise the hole.
+  float view_fill_weight = 0.0f;
+  // Remove a radiance model's mirror twin too (intrinsic models always lose theirs).
+  bool radiance_twin = false;
+  // The reference views' fill of the glossy surface is lifted onto the glossy plane (planar_reflection.h
+  // put_glossy_hole_on_plane) instead of the inpainted depth.
+  bool fill_on_plane = false;
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the

@@ -365,11 +365,15 @@ void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& 
     for (size_t p = 0; p < out.masks[i].size(); ++p) {
       if (out.masks[i][p] || !(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
       const glm::vec3 x = surface_point(v, p);
-      for (size_t k = 0; k < planes.size(); ++k)
-        if (planes[k].distance(x) <= tolerance || extents[k].seen_through(eye, x, tolerance)) {
-          out.masks[i][p] = 1;
-          break;
-        }
+      bool on = false, behind = false;
+      for (size_t k = 0; k < planes.size() && !on; ++k) {
+        on = planes[k].distance(x) <= tolerance;
+        behind = behind || (!on && extents[k].seen_through(eye, x, tolerance));
+      }
+      if (on || behind) {
+        out.masks[i][p] = 1;
+        ++(on ? out.on_planes : out.behind_planes);
+      }
     }
   }
 }

@@ -93,6 +93,8 @@ struct GlossyDetection {
   double fraction = 0;       // detected / covered
   bool glossy = false;       // fraction >= min_fraction (and something was detected)
   int planes = 0;            // planes the masks were grown over
+  std::size_t on_planes = 0;      // pixels the growing added because their surface point lies on a plane
+  std::size_t behind_planes = 0;  // ... because it lies behind a plane, seen through it (a mirror world)
   std::size_t in_masks = 0;  // pixels in the final masks (grown)
 };
 
