@@ -20,6 +20,7 @@
 #include "app/goris/number_checks.h"
 #include "app/goris/stop_signals.h"
 #include "core/compute/device.h"
+#include "core/io/file_bytes.h"
 #include "core/io/output_path.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
@@ -118,7 +119,8 @@ void run_train(const Options& o) {
     if (o.init_points) config.random_init_points = *o.init_points;
     if (!o.init.empty()) {  // read by prepare_training; a missing file fails now, before the images load
       const fs::path init = fs::weakly_canonical(fs::absolute(o.init));
-      if (!fs::is_regular_file(init)) throw Error(init.string(), "--init: no such model file");
+      if (const std::string problem = regular_file_problem(init, "model file"); !problem.empty())
+        throw Error(init.string(), "--init: " + problem);  // missing, a folder, a FIFO (never opened), ...
       config.init_model = init.string();
     }
     if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
