@@ -145,7 +145,10 @@ void print_run(const fs::path& run, bool nested = false) {
   if (!nested) {
     std::printf("run:         %s\n", run.string().c_str());
     std::printf("data set:    %s%s\n", c.data.c_str(),
-                c.data.empty() || fs::exists(c.data) ? "" : "  (not found: moved? other commands read it from config.json)");
+                c.data.empty() || fs::exists(c.data)
+                    ? ""
+                    : "  (not found: moved? other commands read it from config.json; --data NEW_FOLDER points them "
+                      "at its new place)");
     std::printf("mode:        %s\n", c.mode.c_str());
   }
   const fs::path ply = goris::run_ply_path(run);

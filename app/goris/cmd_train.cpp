@@ -23,6 +23,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/output_path.h"
 #include "core/train/checkpoint.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/trainer.h"
 #include "core/util/bench.h"
@@ -121,8 +122,8 @@ void run_train(const Options& o) {
                                         : "no checkpoint in checkpoints/ to resume from");
     config = resumed->checkpoint.config;
     reject_changes_on_resume(o, run_dir, config);
-    if (fs::weakly_canonical(fs::path(config.data)) != fs::weakly_canonical(data))
-      throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
+    // DATA may be the run's data set at a new folder: checked to hold the same views (core/train/run_data.h).
+    use_run_data(run_dir, config, data.string(), "DATA");
     std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->checkpoint.state.iteration,
                 resumed->file.filename().string().c_str());
   } else {
