@@ -153,7 +153,7 @@ void AppState::find_removal_masks() {
   if (run.empty()) return;
   // A cleaned scene is a run folder of its own once stage 2 has written its model.
   const fs::path cleaned = run / "removal";
-  if (fs::exists(cleaned / "config.json") && (fs::exists(run_ply_path(cleaned)) || latest_checkpoint(cleaned)))
+  if (fs::exists(cleaned / "config.json") && (fs::exists(run_ply_path(cleaned)) || has_checkpoint_files(cleaned)))
     removal_result_ = cleaned;
   else if (is_cleaned_scene(run))
     removal_result_ = run;

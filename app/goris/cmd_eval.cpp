@@ -40,6 +40,7 @@
 #include "core/io/image.h"
 #include "core/metrics/removal_metrics.h"
 #include "core/train/image_losses.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/util/bench.h"
@@ -57,7 +58,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, split = "test", gt = "after", out, device = "auto";
+  std::string run, split = "test", gt = "after", out, device = "auto", data;
 };
 
 struct Crop {
@@ -218,7 +219,7 @@ std::optional<MaterialSeparation> material_separation(const TrainConfig& config,
 
 void run_eval(const Options& o) {
   const fs::path run_dir = fs::absolute(o.run);
-  const TrainConfig config = read_run_config(run_dir);
+  const TrainConfig config = read_run_config_with_data(run_dir, o.data);
   const fs::path out = o.out.empty() ? run_dir / "metrics.json" : fs::absolute(o.out);
   check_output_file(out, run_output_guard(run_dir, config));  // never into the data set or over the run's files
   const Device device = resolve_device(o.device);
@@ -397,6 +398,7 @@ void setup_eval(CLI::App& root) {
       ->check(CLI::IsMember({"after", "full"}));
   c->add_option("--out", o->out, "Metrics file (default RUN/metrics.json)");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_data_option(*c, o->data);
   c->callback([o] { run_eval(*o); });
 }
 

@@ -35,7 +35,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, video, before, device = "auto";
+  std::string run, ply, baked, spz, compressed_ply, splat, glb, renders, video, before, device = "auto", data;
   std::string path;  // empty: test for --renders, orbit for --video
   std::string channel = "final";
   int frames = 0, iters = 2000, extra_views = -1;
@@ -117,6 +117,7 @@ void run_export(const Options& o) {
     guard = run_output_guard(run_dir, read_run_config(run_dir));
   } catch (const Error&) {
   }  // not a run: RunExport below says so, after the paths' own problems
+  if (!o.data.empty()) guard.datasets.push_back(fs::absolute(o.data));  // the data set's folder now
   for (const auto& f : files) check_output_file(f.first, guard);
   if (!o.renders.empty()) check_output_dir(o.renders, guard);
   // Temporary files an earlier export left where it was killed mid-write go now.
@@ -124,7 +125,7 @@ void run_export(const Options& o) {
   if (!o.renders.empty()) remove_stale_temp_files(o.renders);
 
   const Device device = resolve_device(o.device);
-  RunExport ex(o.run, device);
+  RunExport ex(o.run, device, o.data);
   const Channel channel = *channel_from_id(o.channel);  // checked by the option
   ex.require_channel(channel);  // before any distillation
   const std::string of_channel = channel == Channel::Final ? "" : " of " + o.channel;
@@ -281,6 +282,7 @@ void setup_export(CLI::App& root) {
   c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")
       ->check(cli::whole(0, cli::kSeedMax));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_data_option(*c, o->data);
   c->callback([o] { run_export(*o); });
 }
 

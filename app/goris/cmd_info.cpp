@@ -7,6 +7,7 @@
 #include <fstream>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -119,6 +120,23 @@ int checkpoint_iteration(const fs::path& ckpt) {
   }
 }
 
+// How far a run got: finished, the checkpoint a --resume starts from, none yet, or why none is usable.
+std::string run_progress(const fs::path& run, const goris::TrainConfig& c) {
+  std::optional<fs::path> ckpt;
+  try {
+    ckpt = goris::latest_checkpoint(run);
+  } catch (const goris::Error& e) {  // checkpoints, none intact: which and why, instead of failing
+    return e.what();
+  }
+  const int at = ckpt ? checkpoint_iteration(*ckpt) : -1;
+  if (fs::exists(goris::run_ply_path(run)) && (at < 0 || at >= c.iterations))
+    return "finished, " + std::to_string(c.iterations) + " iterations";
+  if (at >= 0)
+    return "stopped at iteration " + std::to_string(at) + " of " + std::to_string(c.iterations) + " (" +
+           ckpt->filename().string() + "); --resume carries on from there";
+  return "no checkpoint yet (" + std::to_string(c.iterations) + " iterations planned)";
+}
+
 // A run folder: where its data set is, what it trains, how far it got (finished, or the checkpoint a
 // --resume starts from), its model, and the state of a removal inside it.
 void print_run(const fs::path& run, bool nested = false) {
@@ -127,22 +145,14 @@ void print_run(const fs::path& run, bool nested = false) {
   if (!nested) {
     std::printf("run:         %s\n", run.string().c_str());
     std::printf("data set:    %s%s\n", c.data.c_str(),
-                c.data.empty() || fs::exists(c.data) ? "" : "  (not found: moved? other commands read it from config.json)");
+                c.data.empty() || fs::exists(c.data)
+                    ? ""
+                    : "  (not found: moved? other commands read it from config.json; --data NEW_FOLDER points them "
+                      "at its new place)");
     std::printf("mode:        %s\n", c.mode.c_str());
   }
   const fs::path ply = goris::run_ply_path(run);
-  const auto ckpt = goris::latest_checkpoint(run);
-  const int at = ckpt ? checkpoint_iteration(*ckpt) : -1;
-  const bool finished = fs::exists(ply) && (at < 0 || at >= c.iterations);
-  std::string progress;
-  if (finished)
-    progress = "finished, " + std::to_string(c.iterations) + " iterations";
-  else if (at >= 0)
-    progress = "stopped at iteration " + std::to_string(at) + " of " + std::to_string(c.iterations) + " (" +
-               ckpt->filename().string() + "); --resume carries on from there";
-  else
-    progress = "no checkpoint yet (" + std::to_string(c.iterations) + " iterations planned)";
-  std::printf("%s%-13s%s\n", in, "progress:", progress.c_str());
+  std::printf("%s%-13s%s\n", in, "progress:", run_progress(run, c).c_str());
   if (fs::exists(ply)) {
     std::printf("%smodel:       %s\n", in, ply.string().c_str());
     std::printf("%s", goris::gaussians_summary(ply).c_str());

@@ -25,7 +25,7 @@ using namespace goris;
 
 struct Options {
   std::string run, inpainter = "telea", inpainted, device = "auto", lighting_fresnel = "relative",
-              lighting_targets = "dereflect";
+              lighting_targets = "dereflect", data;
   std::vector<std::string> ablate;
   int iters = 0;
   double view_fill = RemovalOptions{}.view_fill_weight;
@@ -48,6 +48,7 @@ void run_remove(const Options& o) {
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = o.device;
+  ro.data = o.data;
   const bool tty = isatty(STDERR_FILENO);
   int last_step = -1;
   auto progress = [&](const RemovalProgress& p) {
@@ -130,6 +131,7 @@ void setup_remove(CLI::App& root) {
   c->add_flag("--fill-on-plane", o->fill_on_plane,
               "Lift the reference views' fill of the glossy surface onto the glossy plane");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_data_option(*c, o->data);
   c->callback([o] { run_remove(*o); });
 }
 

@@ -14,6 +14,7 @@
 #include "core/io/splat_formats.h"
 #include "core/scene/gaussians.h"
 #include "core/train/depth_normal_loss.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/train/run_output_guard.h"
@@ -30,7 +31,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, split = "test", out, device = "auto", model;
+  std::string run, split = "test", out, device = "auto", model, data;
   bool maps = false;
 };
 
@@ -45,7 +46,7 @@ constexpr ExtraMap kExtraMaps[] = {{"diffuse", extra::kDiffuse, 3}, {"fresnel", 
 
 void run_render(const Options& o) {
   const fs::path run_dir = fs::absolute(o.run);
-  const TrainConfig config = read_run_config(run_dir);
+  const TrainConfig config = read_run_config_with_data(run_dir, o.data);
   const fs::path out = fs::absolute(o.out);
   check_output_dir(out, run_output_guard(run_dir, config));  // never into the data set or over the run's files
   const Device device = resolve_device(o.device);
@@ -126,6 +127,7 @@ void setup_render(CLI::App& root) {
   c->add_option("--model", o->model,
                 "Render this model file (.ply, .compressed.ply, .spz, .splat or .glb) instead of the run's own model");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_data_option(*c, o->data);
   c->callback([o] { run_render(*o); });
 }
 

@@ -30,6 +30,7 @@
 #include "core/io/dataset.h"
 #include "core/inpaint/mask.h"
 #include "core/io/image.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/train/run_output_guard.h"
@@ -42,7 +43,7 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string run, out, device = "auto";
+  std::string run, out, device = "auto", data;
   std::vector<std::string> click;  // VIEW X Y, repeated
   std::string clicks = "union";
   std::string masks_dir;
@@ -193,7 +194,7 @@ void run_select(const Options& o, int n_methods) {
     throw Error("--masks-iou", "needs --write-masks DIR (the masks it scores)");
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path run_dir = fs::absolute(o.run);
-  const TrainConfig config = read_run_config(run_dir);
+  const TrainConfig config = read_run_config_with_data(run_dir, o.data);
   // Never into the data set or over the run's other files (the selection itself is this command's output).
   const fs::path json_path = o.out.empty() ? selection_json_path(run_dir) : fs::absolute(o.out);
   const OutputGuard guard = run_output_guard(run_dir, config, /*keep_selection=*/false);
@@ -532,6 +533,7 @@ void setup_select(CLI::App& root) {
   c->add_option("--previews", o->previews, "Preview images of training views to write")->check(cli::whole(0, 1000));
   c->add_option("--device", o->device, "auto | cpu | cuda (rendering for masks and previews)")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_data_option(*c, o->data);
   c->callback([o, click, masks, labels, iou] {
     o->masks = masks->count() > 0;
     o->masks_iou_given = iou->count() > 0;

@@ -20,8 +20,10 @@
 #include "app/goris/number_checks.h"
 #include "app/goris/stop_signals.h"
 #include "core/compute/device.h"
+#include "core/io/file_bytes.h"
 #include "core/io/output_path.h"
 #include "core/train/checkpoint.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/trainer.h"
 #include "core/util/bench.h"
@@ -37,7 +39,8 @@ namespace fs = std::filesystem;
 using namespace goris;
 
 struct Options {
-  std::string data, out, mode = "radiance", device = "auto", normals, init;
+  std::string data, out, device = "auto", normals, init;
+  std::optional<std::string> mode;  // radiance when not given
   std::optional<int> iters, resolution, init_points, checkpoint_every;
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;
@@ -53,20 +56,39 @@ std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-// Settings a resumed run must keep: refuse to change them silently.
-void reject_changes_on_resume(const Options& o) {
-  auto no = [](bool given, const char* flag) {
-    if (given) throw Error(std::string(flag) + " cannot change when resuming (the run keeps its settings)");
-  };
-  no(o.resolution.has_value(), "--resolution");
-  no(o.downscale.has_value(), "--downscale");
-  no(o.seed.has_value(), "--seed");
-  no(o.init_points.has_value(), "--init-points");
-  no(!o.init.empty(), "--init");
-  no(o.mode != "radiance", "--mode");
-  no(!o.normals.empty(), "--normals");
-  no(!o.sets.empty(), "--set");
-  no(!o.preset.empty(), "--preset");
+// The settings the options ask for, applied to `config`: a new run's, or a copy of a resumed run's to
+// compare with it. --iters, --checkpoint-every and --device may change on resume and are applied later.
+void apply_settings(const Options& o, TrainConfig& config) {
+  if (o.mode) config.mode = *o.mode;
+  if (!o.normals.empty()) config.intrinsic.normals = fs::weakly_canonical(fs::absolute(o.normals)).string();
+  if (o.seed) config.seed = *o.seed;
+  if (o.resolution) config.resolution = *o.resolution;
+  if (o.downscale) config.downscale = *o.downscale;
+  if (o.init_points) config.random_init_points = *o.init_points;
+  if (!o.init.empty()) {  // read by prepare_training; a missing file fails now, before the images load
+    const fs::path init = fs::weakly_canonical(fs::absolute(o.init));
+    if (const std::string problem = regular_file_problem(init, "model file"); !problem.empty())
+      throw Error(init.string(), "--init: " + problem);  // missing, a folder, a FIFO (never opened), ...
+    config.init_model = init.string();
+  }
+  if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
+  apply_config_overrides(o.sets, config);
+}
+
+// A resumed run keeps its settings: options that would change one are refused, naming the setting with the
+// run's value and the asked one; options that repeat the run's values are accepted.
+void reject_changes_on_resume(const Options& o, const fs::path& run_dir, const TrainConfig& run) {
+  TrainConfig asked = run;
+  apply_settings(o, asked);
+  const nlohmann::json before = run, after = asked;
+  std::string changed;
+  for (auto it = after.begin(); it != after.end(); ++it)
+    if (before.value(it.key(), nlohmann::json()) != it.value())
+      changed += (changed.empty() ? "" : ", ") + it.key() + " " + before.value(it.key(), nlohmann::json()).dump() +
+                 " -> " + it.value().dump();
+  if (!changed.empty())
+    throw Error(run_dir.string(), "settings cannot change when resuming (the run keeps its settings): " + changed +
+                "; drop those options, or start the run over with --restart");
 }
 
 // --restart: the files of an earlier training run in `run_dir` go, so that nothing of it is resumed or read.
@@ -87,7 +109,11 @@ void run_train(const Options& o) {
   std::optional<ResumePoint> resumed;
   TrainConfig config;
   if (o.resume) {
-    reject_changes_on_resume(o);
+    std::error_code ec;
+    if (!fs::is_directory(run_dir, ec))
+      throw Error(run_dir.string(), fs::exists(run_dir, ec) ? "--resume: is not a folder, so not a run to resume"
+                                                            : "--resume: the run folder does not exist (drop --resume "
+                                                              "to start a new run there)");
     resumed = read_latest_checkpoint(run_dir);
     if (!resumed)
       throw Error(run_dir.string(), fs::exists(run_config_path(run_dir))
@@ -95,8 +121,9 @@ void run_train(const Options& o) {
                                           "first one): start it over with --restart instead of --resume"
                                         : "no checkpoint in checkpoints/ to resume from");
     config = resumed->checkpoint.config;
-    if (fs::weakly_canonical(fs::path(config.data)) != fs::weakly_canonical(data))
-      throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
+    reject_changes_on_resume(o, run_dir, config);
+    // DATA may be the run's data set at a new folder: checked to hold the same views (core/train/run_data.h).
+    use_run_data(run_dir, config, data.string(), "DATA");
     std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->checkpoint.state.iteration,
                 resumed->file.filename().string().c_str());
   } else {
@@ -109,20 +136,8 @@ void run_train(const Options& o) {
       throw Error(run_dir.string(), "holds a training run that stopped before its first checkpoint (config.json, no "
                                     "checkpoints/): add --restart to start it over, or choose another --out");
     }
-    config.mode = o.mode;
     config.data = data.string();
-    if (!o.normals.empty()) config.intrinsic.normals = fs::weakly_canonical(fs::absolute(o.normals)).string();
-    if (o.seed) config.seed = *o.seed;
-    if (o.resolution) config.resolution = *o.resolution;
-    if (o.downscale) config.downscale = *o.downscale;
-    if (o.init_points) config.random_init_points = *o.init_points;
-    if (!o.init.empty()) {  // read by prepare_training; a missing file fails now, before the images load
-      const fs::path init = fs::weakly_canonical(fs::absolute(o.init));
-      if (!fs::is_regular_file(init)) throw Error(init.string(), "--init: no such model file");
-      config.init_model = init.string();
-    }
-    if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
-    apply_config_overrides(o.sets, config);
+    apply_settings(o, config);
   }
   // Never a run inside the data set (or any data set); only the run folder itself is created, and removed
   // again if the run fails before writing anything.

@@ -15,6 +15,11 @@ bool register_command(int order, CommandSetup setup);
 // (e.g. each `goris bench KIND` lives in its own file and registers with an order after the group's).
 CLI::App& subcommand_group(CLI::App& parent, const std::string& name, const std::string& description);
 
+// --data DIR of the commands that read a run's data set (render, eval, select, remove, export): the data
+// set's new folder when it moved after training, in place of config.json's "data" for this one command
+// (core/train/run_data.h checks that it holds the same training views).
+CLI::Option* add_data_option(CLI::App& command, std::string& data);
+
 // Exit code a callback may set for "finished, but with a non-fatal failure" (e.g. a failed check).
 void set_exit_code(int code);
 int exit_code();

@@ -29,6 +29,12 @@ CLI::App& subcommand_group(CLI::App& parent, const std::string& name, const std:
   return *c;
 }
 
+CLI::Option* add_data_option(CLI::App& command, std::string& data) {
+  return command.add_option("--data", data,
+                            "The run's data set at its new folder, when it moved after training: replaces "
+                            "config.json's \"data\" for this command (checked to hold the same training views)");
+}
+
 void set_exit_code(int code) { g_exit_code = code; }
 int exit_code() { return g_exit_code; }
 

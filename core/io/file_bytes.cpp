@@ -15,19 +15,23 @@
 namespace goris {
 namespace fs = std::filesystem;
 
-void require_regular_file(const fs::path& path, const std::string& what) {
+std::string regular_file_problem(const fs::path& path, const std::string& what) {
   const std::string a_what = (std::string("aeiou").find(what[0]) != std::string::npos ? "an " : "a ") + what;
   std::error_code ec;
   const auto st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) throw Error(path.string(), what + " not found");
-  if (fs::is_directory(st)) throw Error(path.string(), "is a folder, not " + a_what);
+  if (ec || !fs::exists(st)) return what + " not found";
+  if (fs::is_directory(st)) return "is a folder, not " + a_what;
   const char* kind = fs::is_fifo(st)             ? "a FIFO (named pipe)"
                      : fs::is_character_file(st) ? "a character device"
                      : fs::is_block_file(st)     ? "a block device"
                      : fs::is_socket(st)         ? "a socket"
                      : fs::is_regular_file(st)   ? nullptr
                                                  : "neither a regular file nor a folder";
-  if (kind) throw Error(path.string(), std::string("is ") + kind + ", not " + a_what);
+  return kind ? std::string("is ") + kind + ", not " + a_what : std::string();
+}
+
+void require_regular_file(const fs::path& path, const std::string& what) {
+  if (const std::string problem = regular_file_problem(path, what); !problem.empty()) throw Error(path.string(), problem);
 }
 
 std::vector<uint8_t> read_file_bytes(const fs::path& path) {

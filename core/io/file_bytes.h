@@ -13,6 +13,9 @@ namespace goris {
 // socket are refused by type before anything opens it (opening a FIFO would wait for a writer forever).
 // `what` names what was wanted ("file", "image file", "PLY file").
 void require_regular_file(const std::filesystem::path& path, const std::string& what = "file");
+// The same check without throwing: "" for a regular file, otherwise the problem without the path
+// ("is a FIFO (named pipe), not a checkpoint file", "file not found").
+std::string regular_file_problem(const std::filesystem::path& path, const std::string& what = "file");
 
 // The file's bytes; throws goris::Error naming the file when it is missing, a folder, not a regular file or
 // unreadable.

@@ -142,6 +142,7 @@ void write_checkpoint(const std::filesystem::path& path, const TrainConfig& conf
 }
 
 Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
+  require_regular_file(path, "checkpoint file");  // a FIFO is refused before opening it could block
   std::ifstream f(path, std::ios::binary);
   if (!f) throw Error(path.string(), "cannot open the checkpoint");
   const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
@@ -243,21 +244,26 @@ std::vector<std::pair<int, std::filesystem::path>> list_checkpoints(const std::f
 }  // namespace
 
 namespace {
-// The checkpoint's magic and trailing checksum, read in chunks (no copy of the file in memory). Results are
-// kept per (path, size, modification time): a command asks several times, a checkpoint is large.
-bool is_intact(const std::filesystem::path& path) {
+// What is wrong with a checkpoint file, "" when it is intact: a FIFO, device or folder under a checkpoint's
+// name is refused by its type before anything opens it (opening a FIFO would wait for a writer forever);
+// a regular file needs the magic and the trailing checksum, read in chunks (no copy of the file in memory).
+// Results are kept per (path, size, modification time): a command asks several times, a checkpoint is large.
+std::string checkpoint_problem(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  const auto size = fs::file_size(path, ec);
-  const auto mtime = fs::last_write_time(path, ec);
-  if (ec || size < 8 + 4 + 8) return false;
+  if (std::string type = regular_file_problem(path, "checkpoint file"); !type.empty()) return type;
+  std::error_code size_ec, time_ec;  // one each: a later call's success would clear an earlier failure
+  const auto size = fs::file_size(path, size_ec);
+  const auto mtime = fs::last_write_time(path, time_ec);
+  if (size_ec || time_ec) return "cannot be read (" + (size_ec ? size_ec : time_ec).message() + ")";
+  const std::string truncated = "is truncated or corrupted (its magic or checksum does not match)";
+  if (size < 8 + 4 + 8) return truncated;
   static std::mutex mutex;
   static std::map<std::string, std::tuple<std::uintmax_t, fs::file_time_type, bool>> known;
   const std::string key = path.string();
   {
     std::lock_guard lk(mutex);
     if (auto it = known.find(key); it != known.end() && std::get<0>(it->second) == size && std::get<1>(it->second) == mtime)
-      return std::get<2>(it->second);
+      return std::get<2>(it->second) ? "" : truncated;
   }
   std::ifstream f(path, std::ios::binary);
   std::vector<char> buf(1 << 20);
@@ -279,26 +285,38 @@ bool is_intact(const std::filesystem::path& path) {
   ok = ok && bool(f.read(reinterpret_cast<char*>(&stored), 8)) && stored == h.value;
   std::lock_guard lk(mutex);
   known[key] = {size, mtime, ok};
-  return ok;
+  return ok ? "" : truncated;
 }
 }  // namespace
 
 std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir) {
   const auto all = list_checkpoints(run_dir);
   if (all.empty()) return std::nullopt;
+  std::vector<std::pair<std::filesystem::path, std::string>> bad;  // newest first, with what is wrong
   for (auto it = all.rbegin(); it != all.rend(); ++it) {
-    if (is_intact(it->second)) {
-      static std::mutex mutex;
-      static std::set<std::string> warned;  // once per file, though a command asks several times
-      std::lock_guard lk(mutex);
-      if (it != all.rbegin() && warned.insert(all.back().second.string()).second)
-        std::fprintf(stderr, "warning: %s is truncated or corrupted (a stop while it was written?); using %s\n",
-                     all.back().second.string().c_str(), it->second.filename().string().c_str());
-      return it->second;
+    std::string problem = checkpoint_problem(it->second);
+    if (!problem.empty()) {
+      bad.emplace_back(it->second, std::move(problem));
+      continue;
     }
+    static std::mutex mutex;
+    static std::set<std::string> warned;  // once per file, though a command asks several times
+    std::lock_guard lk(mutex);
+    for (const auto& [file, why] : bad)
+      if (warned.insert(file.string()).second)
+        std::fprintf(stderr, "warning: %s %s; using %s\n", file.string().c_str(),
+                     why.c_str(), it->second.filename().string().c_str());
+    return it->second;
   }
-  return all.back().second;  // none is intact: reading it says what is wrong
+  std::string list;
+  for (const auto& [file, why] : bad) list += (list.empty() ? "" : "; ") + file.filename().string() + " " + why;
+  throw Error((run_dir / "checkpoints").string(),
+              "no intact checkpoint to continue from: " + list +
+                  ". Start the run over with --restart (goris train DATA --out RUN --restart), or move these files "
+                  "away");
 }
+
+bool has_checkpoint_files(const std::filesystem::path& run_dir) { return !list_checkpoints(run_dir).empty(); }
 
 std::filesystem::path renderer_state_path(const std::filesystem::path& checkpoint) {
   std::filesystem::path p = checkpoint;

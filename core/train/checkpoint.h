@@ -24,10 +24,15 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device);
 
 // Checkpoint files of a run folder: RUN/checkpoints/iter_<8 digits>.ckpt.
 std::filesystem::path checkpoint_path(const std::filesystem::path& run_dir, int iteration);
-// The checkpoint with the highest iteration in RUN/checkpoints that is intact (magic and checksum), if any:
-// a truncated or corrupted latest one (a kill or a full disk while it was written) is passed over for the
-// one before, with a warning on stderr naming it. When none is intact, the latest (reading it says why).
+// The checkpoint with the highest iteration in RUN/checkpoints that is intact (a regular file with the magic
+// and checksum), if any: a truncated or corrupted latest one (a kill or a full disk while it was written),
+// or a FIFO, device or folder under a checkpoint's name, is passed over for the one before, with a warning on
+// stderr naming it and what is wrong. nullopt when RUN/checkpoints holds no checkpoint; throws goris::Error
+// naming every file and its problem, and how to start over (--restart), when it holds some but none is
+// intact.
 std::optional<std::filesystem::path> latest_checkpoint(const std::filesystem::path& run_dir);
+// Whether RUN/checkpoints holds any file under a checkpoint's name, intact or not (none is opened).
+bool has_checkpoint_files(const std::filesystem::path& run_dir);
 // Where the renderer's own parameters (environment map, roughness net) of a checkpoint are stored:
 // the checkpoint's path + ".renderer" (written only by renderers that own parameters).
 std::filesystem::path renderer_state_path(const std::filesystem::path& checkpoint);

@@ -23,6 +23,7 @@ void visit_fields(Config& c, F&& f) {
   f("seed", c.seed);
   f("device", c.device);
   f("data", c.data);
+  f("data_views", c.data_views);
   f("downscale", c.downscale);
   f("resolution", c.resolution);
   f("background", c.background);

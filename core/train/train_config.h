@@ -145,6 +145,10 @@ struct TrainConfig {
 
   // Data.
   std::string data;             // data set path (as given, made absolute)
+  // What the run was trained on, recorded when training starts (core/train/run_data.h): the training views'
+  // count and a hash of their names and image sizes, so that a moved data set given with --data is checked
+  // to be the same one. Empty in runs that predate the record.
+  std::string data_views;
   float downscale = 1.0f;       // --downscale
   int resolution = 0;           // --resolution: target width in pixels (0 = use downscale)
   glm::vec3 background{0.0f};   // RGBA images composited on it; also the renderer's background

@@ -15,6 +15,7 @@
 #include "core/io/ply.h"
 #include "core/io/splat_formats.h"
 #include "core/train/image_losses.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/run_output_guard.h"
 #include "core/train/train_setup.h"
@@ -64,8 +65,8 @@ fs::path baked_json_path(const fs::path& ply) {
   return j.replace_extension(".json");
 }
 
-RunExport::RunExport(const fs::path& run_dir, Device device)
-    : run_dir_(fs::absolute(run_dir)), device_(device), config_(read_run_config(run_dir_)) {
+RunExport::RunExport(const fs::path& run_dir, Device device, const std::string& data)
+    : run_dir_(fs::absolute(run_dir)), device_(device), config_(read_run_config_with_data(run_dir_, data)) {
   dataset_ = load_dataset(config_.data, dataset_options(config_));
   if (dataset_.train.empty()) throw Error(config_.data, "the data set has no training views");
   extent_ = scene_extent(dataset_);

@@ -61,8 +61,10 @@ struct RendersReport {
 class RunExport {
  public:
   // Loads the run's configuration, its data set's cameras (not the images), its model and its renderer
-  // (intrinsic runs: shading on). Throws goris::Error naming the file for a missing or broken run folder.
-  RunExport(const std::filesystem::path& run_dir, Device device);
+  // (intrinsic runs: shading on). `data`: the data set's folder when it moved after training (--data,
+  // core/train/run_data.h; empty = config.json's). Throws goris::Error naming the file for a missing or
+  // broken run folder.
+  RunExport(const std::filesystem::path& run_dir, Device device, const std::string& data = {});
 
   const std::filesystem::path& run_dir() const { return run_dir_; }
   const TrainConfig& config() const { return config_; }

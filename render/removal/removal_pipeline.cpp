@@ -28,6 +28,7 @@
 #include "core/removal/selection_labels.h"
 #include "core/removal/selection_points.h"
 #include "core/train/checkpoint.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
 #include "core/train/trainer.h"
@@ -243,7 +244,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                                          "reflection)"));
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
-  const TrainConfig config = read_run_config(run_dir);
+  const TrainConfig config = read_run_config_with_data(run_dir, o.data);
   const Device device = resolve_device(o.device);
   const DatasetOptions dopt = dataset_options(config);
   Dataset ds = load_dataset(config.data, dopt);

@@ -71,6 +71,9 @@ struct RemovalOptions {
   // minus stage 1's own estimate of the target's reflection; false leaves the pixels out (the paper).
   bool dereflect_lighting = true;
   std::string device = "auto";
+  // The stage-1 data set's folder when it moved after training (`goris remove --data`, core/train/run_data.h);
+  // empty = RUN/config.json's. Not an input of the outputs (made_from.json): a moved data set reuses them.
+  std::string data;
 };
 
 struct RemovalProgress {

@@ -5,6 +5,7 @@
 #include "core/compute/device.h"
 #include "core/io/image.h"
 #include "core/io/ply.h"
+#include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/normal_prior.h"
 #include "core/train/train_setup.h"
@@ -46,6 +47,12 @@ PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, s
   const DatasetOptions dopt = dataset_options(config);
   p.dataset = load_dataset(config.data, dopt);
   if (p.dataset.train.empty()) throw Error(config.data, "the data set has no training views");
+  // The record that lets a moved data set be checked (core/train/run_data.h); a resumed run's must match.
+  const std::string fingerprint = training_views_fingerprint(p.dataset);
+  if (!config.data_views.empty() && fingerprint != config.data_views)
+    throw Error(config.data, "holds other training views than the run was trained on: " + fingerprint +
+                                 " (names and image sizes), the run " + config.data_views);
+  config.data_views = fingerprint;
   select_training_data(config, p.dataset);
   p.extent = scene_extent(p.dataset);
   resolve_environment_sphere(p.dataset, config);

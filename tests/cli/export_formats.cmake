@@ -111,7 +111,7 @@ if(NOT psnr_from_spz GREATER psnr_from_random)  # both parse as real numbers
   message(FATAL_ERROR "one iteration from the SPZ (${psnr_from_spz} dB) is not better than from random points (${psnr_from_random} dB)")
 endif()
 message("one iteration: from the SPZ ${psnr_from_spz} dB, from random points ${psnr_from_random} dB")
-goris_fails("no_such.spz: --init: no such model file" train "${RESOURCES}/default_scene" --out "${WORK}/nothing"
+goris_fails("no_such.spz: --init: model file not found" train "${RESOURCES}/default_scene" --out "${WORK}/nothing"
             --init "${WORK}/no_such.spz" --iters 1 --device cpu)
-goris_fails("--init cannot change when resuming" train "${RESOURCES}/default_scene" --out "${WORK}/from_random"
+goris_fails("settings cannot change when resuming (the run keeps its settings): init_model" train "${RESOURCES}/default_scene" --out "${WORK}/from_random"
             --resume --init "${OUTD}/r.spz" --iters 2 --device cpu)

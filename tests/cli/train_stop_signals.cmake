@@ -1,6 +1,7 @@
 # SIGTERM, SIGHUP and SIGINT each stop `goris train` with a checkpoint, an "interrupted" message and the
 # shell's status for the signal (143, 129, 130), and the run resumes; SIGTERM stops `goris remove` the same
-# way. A run folder with a config but no checkpoint says how to go on, and --restart starts it over.
+# way. A resume may repeat the run's settings, not change them. A run folder with a config but no checkpoint
+# says how to go on, and --restart starts it over.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -36,6 +37,14 @@ foreach(case "TERM;143" "HUP;129" "INT;130")
     message(FATAL_ERROR "SIG${sig}: the resumed run did not finish\n${OUT}")
   endif()
 endforeach()
+
+# --resume accepts options that repeat the run's settings (all of TINY) and refuses one that changes a
+# setting, naming it with both values.
+math(EXPR again "${more} + 2")
+goris_ok(train "${DATA}" --out "${WORK}/run_INT" --resume --iters ${again} ${TINY})
+expect_text("${OUT}" "resuming")
+goris_fails("resolution 32 -> 64" train "${DATA}" --out "${WORK}/run_INT" --resume --iters 1000 --resolution 64
+            --device cpu)
 
 # A folder with config.json but no checkpoint (a run killed before its first one): plain train and --resume
 # say to use --restart, which starts it over.

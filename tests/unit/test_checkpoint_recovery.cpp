@@ -1,6 +1,8 @@
-// A run folder survives a kill during a checkpoint write: a truncated latest checkpoint is passed over for
-// the previous intact one, and the temporary files of the killed write are removed on the next start.
+// A run folder survives a kill during a checkpoint write: a truncated latest checkpoint (or a FIFO under a
+// checkpoint's name) is passed over for the previous intact one, and the temporary files of the killed write
+// are removed on the next start. When none is intact, the error names every file and how to start over.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstring>
@@ -45,10 +47,33 @@ TEST(CheckpointRecovery, TruncatedLatestFallsBackToThePreviousOne) {
   ASSERT_EQ(latest_checkpoint(run), checkpoint_path(run, 10));
   EXPECT_EQ(read_checkpoint(*latest_checkpoint(run), Device::CPU).state.iteration, 10);
   EXPECT_EQ(load_run_model(run, Device::CPU).count(), 4u);
-  // None intact: the latest is returned, and reading it says what is wrong.
+  // None intact: the error names each file with its problem and says how to start over.
   fs::resize_file(checkpoint_path(run, 10), 30);
-  ASSERT_EQ(latest_checkpoint(run), checkpoint_path(run, 20));
-  test::expect_error([&] { read_checkpoint(*latest_checkpoint(run), Device::CPU); }, "iter_00000020.ckpt");
+  for (const char* part : {"iter_00000020.ckpt is truncated or corrupted", "iter_00000010.ckpt is truncated", "--restart"})
+    test::expect_error([&] { latest_checkpoint(run); }, part);
+  test::expect_error([&] { load_run_model(run, Device::CPU); }, "no intact checkpoint");
+  test::expect_error([&] { read_checkpoint(checkpoint_path(run, 20), Device::CPU); }, "iter_00000020.ckpt");
+}
+
+// A FIFO under a checkpoint's name is refused by its type, never opened (that would wait for a writer
+// forever): the latest intact checkpoint before it is used, and reading it directly names it as a FIFO.
+TEST(CheckpointRecovery, FifoIsPassedOverWithoutOpeningIt) {
+  const fs::path run = test::scratch_dir("checkpoint_recovery_fifo");
+  fs::create_directories(run / "checkpoints");
+  write_checkpoint(checkpoint_path(run, 100), TrainConfig{}, small_state(100));
+  const fs::path fifo = checkpoint_path(run, 200);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_TRUE(has_checkpoint_files(run));
+  ASSERT_EQ(latest_checkpoint(run), checkpoint_path(run, 100));
+  EXPECT_EQ(load_run_model(run, Device::CPU).count(), 4u);
+  test::expect_error([&] { read_checkpoint(fifo, Device::CPU); }, "iter_00000200.ckpt: is a FIFO (named pipe)");
+  // The FIFO alone: no intact checkpoint, the FIFO named as such.
+  fs::remove(checkpoint_path(run, 100));
+  for (const char* part : {"iter_00000200.ckpt is a FIFO (named pipe), not a checkpoint file", "--restart"})
+    test::expect_error([&] { latest_checkpoint(run); }, part);
+  fs::remove(fifo);
+  EXPECT_FALSE(has_checkpoint_files(run));
+  EXPECT_FALSE(latest_checkpoint(run).has_value());
 }
 
 TEST(CheckpointRecovery, TemporaryFilesOfADeadWriterAreRemoved) {
