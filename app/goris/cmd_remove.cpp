@@ -29,8 +29,6 @@ struct Options {
   std::vector<std::string> ablate;
   int iters = 0;
   double view_fill = RemovalOptions{}.view_fill_weight;
-  bool radiance_twin = false;
-  bool fill_on_plane = false;
 };
 
 void run_remove(const Options& o) {
@@ -43,8 +41,6 @@ void run_remove(const Options& o) {
   }
   ro.finetune_iterations = o.iters;
   ro.view_fill_weight = float(o.view_fill);
-  ro.radiance_twin = o.radiance_twin;
-  ro.fill_on_plane = o.fill_on_plane;
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = o.device;
@@ -126,10 +122,6 @@ void setup_remove(CLI::App& root) {
                 "point lands (0 = the reference views alone)")
       ->capture_default_str()
       ->check(cli::real(0.0, 10.0));
-  c->add_flag("--radiance-twin", o->radiance_twin,
-              "Remove a radiance model's mirror twin below a glossy plane as well (intrinsic models always lose it)");
-  c->add_flag("--fill-on-plane", o->fill_on_plane,
-              "Lift the reference views' fill of the glossy surface onto the glossy plane");
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_remove(*o); });

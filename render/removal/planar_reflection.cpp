@@ -55,34 +55,4 @@ Mask planar_reflection_mask(GaussianModel& mirrored, const Camera& camera, const
   return grown;
 }
 
-float plane_depth(const Camera& camera, const MirrorPlane& plane, int x, int y) {
-  const glm::dvec3 dir_cam((double(x) + 0.5 - camera.cx) / camera.fx, (double(y) + 0.5 - camera.cy) / camera.fy, 1.0);
-  const glm::dmat3 rt = glm::transpose(glm::dmat3(camera.R));
-  const glm::dvec3 origin = glm::dvec3(camera.center()), dir = rt * dir_cam;  // dir has camera z = 1
-  const double denom = glm::dot(plane.normal, dir);
-  if (!(std::fabs(denom) > 1e-12)) return 0.0f;
-  const double z = -plane.signed_distance(origin) / denom;  // camera z, as dir's z component is 1
-  return z > 0.0 && std::isfinite(z) ? float(z) : 0.0f;
-}
-
-std::size_t put_glossy_hole_on_plane(Image& depth, const Mask& hole, const std::vector<float>& glossy,
-                                     const Camera& camera, const MirrorPlane& plane) {
-  const int w = camera.width, h = camera.height;
-  const std::size_t hw = std::size_t(w) * h;
-  if (depth.width != w || depth.height != h || depth.channels != 1 || hole.pixel_count() != hw || glossy.size() != hw)
-    throw Error("glossy hole on its plane", "the depth, hole and glossy mask must all be the camera's size");
-  std::size_t set = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::size_t p = std::size_t(y) * w + x;
-      if (!hole.data[p] || !(glossy[p] > 0.5f)) continue;
-      const float z = plane_depth(camera, plane, x, y);
-      if (z <= 0.0f) continue;
-      depth.pixels[p] = z;
-      ++set;
-    }
-  return set;
-}
-
 }  // namespace goris
-

@@ -38,15 +38,4 @@ struct ReflectionMaskSettings {
 Mask planar_reflection_mask(GaussianModel& mirrored, const Camera& camera, const std::vector<float>& glossy_mask,
                             const RasterSettings& raster, const ReflectionMaskSettings& settings = {});
 
-// Camera z of the point where pixel (x, y)'s centre ray meets `plane`; 0 when the ray runs parallel to it or
-// meets it behind the camera.
-float plane_depth(const Camera& camera, const MirrorPlane& plane, int x, int y);
-
-// Puts the glossy surface of the scene without the target (`glossy` > 0.5, [H][W]) back on its plane inside
-// `hole`: `depth` (1 channel, camera z) takes the plane's depth there. A radiance model's depth on a mirror is
-// that of the mirror world behind it, and an inpainted depth mixes whatever borders the hole; the lift puts
-// the fill of the glossy surface on the surface itself, where every other view sees it. Returns the pixels set.
-std::size_t put_glossy_hole_on_plane(Image& depth, const Mask& hole, const std::vector<float>& glossy,
-                                     const Camera& camera, const MirrorPlane& plane);
-
 }  // namespace goris

@@ -204,9 +204,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["lighting_tau"] = o.lighting_tau;
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
-  if (o.view_fill_weight > 0) j["view_fill_weight"] = o.view_fill_weight;  // absent at 0: older records match
-  if (o.radiance_twin) j["radiance_twin"] = true;
-  if (o.fill_on_plane) j["fill_on_plane"] = true;
+  j["view_fill_weight"] = o.view_fill_weight;
   return j;
 }
 
@@ -321,7 +319,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       // On a radiance model the twin stays: removing it opened see-through holes in the mirror world that the
       // fill did not close (on the generalization suite, docs/lab/2026-12-02-generalization-suite.md), while
       // the planar reflection mask below repaints the reflection wherever the model keeps it.
-      if (o.ablate.count("twins") || (!intrinsic && !o.radiance_twin)) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
+      if (o.ablate.count("twins") || !intrinsic) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
       twins = t.twins;
       report.mirror_twins = t.count;
@@ -483,9 +481,16 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     opts["views"] = report.reference_views;
     const fs::path opts_path = dir / "made_from.json";
     const bool cached = made_from_changes(opts_path, opts).empty();
-    std::unique_ptr<Inpainter> inp;
+    std::unique_ptr<Inpainter> inp, fill_inp;
     const HarmonicInpainter harmonic;
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
+    // The other views' fills are smooth targets for many views: with an external program or a folder of
+    // ready-made maps (made for the reference views) they come from the built-in Telea.
+    auto inpainter_for = [&](bool reference) -> const Inpainter& {
+      if (reference || own_depth) return *inp;
+      if (!fill_inp) fill_inp = make_inpainter("telea");
+      return *fill_inp;
+    };
     const std::size_t maps_per_view = materials ? 6 : 2;
     const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
     const std::size_t total = inpainted.size() * maps_per_view;
@@ -526,17 +531,16 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         if (cancelled()) throw Error(step_error(RemovalStep::Inpaint2D, "cancelled"));
         s.tell(done++, total, name + " " + map);
       };
-      m = inpaint_map_set(*inp, maps, holes[v].mask, name, mo);
+      const Inpainter& fill_with = inpainter_for(reference);
+      m = inpaint_map_set(fill_with, maps, holes[v].mask, name, mo);
       if (!reference) ++done;  // the depth map it skipped
       if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)
         std::vector<float> g = removed_glossy_mask(views[v], holes[v]);
         if (!g.empty()) {
           const MapInfo info{name, "rgb", MapKind::Color};
-          m.rgb = refill_inside_region(*inp, maps.rgb, m.rgb, holes[v].mask, g, info);
-          if (reference && o.fill_on_plane && glossy_plane.found)
-            put_glossy_hole_on_plane(m.depth, holes[v].mask, g, cameras[v], glossy_plane);
+          m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
           for (float& x : g) x = 1.0f - x;
-          m.rgb = refill_inside_region(*inp, maps.rgb, m.rgb, holes[v].mask, g, info);
+          m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
         }
       }
       for (const MapSlot& slot : map_slots()) {

@@ -21,9 +21,11 @@
 //   2D inpainting    colour, depth, normal, F0, roughness, region of each reference view (colour and depth
 //                    only with --ablate material or for radiance runs)
 //                                                              -> removal/inpainted/VIEW_MAP.png|.npy
+//                    and the same maps but depth of every other view with a hole: its own fill, a target
+//                    where no lifted point lands (view_fill_weight)  -> removal/inpainted/VIEW_fill_MAP.npy
 //   3D lift          new Gaussians on the inpainted depth       (count in removal/report.json)
 //   fine-tune        environment map and net frozen; photo losses outside object U lighting masks,
-//                    appearance / material losses in the hole   -> removal/ as a run folder: config.json,
+//                    appearance / material losses in every view's hole   -> removal/ as a run folder: config.json,
 //                                                                 checkpoints/, log.csv, point_cloud.ply
 //
 // The result is itself a run folder (render / eval / export take RUN/removal). Cancelling (the stop flag)
@@ -55,13 +57,9 @@ struct RemovalOptions {
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   // Every other training view's hole (its unseen pixels and the target's planar reflection) is inpainted in
   // 2D as well, and the fine-tune trains it towards that fill with this weight where no lifted reference
-  // point lands (finetune_views.h). 0 = only the reference views and their points supervise the hole.
-  float view_fill_weight = 0.0f;
-  // Remove a radiance model's mirror twin too (intrinsic models always lose theirs).
-  bool radiance_twin = false;
-  // The reference views' fill of the glossy surface is lifted onto the glossy plane (planar_reflection.h
-  // put_glossy_hole_on_plane) instead of the inpainted depth.
-  bool fill_on_plane = false;
+  // point lands (finetune_views.h; the reference views' own weight is 1). 0 = only the reference views and
+  // their points supervise the hole, and novel views between them keep what stage 1 had behind the target.
+  float view_fill_weight = 1.0f;
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the

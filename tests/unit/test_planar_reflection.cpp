@@ -138,55 +138,6 @@ std::vector<float> disc_mask(const Camera& c, double h, double r) {
 }
 }  // namespace
 
-TEST(PlanarReflection, PlaneDepthBackProjectsOntoThePlane) {
-  // A tilted plane seen from an oblique camera: every pixel's depth back-projects to a point on it.
-  MirrorPlane tilted;
-  tilted.found = true;
-  tilted.normal = glm::normalize(glm::dvec3(0.2, -0.1, 1.0));
-  tilted.offset = 0.05;
-  const Camera cam = look_at({0.4f, -3, 1.5f}, {0, 0, 0}, 32, 24, 40.0f);
-  int on_plane = 0;
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      const float z = plane_depth(cam, tilted, x, y);
-      if (z <= 0.0f) continue;
-      ++on_plane;
-      const glm::vec3 pc(z * (x + 0.5f - cam.cx) / cam.fx, z * (y + 0.5f - cam.cy) / cam.fy, z);
-      const glm::vec3 X = glm::transpose(cam.R) * (pc - cam.t);
-      EXPECT_NEAR(tilted.signed_distance(glm::dvec3(X)), 0.0, 1e-4) << x << "," << y;
-    }
-  EXPECT_GT(on_plane, cam.width * cam.height / 2);
-  // Looking away from the plane (up), no pixel meets it in front of the camera.
-  const Camera up = look_at({0, 0, 1}, {0, 0.1f, 5}, 8, 8, 10.0f);
-  for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 8; ++x) EXPECT_EQ(plane_depth(up, floor_plane(), x, y), 0.0f);
-}
-
-TEST(PlanarReflection, GlossyHolePixelsTakeThePlanesDepth) {
-  const Camera cam = look_at({0, -3, 1.5f}, {0, 0, 0}, 16, 16, 20.0f);
-  const std::size_t hw = 16 * 16;
-  Image depth(16, 16, 1);
-  for (std::size_t p = 0; p < hw; ++p) depth.pixels[p] = 7.0f;  // e.g. a mirror world far behind the floor
-  Mask hole(16, 16);
-  std::vector<float> glossy(hw, 0.0f);
-  for (int y = 8; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) glossy[std::size_t(y) * 16 + x] = 1.0f;  // the floor fills the lower half
-  for (int y = 4; y < 12; ++y)
-    for (int x = 4; x < 12; ++x) hole.set(x, y, true);
-  const std::size_t set = put_glossy_hole_on_plane(depth, hole, glossy, cam, floor_plane());
-  EXPECT_EQ(set, 4u * 8u);  // the hole's rows 8-11, columns 4-11
-  for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) {
-      const float d = depth.pixels[std::size_t(y) * 16 + x];
-      if (hole(x, y) && y >= 8)
-        EXPECT_FLOAT_EQ(d, plane_depth(cam, floor_plane(), x, y));
-      else
-        EXPECT_EQ(d, 7.0f) << x << "," << y;  // outside the hole or off the glossy surface: untouched
-    }
-  Image wrong(8, 8, 1);
-  EXPECT_THROW(put_glossy_hole_on_plane(wrong, hole, glossy, cam, floor_plane()), Error);
-}
-
 TEST(PlaneFromMasks, FindsTheHeightThatMapsTheViewsMasksOntoEachOther) {
   std::vector<Camera> cams;
   for (int k = 0; k < 10; ++k) {
