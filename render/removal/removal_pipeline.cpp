@@ -495,60 +495,66 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
     const std::size_t total = inpainted.size() * maps_per_view;
     std::size_t done = 0;
-    for (std::size_t k = 0; k < inpainted.size(); ++k) {
-      const bool reference = k < choice.views.size();
-      const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
-      const std::string& name = ds.train[v].name;
-      // The other views' fills are only targets, kept apart from the reference views' maps (the lift's input).
-      const std::string stem = reference ? name : name + "_fill";
-      MapSet& m = inpainted[k];
-      if (cached) {
+    struct Stopped {};  // a stop while the maps are filled leaves no record: a rerun fills them again
+    try {
+      for (std::size_t k = 0; k < inpainted.size(); ++k) {
+        if (cancelled()) throw Stopped{};
+        const bool reference = k < choice.views.size();
+        const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
+        const std::string& name = ds.train[v].name;
+        // The other views' fills are only targets, kept apart from the reference views' maps (the lift's input).
+        const std::string stem = reference ? name : name + "_fill";
+        MapSet& m = inpainted[k];
+        if (cached) {
+          for (const MapSlot& slot : map_slots()) {
+            const fs::path p = dir / (stem + "_" + slot.name + ".npy");
+            if (fs::exists(p)) m.*slot.member = load_map(p);
+          }
+          done += maps_per_view;
+          s.tell(done, total, name + " (cached)");
+          continue;
+        }
+        if (!inp) {
+          fs::remove(opts_path);  // the cache is being rewritten
+          inp = make_inpainter(o.inpainter);
+        }
+        MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
+        if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
+        maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
+        if (!materials) {
+          maps.normal = Image();
+          maps.fresnel = Image();
+          maps.roughness = Image();
+          maps.region = Image();
+        }
+        if (!reference) maps.depth = Image();  // nothing is lifted from these views
+        MapSetInpaintOptions mo;
+        if (own_depth) mo.depth_inpainter = &harmonic;
+        mo.on_map = [&](const std::string& map) {
+          if (cancelled()) throw Stopped{};
+          s.tell(done++, total, name + " " + map);
+        };
+        const Inpainter& fill_with = inpainter_for(reference);
+        m = inpaint_map_set(fill_with, maps, holes[v].mask, name, mo);
+        if (!reference) ++done;  // the depth map it skipped
+        if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)
+          std::vector<float> g = removed_glossy_mask(views[v], holes[v]);
+          if (!g.empty()) {
+            const MapInfo info{name, "rgb", MapKind::Color};
+            m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
+            for (float& x : g) x = 1.0f - x;
+            m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
+          }
+        }
         for (const MapSlot& slot : map_slots()) {
-          const fs::path p = dir / (stem + "_" + slot.name + ".npy");
-          if (fs::exists(p)) m.*slot.member = load_map(p);
-        }
-        done += maps_per_view;
-        s.tell(done, total, name + " (cached)");
-        continue;
-      }
-      if (!inp) {
-        fs::remove(opts_path);  // the cache is being rewritten
-        inp = make_inpainter(o.inpainter);
-      }
-      MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
-      if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
-      maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
-      if (!materials) {
-        maps.normal = Image();
-        maps.fresnel = Image();
-        maps.roughness = Image();
-        maps.region = Image();
-      }
-      if (!reference) maps.depth = Image();  // nothing is lifted from these views
-      MapSetInpaintOptions mo;
-      if (own_depth) mo.depth_inpainter = &harmonic;
-      mo.on_map = [&](const std::string& map) {
-        if (cancelled()) throw Error(step_error(RemovalStep::Inpaint2D, "cancelled"));
-        s.tell(done++, total, name + " " + map);
-      };
-      const Inpainter& fill_with = inpainter_for(reference);
-      m = inpaint_map_set(fill_with, maps, holes[v].mask, name, mo);
-      if (!reference) ++done;  // the depth map it skipped
-      if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)
-        std::vector<float> g = removed_glossy_mask(views[v], holes[v]);
-        if (!g.empty()) {
-          const MapInfo info{name, "rgb", MapKind::Color};
-          m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
-          for (float& x : g) x = 1.0f - x;
-          m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
+          const Image& im = m.*slot.member;
+          if (im.pixels.size() == 0) continue;
+          save_map(dir, stem + "_" + slot.name, im);
+          if (reference) save_preview(dir / (stem + "_" + slot.name + ".png"), im, slot.name);
         }
       }
-      for (const MapSlot& slot : map_slots()) {
-        const Image& im = m.*slot.member;
-        if (im.pixels.size() == 0) continue;
-        save_map(dir, stem + "_" + slot.name, im);
-        if (reference) save_preview(dir / (stem + "_" + slot.name + ".png"), im, slot.name);
-      }
+    } catch (const Stopped&) {
+      return report.cancelled = true, report;
     }
     if (!cached) {
       write_made_from(opts_path, opts);

@@ -344,6 +344,7 @@ void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& 
   const float tolerance = s.plane_tolerance * dist[dist.size() / 2];
   const std::vector<Plane> planes = fit_planes(std::move(pts), tolerance, s);
   out.planes = int(planes.size());
+  for (const Plane& pl : planes) out.plane_normals.push_back(pl.n);
   // Each plane's extent from every covered pixel on it.
   std::vector<PlaneExtent> extents;
   for (const Plane& pl : planes) {

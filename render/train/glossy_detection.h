@@ -93,6 +93,7 @@ struct GlossyDetection {
   double fraction = 0;       // detected / covered
   bool glossy = false;       // fraction >= min_fraction (and something was detected)
   int planes = 0;            // planes the masks were grown over
+  std::vector<glm::vec3> plane_normals;  // unit, of the planes grown over, in the order found
   std::size_t on_planes = 0;      // pixels the growing added because their surface point lies on a plane
   std::size_t behind_planes = 0;  // ... because it lies behind a plane, seen through it (a mirror world)
   std::size_t in_masks = 0;  // pixels in the final masks (grown)

@@ -291,6 +291,12 @@ TEST(GlossyDetection, MasksGrowOverReflectionsTheModelPutsBehindThePlane) {
   EXPECT_GT(double(marked[kPlane]), 0.97 * double(count[kPlane]));
   EXPECT_GT(double(marked[kPatch]), 0.97 * double(count[kPatch])) << "the reflections behind the plane";
   EXPECT_LT(double(marked[kFloor]), 0.03 * double(count[kFloor])) << "the floor beside the disc";
+  // The counts of what the growing added: the plane's pixels on it, the patch's behind it, the plane's normal z.
+  EXPECT_EQ(grown.in_masks, grown.detected + grown.on_planes + grown.behind_planes);
+  EXPECT_GT(grown.behind_planes, count[kPatch] / 4) << "the patch is seen through the plane";
+  EXPECT_GT(grown.on_planes, grown.behind_planes);
+  ASSERT_EQ(grown.plane_normals.size(), 1u);
+  EXPECT_GT(std::abs(grown.plane_normals[0].z), 0.99f);
 }
 
 TEST(GlossyDetection, NearestViewsFollowTheCameraDirection) {
