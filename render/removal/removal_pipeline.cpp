@@ -16,8 +16,6 @@
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/io/image.h"
-#include "core/io/npy.h"
-#include "core/io/npy_write.h"
 #include "core/io/output_path.h"
 #include "core/io/ply.h"
 #include "core/removal/mirror_twins.h"
@@ -37,11 +35,11 @@
 #include "core/util/fnv1a.h"
 #include "render/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
-#include "render/maps/gbuffer_maps.h"
 #include "render/removal/dereflect.h"
 #include "render/removal/finetune_views.h"
 #include "render/removal/inpaint_mask.h"
 #include "render/removal/inpaint_mask_scene.h"
+#include "render/removal/inpainted_maps.h"
 #include "render/removal/lift.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/removal/reference_views.h"
@@ -87,42 +85,6 @@ struct StepScope {
 
 std::string step_error(RemovalStep s, const std::string& problem) {
   return std::string("goris remove (") + removal_step_name(s) + "): " + problem;
-}
-
-// Float maps cached as .npy [H][W][C] for resuming, with a PNG preview beside each.
-void save_map(const fs::path& dir, const std::string& stem, const Image& im) {
-  const std::vector<float> px = im.pixels.to_host();
-  save_npy(dir / (stem + ".npy"), px, {std::size_t(im.height), std::size_t(im.width), std::size_t(im.channels)});
-}
-
-Image load_map(const fs::path& path) {
-  const NpyArray a = load_npy(path);
-  if (a.shape.size() != 3) throw Error(path.string(), "expected an [H][W][C] array");
-  Image im(int(a.shape[1]), int(a.shape[0]), int(a.shape[2]));
-  std::vector<float> px(a.data.begin(), a.data.end());
-  im.pixels.upload(px.data(), px.size());
-  return im;
-}
-
-void save_preview(const fs::path& path, const Image& im, const std::string& map) {
-  if (im.pixels.size() == 0) return;
-  const std::vector<float> px = im.pixels.to_host();
-  const int w = im.width, h = im.height;
-  const std::size_t hw = std::size_t(w) * h;
-  if (map == "depth") {
-    std::vector<float> alpha(hw);
-    for (std::size_t p = 0; p < hw; ++p) alpha[p] = px[p] > 0 ? 1.0f : 0.0f;
-    save_png(path, depth_to_turbo(px.data(), alpha.data(), w, h, false));
-  } else if (map == "normal") {
-    std::vector<float> planar(3 * hw), alpha(hw);
-    for (std::size_t p = 0; p < hw; ++p) {
-      for (int c = 0; c < 3; ++c) planar[c * hw + p] = px[p * 3 + c];
-      alpha[p] = (px[p * 3] != 0 || px[p * 3 + 1] != 0 || px[p * 3 + 2] != 0) ? 1.0f : 0.0f;
-    }
-    save_png(path, normals_to_rgb(planar.data(), alpha.data(), w, h));
-  } else {
-    save_png(path, im);
-  }
 }
 
 Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold) {
@@ -506,10 +468,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         const std::string stem = reference ? name : name + "_fill";
         MapSet& m = inpainted[k];
         if (cached) {
-          for (const MapSlot& slot : map_slots()) {
-            const fs::path p = dir / (stem + "_" + slot.name + ".npy");
-            if (fs::exists(p)) m.*slot.member = load_map(p);
-          }
+          m = load_inpainted_maps(dir, stem);
           done += maps_per_view;
           s.tell(done, total, name + " (cached)");
           continue;
@@ -546,12 +505,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
             m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
           }
         }
-        for (const MapSlot& slot : map_slots()) {
-          const Image& im = m.*slot.member;
-          if (im.pixels.size() == 0) continue;
-          save_map(dir, stem + "_" + slot.name, im);
-          if (reference) save_preview(dir / (stem + "_" + slot.name + ".png"), im, slot.name);
-        }
+        save_inpainted_maps(dir, stem, m, /*previews=*/reference);
       }
     } catch (const Stopped&) {
       return report.cancelled = true, report;
