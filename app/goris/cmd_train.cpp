@@ -152,7 +152,9 @@ void run_train(const Options& o) {
                                       " iterations; pass a larger --iters to train further");
 
   // The shared set-up (render/train/training_setup.h, also the editor's): data, auto mode, images, state,
-  // renderer, trainer.
+  // renderer, trainer. The line before it says the command has started (a large data set loads for a while).
+  std::printf("loading %s\n", data.string().c_str());
+  std::fflush(stdout);
   PreparedTraining prep = prepare_training(run_dir, config, std::move(resumed), [](size_t i, size_t n) {
     if (isatty(STDERR_FILENO)) std::fprintf(stderr, "\rloading images %zu/%zu", i + 1, n);
   });

@@ -62,31 +62,30 @@ endif()
 expect_text("${err}" "full_XXX.png")
 
 # Ctrl-C: finish the iteration, checkpoint, exit 130 (interrupted) with the resume command. timeout(1) delivers its SIGINT
-# twice (to the child, then to the process group): that must still count as one Ctrl-C.
-function(train_interrupted seconds dir)
-  execute_process(COMMAND timeout --preserve-status -s INT ${seconds} "${GORIS}" train "${DATA}" --out "${dir}"
-                          --iters 100000 ${common}
+# twice (to the child, then to the process group): that must still count as one Ctrl-C. WHEN is "after N s"
+# for the log; the command line before DATA decides how the signal is sent.
+function(train_interrupted when dir)
+  execute_process(COMMAND ${ARGN} "${GORIS}" train "${DATA}" --out "${dir}" --iters 100000 ${common}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 130)
-    message(FATAL_ERROR "training interrupted after ${seconds} s exited with ${rc}, expected 130\n${out}\n${err}")
+    message(FATAL_ERROR "training interrupted ${when} exited with ${rc}, expected 130\n${out}\n${err}")
   endif()
   if(NOT out MATCHES "interrupted \\(SIGINT\\) at iteration ([0-9]+)/")
-    message(FATAL_ERROR "training interrupted after ${seconds} s did not say where it stopped:\n${out}")
+    message(FATAL_ERROR "training interrupted ${when} did not say where it stopped:\n${out}\n${err}")
   endif()
   expect_text("${out}" "resume with: goris train")
   set(STOPPED_AT "${CMAKE_MATCH_1}" PARENT_SCOPE)
 endfunction()
 
-train_interrupted(8 "${WORK}/run_int")
+train_interrupted("after 8 s" "${WORK}/run_int" timeout --preserve-status -s INT 8)
 file(GLOB ckpts "${WORK}/run_int/checkpoints/*.ckpt")
 if(NOT ckpts)
   message(FATAL_ERROR "no checkpoint after Ctrl-C")
 endif()
 
-# Ctrl-C while the data set still loads: the run stops at its first step with a checkpoint and resumes
-# (before, it died between writing config.json and its first checkpoint and could not be resumed). On a
-# machine fast enough to be training already at 0.3 s, this is the plain Ctrl-C case again.
-train_interrupted(0.3 "${WORK}/run_int_early")
+# Ctrl-C while the data set still loads (sent when train says "loading"): the run stops at its first step
+# with a checkpoint and resumes.
+train_interrupted("while loading" "${WORK}/run_int_early" "${CMAKE_CURRENT_LIST_DIR}/../support/signal_after_line.sh" INT "^loading ")
 math(EXPR more "${STOPPED_AT} + 10")
 goris_ok(train "${DATA}" --out "${WORK}/run_int_early" --resume --iters ${more})
 expect_text("${OUT}" "done: ${more} iterations")

@@ -8,9 +8,10 @@ file(MAKE_DIRECTORY "${WORK}")
 set(DATA "${RESOURCES}/default_scene")
 set(TINY --mode radiance --resolution 32 --device cpu --init-points 1000)
 
-# Runs goris under timeout(1), which sends `sig` after `seconds`; sets RC, OUT and ERR.
-function(goris_signalled sig seconds)
-  execute_process(COMMAND timeout --preserve-status -s ${sig} ${seconds} "${GORIS}" ${ARGN}
+# Runs goris and sends it `sig` once it has printed a line matching `pattern`; sets RC, OUT and ERR.
+function(goris_signalled sig pattern)
+  execute_process(COMMAND "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/../support/signal_after_line.sh" ${sig} "${pattern}"
+                          "${GORIS}" ${ARGN}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   set(RC "${rc}" PARENT_SCOPE)
   set(OUT "${out}" PARENT_SCOPE)
@@ -21,7 +22,7 @@ foreach(case "TERM;143" "HUP;129" "INT;130")
   list(GET case 0 sig)
   list(GET case 1 code)
   set(RUN "${WORK}/run_${sig}")
-  goris_signalled(${sig} 2 train "${DATA}" --out "${RUN}" ${TINY} --iters 1000000)
+  goris_signalled(${sig} "^\\[ *[0-9]+/" train "${DATA}" --out "${RUN}" ${TINY} --iters 1000000)
   if(NOT RC EQUAL ${code})
     message(FATAL_ERROR "SIG${sig}: goris train exited with ${RC}, expected ${code}\n${OUT}\n${ERR}")
   endif()
@@ -60,7 +61,7 @@ endif()
 
 # goris remove, stopped in its fine-tune (or earlier), exits 143.
 goris_ok(select "${RUN}" --masks --device cpu)
-goris_signalled(TERM 6 remove "${RUN}" --iters 1000000 --device cpu)
+goris_signalled(TERM "fine-tune" remove "${RUN}" --iters 1000000 --device cpu)
 if(NOT RC EQUAL 143)
   message(FATAL_ERROR "SIGTERM: goris remove exited with ${RC}, expected 143\n${OUT}\n${ERR}")
 endif()
