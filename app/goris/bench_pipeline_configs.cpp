@@ -1,0 +1,74 @@
+#include "app/goris/bench_pipeline.h"
+
+#include "core/train/train_config.h"
+#include "core/util/fnv1a.h"
+
+namespace goris::bench::pipeline {
+
+const std::vector<ConfigSpec>& ladder() {
+  static const std::vector<ConfigSpec> specs = {
+      {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask,twins", false,
+       "radiance stage 1; RGB-only inpainting, no lighting-aware mask, no mirror twin, the hole supervised by the "
+       "reference views alone (3DGIC's rule)",
+       {"--view-fill", "0"}},
+      {"default", "default", {}, "", false, "`goris train` and `goris remove` with no options: what a user gets"},
+      {"default-noplanar", "default", {}, "twins,reflection", false,
+       "default without what the glossy plane gives a radiance run (no planar reflection mask, no surface-only "
+       "fill): the removal as it was before them"},
+      {"default-nofill", "default", {}, "", false,
+       "default without every other view's own fill of its hole (--view-fill 0): the reference views alone "
+       "supervise it", {"--view-fill", "0"}},
+      {"default-unsup05", "default", {}, "", false,
+       "default that also deletes the Gaussians only the target's pixels showed (--unsupported 0.05)",
+       {"--unsupported", "0.05"}},
+      {"default-unsup20", "default", {}, "", false,
+       "default that also deletes the Gaussians only the target's pixels showed (--unsupported 0.2)",
+       {"--unsupported", "0.2"}},
+      {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
+       "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
+      {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
+       "intrinsic stage 1 with the screen-space filter"},
+      {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks (reflections and the target's shadow) and the target's mirror twin"},
+      {"planar", "intrinsic_planar", {"--mode", "intrinsic", "--preset", "planar-glossy"}, "", false,
+       "full with `--preset planar-glossy` (the table opaque and held to its plane, exact normals)"},
+      {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
+       "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
+      // Modelling no more than a scene needs: each choice against full (and auto against baseline).
+      {"auto", "auto", {"--mode", "auto"}, "", false,
+       "full where the glossy masks mark >= 0.5 % of the pixels, else radiance, RGB inpainting and the target's shadow "
+       "(--mode auto)"},
+      {"auto-detect", "auto_detect", {"--mode", "auto", "--set", "use_glossy_masks=false"}, "", false,
+       "--mode auto with the glossy masks hidden: glossy regions detected from the photos once the geometry has settled"},
+      {"sh1", "intrinsic_sh1", {"--mode", "intrinsic", "--set", "max_sh_degree=1"}, "", false,
+       "full with SH degree 1 (the glossy term carries the view dependence)"},
+      {"coarse", "intrinsic_coarse", {"--mode", "intrinsic", "--set", "intrinsic_coarse_tracing=true"}, "", false,
+       "full with coarse tracing (one reflection ray per block where the glossy filter blurs)"},
+  };
+  return specs;
+}
+
+std::string config_names() {
+  std::string names;
+  for (const auto& c : ladder()) names += (names.empty() ? "" : ", ") + std::string(c.name);
+  return names;
+}
+
+size_t config_index(const std::string& name) {
+  for (size_t i = 0; i < ladder().size(); ++i)
+    if (ladder()[i].name == name) return i;
+  return 0;
+}
+
+// What `goris train` does with no options: its default configuration. A result of `default` is reused only
+// when the defaults it was trained with are today's (other code changes are the --out folder's business,
+// as for every configuration).
+std::string defaults_fingerprint() {
+  nlohmann::json j;
+  to_json(j, goris::TrainConfig{});
+  j.erase("data");
+  j.erase("data_views");  // a record of the data set, not a training setting
+  return std::to_string(goris::fnv1a(j.dump()));
+}
+
+
+}  // namespace goris::bench::pipeline
