@@ -97,7 +97,7 @@ class StudioApp final : public ScriptHost {
   // What the last render request asked for, to request again only on a change.
   const ModelSnapshot* requested_model_ = nullptr;
   std::uint64_t requested_model_version_ = 0;
-  std::shared_ptr<const SelectionMask> requested_selection_;
+  std::shared_ptr<const SelectionMask> requested_selection_, requested_hidden_;
   std::optional<Camera> requested_camera_;
   std::uint64_t requested_id_ = 0;
   std::chrono::steady_clock::time_point last_request_time_{};
