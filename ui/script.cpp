@@ -68,7 +68,8 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::Unhide, "unhide"},
                                {Kind::Unlock, "unlock"},
                                {Kind::UseAsTargetMasks, "use_as_target_masks"},
-                               {Kind::ExpectSelected, "expect_selected"}};
+                               {Kind::ExpectSelected, "expect_selected"},
+                               {Kind::Drag, "drag"}};
 
 std::string trim(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t\r");
@@ -401,6 +402,13 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
       break;
     case Kind::UseAsTargetMasks:
       if (!trim(rest).empty()) a.path = p.path(rest);
+      break;
+    case Kind::Drag:
+      if (!args.empty() && (args.back() == "shift" || args.back() == "ctrl" || args.back() == "alt")) {
+        a.modifier = args.back();
+        args.pop_back();
+      }
+      parse_coords(p, args, 0, 2, "drag X Y X Y ... [shift|ctrl|alt]", a);
       break;
     case Kind::ExpectSelected:
       p.expect_args(args, 1, 2, "expect_selected MIN [MAX]");

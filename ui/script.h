@@ -33,6 +33,9 @@
 //   use_as_target_masks [DIR]  write every training view's object mask of the selection to DIR (default
 //                              RUN/target_masks) and select by their votes: the removal's target
 //   expect_selected MIN [MAX]  fails unless MIN..MAX Gaussians are selected (MAX default: MIN)
+//   drag X Y X Y ... [shift|ctrl|alt]   the mouse: press the left button at the first point of the main
+//                              viewport's image, move through the others, release (holding the key); waits
+//                              for the selection edit it makes
 //   undo | redo                undo / redo the last selection edit
 //   save_selection             write RUN/selection.json (+ .npy) for `goris remove`
 //   remove [ITERS]             run stage 2 on the run (ITERS fine-tune iterations; default: the panel's);
@@ -83,7 +86,7 @@ struct ScriptAction {
     SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, ExportDialog, ExportFrom,
     Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, CompareWith, BeforeAfter, Screenshot, ScreenshotNow,
     WaitFrames, Quit, SelectRect, SelectPolygon, SelectBrush, SelectThrough, SelectSphere, SelectBox, SelectColour,
-    SelectTool, Invert, GrowStep, ShrinkStep, Hide, Lock, Unhide, Unlock, UseAsTargetMasks, ExpectSelected
+    SelectTool, Invert, GrowStep, ShrinkStep, Hide, Lock, Unhide, Unlock, UseAsTargetMasks, ExpectSelected, Drag
   };
   // A coordinate on the main viewport's image: pixels, or a fraction of its width / height ("45%").
   struct Coord {
@@ -110,6 +113,7 @@ struct ScriptAction {
   float x = 0, y = 0;       // click, select_click (pixels, or fractions of the image when *_fraction)
   bool x_fraction = false, y_fraction = false;
   std::string select_mode = "replace";  // select_click, select_rect, ...: replace | add | remove
+  std::string modifier;                 // drag: "", shift, ctrl or alt
   std::vector<Coord> coords;            // select_rect, select_polygon, select_brush: x, y, x, y, ...
   Coord radius;                         // select_brush (a fraction: of the image's width)
   std::vector<float> values;            // select_sphere, select_box, select_colour

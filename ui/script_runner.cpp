@@ -169,7 +169,11 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
     case Kind::SelectTool:
       if (phase_ == 0) {
         st.tools.tool = *select_tool_from_id(a.what);
-        if (st.tools.volume_tool()) st.place_volumes_if_needed();
+        if (st.tools.volume_tool()) {
+          st.place_volumes_if_needed();
+          std::printf("the %s\n", describe(st.tools.volume()).c_str());
+          std::fflush(stdout);
+        }
         phase_ = 1;
       }
       return host.settled();
@@ -212,6 +216,8 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       return run_selection_edit(host, a, true, [&] { return st.unlock_all(); });
     case Kind::UseAsTargetMasks:
       return run_selection_edit(host, a, true, [&] { return st.use_as_target_masks(a.path); });
+    case Kind::Drag:
+      return run_drag(host, a);
     case Kind::ExpectSelected: {
       if (!host.settled()) return false;
       const SelectionView v = st.selection().view();
@@ -368,6 +374,56 @@ bool ScriptRunner::run_selection_edit(ScriptHost& host, const ScriptAction& a, b
     phase_ = 2;
   }
   return host.settled();
+}
+
+bool ScriptRunner::run_drag(ScriptHost& host, const ScriptAction& a) {
+  if (phase_ == 0) {
+    if (!host.settled()) return false;
+    const glm::vec2 size = host.main_image_size(), origin = host.main_image_origin();
+    if (!(size.x > 0 && size.y > 0)) throw Error("the main viewport shows no image");
+    std::vector<glm::vec2> pts;
+    for (size_t k = 0; k + 1 < a.coords.size(); k += 2)
+      pts.push_back(origin + glm::vec2(a.coords[k].fraction ? a.coords[k].value * size.x : a.coords[k].value,
+                                       a.coords[k + 1].fraction ? a.coords[k + 1].value * size.y : a.coords[k + 1].value));
+    ScriptedMouse m;
+    m.shift = a.modifier == "shift";
+    m.ctrl = a.modifier == "ctrl";
+    m.alt = a.modifier == "alt";
+    // Hover, press, move in small steps through every point, release, then the real pointer again.
+    drag_.clear();
+    m.pos = pts[0];
+    drag_.push_back(m);
+    m.left_down = true;
+    drag_.push_back(m);
+    constexpr int kSteps = 4;
+    for (size_t k = 1; k < pts.size(); ++k)
+      for (int i = 1; i <= kSteps; ++i) {
+        m.pos = pts[k - 1] + (pts[k] - pts[k - 1]) * (float(i) / float(kSteps));
+        drag_.push_back(m);
+      }
+    m.left_down = false;
+    drag_.push_back(m);
+    drag_.push_back(m);
+    phase_ = 1;
+  }
+  if (phase_ == 1) {
+    if (!drag_.empty()) {
+      host.set_scripted_mouse(drag_.front());
+      drag_.erase(drag_.begin());
+      return false;
+    }
+    host.set_scripted_mouse(std::nullopt);
+    frames_left_ = 2;  // the release's edit is queued while that frame draws
+    phase_ = 2;
+  }
+  if (frames_left_-- > 0) return false;
+  if (!host.settled()) return false;
+  AppState& st = host.state();
+  if (st.tools.volume_tool()) {  // where the handles left the volume
+    std::printf("the %s\n", describe(st.tools.volume()).c_str());
+    std::fflush(stdout);
+  }
+  return true;
 }
 
 bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a, bool start) {

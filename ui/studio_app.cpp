@@ -163,7 +163,7 @@ void StudioApp::frame() {
   }
   training_seen_ = training;
 
-  window_->begin_frame();
+  window_->begin_frame(scripted_mouse_);
   const std::uint64_t scene_before = state_->scene_version();
   state_->poll();
   if (state_->scene_version() != scene_before) {

@@ -2,7 +2,9 @@
 # view that shows the target best: rectangle (through the depth and through everything), lasso, brush,
 # sphere, box, colour range, invert, grow / shrink steps, hide, lock and "Use as target masks". Each tool's
 # tint must land inside the region it was given and nowhere else, and each undo must bring back the view
-# and the count of before. Screenshots stay in WORK as artefacts.
+# and the count of before. Then the same tools with the mouse (`drag`): a rectangle and a lasso drawn on
+# the view select what their script lines selected, a brush stroke selects, Alt+drag orbits instead, and
+# the sphere's centre handle follows the mouse. Screenshots stay in WORK as artefacts.
 include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 if(GUI_SKIP)
   return()
@@ -87,6 +89,19 @@ select_colour 0.5 0.37 0.2 0.15
 select_box ${BOX}
 use_as_target_masks ${WORK}/target_masks
 save_selection
+select_tool rect
+drag ${X0} ${Y0} ${X1} ${Y1}
+select_tool lasso
+drag ${XM}% ${Y0} ${X1} ${YM}% ${XM}% ${Y1} ${X0} ${YM}%
+select_tool brush
+drag ${X0} ${YM}% ${X1} ${YM}% shift
+select_sphere 0 0 0.15 0.3
+select_tool sphere
+drag 50% 50% 60% 50%
+select_tool rect
+drag 10% 10% 30% 10% alt
+expect_selected 1 100000000
+screenshot ${WORK}/orbited.png
 quit
 ")
 studio_run_ok("${script}" R)
@@ -147,6 +162,31 @@ file(READ "${WORK}/run/selection.json" sel)
 string(JSON method GET "${sel}" method)
 if(NOT method STREQUAL "masks")
   message(FATAL_ERROR "the removal's target should come from the target masks:\n${sel}")
+endif()
+
+# The mouse: the rectangle and the lasso drawn select as their script lines did; the brush stroke adds.
+count("polygon .*replace" polygon)
+string(REGEX MATCHALL "rect [^\n]*visible, replace: [0-9]+" rects "${R_OUT}")
+string(REGEX MATCHALL "polygon [^\n]*visible, replace: [0-9]+" polygons "${R_OUT}")
+list(GET rects -1 dragged_rect)
+list(GET polygons -1 dragged_polygon)
+if(NOT dragged_rect MATCHES ": ${rect_visible}$" OR NOT dragged_polygon MATCHES ": ${polygon}$")
+  message(FATAL_ERROR "the dragged shapes should select as the script lines did (${rect_visible}, ${polygon}):\n"
+                      "${dragged_rect}\n${dragged_polygon}")
+endif()
+expect_text("${R_OUT}" "visible, add: ")  # the shift-drag brush stroke
+# The sphere's centre handle (placed at the training cameras' look-at point, the middle of the view) moved
+# with the mouse.
+string(REGEX MATCHALL "the sphere at \\([^)]*\\)" spheres "${R_OUT}")
+list(GET spheres -1 sphere_dragged)
+if(NOT spheres MATCHES "the sphere at \\(0, 0, 0.15\\)" OR sphere_dragged MATCHES "\\(0, 0, 0.15\\)")
+  message(FATAL_ERROR "dragging the sphere's centre handle did not move it: ${spheres}")
+endif()
+# Alt+drag orbits: the view left the snapped camera (so the main image changed), and selected nothing new.
+execute_process(COMMAND "${SELECTION_CHECK}" same "${WORK}/before.png" "${WORK}/orbited.png" RESULT_VARIABLE rc
+                OUTPUT_QUIET ERROR_QUIET)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "alt+drag did not orbit the view")
 endif()
 
 # check(<mode> <args...>): gui_selection_check, its report printed; fails the test when it fails.

@@ -222,9 +222,13 @@ TEST(StudioSelectionTools, ScriptLinesParse) {
       "select_colour 0.5 0.4 0.3 0.1\n"
       "select_tool lasso\n"
       "invert\ngrow_step\nshrink_step 3\nhide\nlock\nunhide\nunlock\n"
-      "use_as_target_masks /tmp/masks dir\nuse_as_target_masks\nexpect_selected 3 7\n",
+      "use_as_target_masks /tmp/masks dir\nuse_as_target_masks\nexpect_selected 3 7\n"
+      "drag 10% 10% 20 30 alt\n",
       "t.txt");
-  ASSERT_EQ(a.size(), 18u);
+  ASSERT_EQ(a.size(), 19u);
+  EXPECT_EQ(a[18].kind, Kind::Drag);
+  EXPECT_EQ(a[18].modifier, "alt");
+  EXPECT_EQ(a[18].coords.size(), 4u);
   EXPECT_EQ(a[0].kind, Kind::SelectRect);
   ASSERT_EQ(a[0].coords.size(), 4u);
   EXPECT_TRUE(a[0].coords[0].fraction);
@@ -250,6 +254,7 @@ TEST(StudioSelectionTools, ScriptLinesParse) {
   EXPECT_EQ(a[17].count_max, 7);
   for (const char* bad : {"select_rect 1 2 3\n", "select_polygon 1 2 3 4\n", "select_brush 0 1 2\n",
                           "select_sphere 0 0 0 -1\n", "select_box 0 0 0 1 1\n", "select_through some\n",
-                          "select_tool wand\n", "invert now\n", "expect_selected 5 2\n", "grow_step 0\n"})
+                          "select_tool wand\n", "invert now\n", "expect_selected 5 2\n", "grow_step 0\n",
+                          "drag 1 2\n", "drag 1 2 3 4 super\n"})
     EXPECT_THROW(parse_script(bad, "t.txt"), Error) << bad;
 }
