@@ -148,7 +148,7 @@ void SelectionSession::push_state(const Job& job, std::vector<SelectionPart> par
 std::uint64_t SelectionSession::click(const Camera& camera, float u, float v, SelectMode mode) {
   return submit([this, camera, u, v, mode](const Job& job) {
     Context& c = prepared(job.model);
-    const goris::PickResult p = c.picker->pick(camera, u, v);
+    const goris::PickResult p = c.shown_picker(current_state().guard.hidden).pick(camera, u, v);
     if (!p.hit) {
       char b[160];
       std::snprintf(b, sizeof b,

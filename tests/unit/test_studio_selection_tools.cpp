@@ -165,6 +165,11 @@ TEST(StudioSelectionTools, VolumesColourInvertStepsHideLockAndUndo) {
   run(t.s, t.s.invert());
   EXPECT_EQ(in_blob(t.mask(), 0), 0u);
   EXPECT_EQ(in_blob(t.mask(), 1), std::size_t(kPerBlob));
+  // A click where blob 0 was finds nothing: the picker looks through hidden Gaussians.
+  const std::uint64_t miss = t.s.click(test::studio_front_camera(), 11.5f, 20.5f, SelectMode::Replace);
+  while (!t.s.finished(miss)) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(t.s.job_error(miss).has_value());
+  EXPECT_NE(t.s.job_error(miss)->find("nothing there"), std::string::npos) << *t.s.job_error(miss);
   run(t.s, t.s.undo());
   run(t.s, t.s.undo());
   EXPECT_EQ(t.s.view().hidden_count, 0u);

@@ -29,6 +29,15 @@ const GaussianModel& SelectionSession::Context::shown_model(const std::shared_pt
   return *shown_;
 }
 
+const GaussianPicker& SelectionSession::Context::shown_picker(const std::shared_ptr<const SelectionMask>& hidden) {
+  if (!hidden) return *picker;
+  if (!shown_picker_ || shown_picker_hidden_ != hidden) {
+    shown_picker_ = std::make_unique<GaussianPicker>(shown_model(hidden));
+    shown_picker_hidden_ = hidden;
+  }
+  return *shown_picker_;
+}
+
 void SelectionSession::push_part(const Job& job, SelectionPart part, SelectMode mode, const std::string& done) {
   SelectionState cur = current_state();
   part.mode = mode;
