@@ -204,7 +204,8 @@ class AppState {
   void finish_open();
   void show_model(std::shared_ptr<const ModelSnapshot> m);
   void require_selectable(const char* what) const;
-  // The main frame's camera and the scale from window pixels of its image shown at `display` to its pixels.
+  // An empty region of `kind` on the main frame's camera, through what the toggle says; throws as the
+  // tools do when selecting is blocked or no image is shown.
   ScreenRegion screen_region(ScreenRegion::Kind kind, glm::vec2 display, const char* what) const;
   void find_removal_masks();
 
