@@ -2,10 +2,9 @@
 // The selection of the shown model for the editor (docs/design/architecture.md, The editor): click -> picked
 // Gaussian -> grown selection, shift-click adds, ctrl-click removes, the grow / shrink slider, the learned
 // labels or the data set's object masks instead, the tools' regions, hide / lock (ui/selection/), undo /
-// redo of every edit, and saving RUN/selection.json for
-// `goris remove`. The edits themselves are ui/selection_edit.h; this class runs them on a worker thread (the
-// picker's BVH, the kNN graph and the mask votes take a while on large models) so the GUI never waits: it
-// submits an edit, gets a job id, and polls.
+// redo of every edit, and saving RUN/selection.json for `goris remove`. The edits themselves are
+// ui/selection_edit.h; this class runs them on a worker thread (the picker's BVH, the kNN graph and the mask
+// votes take a while on large models) so the GUI never waits: it submits an edit, gets a job id, and polls.
 //
 // A selection is a mask over one model's Gaussians: binding another model clears it (and its history).
 #include <condition_variable>
