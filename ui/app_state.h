@@ -20,6 +20,7 @@
 #include "ui/orbit_camera.h"
 #include "ui/removal_session.h"
 #include "ui/scene_loader.h"
+#include "ui/selection/selection_tools.h"
 #include "ui/selection_session.h"
 #include "ui/settings_store.h"
 #include "ui/trainer_session.h"
@@ -95,6 +96,29 @@ class AppState {
   std::uint64_t undo_selection();
   std::uint64_t redo_selection();
   std::filesystem::path save_selection();  // RUN/selection.json
+
+  // --- Selection tools (ui/selection/selection_tools.h; defined in ui/selection/tool_actions.cpp) ---
+  SelectionTools tools;
+  // Shapes on the main viewport's image shown at `display` (w, h): points in its window pixels. Only what
+  // the view shows is taken unless tools.through_all. Throw goris::Error without a frame or when selecting
+  // is blocked.
+  std::uint64_t select_rect(glm::vec2 a, glm::vec2 b, glm::vec2 display, SelectMode mode);
+  std::uint64_t select_polygon(const std::vector<glm::vec2>& points, glm::vec2 display, SelectMode mode);
+  std::uint64_t select_brush(const std::vector<glm::vec2>& stroke, float radius, glm::vec2 display, SelectMode mode);
+  std::uint64_t select_volume(const VolumeRegion& volume, SelectMode mode);
+  std::uint64_t select_colour(glm::vec3 rgb, float distance, SelectMode mode);
+  std::uint64_t select_invert();
+  std::uint64_t select_step(int rings);  // > 0 grows, < 0 shrinks by that many graph steps
+  std::uint64_t hide_selected();
+  std::uint64_t lock_selected();
+  std::uint64_t unhide_all();
+  std::uint64_t unlock_all();
+  // Use as target masks: every training view's object mask of the selection into `dir` (empty:
+  // RUN/target_masks), and the selection becomes their votes, which Remove then takes.
+  std::uint64_t use_as_target_masks(std::filesystem::path dir);
+  // Puts the sphere and box at the last picked point (else the surface in the middle of the view) unless
+  // placed already.
+  void place_volumes_if_needed();
 
   // --- Removal (stage 2, ui/removal_session.h) of the current run ---
   RemovalSession& removal() { return removal_; }
@@ -180,6 +204,9 @@ class AppState {
   void finish_open();
   void show_model(std::shared_ptr<const ModelSnapshot> m);
   void require_selectable(const char* what) const;
+  // An empty region of `kind` on the main frame's camera, through what the toggle says; throws as the
+  // tools do when selecting is blocked or no image is shown.
+  ScreenRegion screen_region(ScreenRegion::Kind kind, glm::vec2 display, const char* what) const;
   void find_removal_masks();
 
   StudioSettings& settings_;

@@ -25,15 +25,28 @@ IntrinsicRenderer& DisplayRenderer::intrinsic_for(const ModelSnapshot& m) {
 }
 
 DisplayFrame DisplayRenderer::render(const ModelSnapshot& m, const Camera& camera,
-                                     const std::shared_ptr<const SelectionMask>& selection) {
+                                     const std::shared_ptr<const SelectionMask>& selection,
+                                     const std::shared_ptr<const SelectionMask>& hidden) {
+  GaussianView shown = m.view();
+  if (hidden) {
+    if (hidden->size() != m.count())
+      throw Error("display", "the hidden mask has " + std::to_string(hidden->size()) + " entries for " +
+                                 std::to_string(m.count()) + " Gaussians");
+    if (hidden != hidden_ || &m != hidden_model_ || hidden_logits_.device() != m.device()) {
+      hidden_logits_ = m.opacity_logits_hiding(*hidden);
+      hidden_ = hidden;
+      hidden_model_ = &m;
+    }
+    shown.opacity_logits = hidden_logits_.data();
+  }
   DisplayFrame frame;
   if (m.intrinsic()) {
     IntrinsicRenderer& ir = intrinsic_for(m);
-    const IntrinsicMaps maps = ir.render_maps(m.view(), camera);
+    const IntrinsicMaps maps = ir.render_maps(shown, camera);
     frame = make_display_frame(ir.last().gbuffer, camera);
     add_intrinsic_maps(frame, maps);
   } else {
-    const RasterOutput out = rasterize(m.view(), camera, m.settings(), m.device());
+    const RasterOutput out = rasterize(shown, camera, m.settings(), m.device());
     frame = make_display_frame(out.gbuffer, camera);
   }
   if (selection) {
@@ -47,7 +60,7 @@ DisplayFrame DisplayRenderer::render(const ModelSnapshot& m, const Camera& camer
       selection_ = selection;
     }
     // The selection as the only extra channel: the rasterizer blends it into its per-pixel coverage.
-    GaussianView v = m.view();
+    GaussianView v = shown;
     v.extras = selection_values_.data();
     v.n_extras = 1;
     const RasterOutput sel = rasterize(v, camera, m.settings(), m.device());

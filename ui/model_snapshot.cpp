@@ -49,6 +49,13 @@ GaussianView ModelSnapshot::view() const {
   return v;
 }
 
+Buffer<float> ModelSnapshot::opacity_logits_hiding(const std::vector<std::uint8_t>& hidden) const {
+  std::vector<float> v = opacity_logits_.to_host();
+  for (size_t i = 0; i < v.size() && i < hidden.size(); ++i)
+    if (hidden[i]) v[i] = -30.0f;
+  return Buffer<float>(v, device_);
+}
+
 GaussianModel ModelSnapshot::to_model() const {
   GaussianModel m(device_);
   m.allocate(count_);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/compute/buffer.h"
 #include "core/scene/gaussians.h"
@@ -45,6 +46,10 @@ class ModelSnapshot {
   bool intrinsic() const { return shading_ && renderer_state_; }
   const std::shared_ptr<const ShadingSource>& shading() const { return shading_; }
   const std::shared_ptr<const std::string>& renderer_state() const { return renderer_state_; }
+
+  // The opacity logits with those of the `hidden` Gaussians (1 = hidden) set so low that nothing of them
+  // is drawn, on device(): for view() with hidden Gaussians left out.
+  Buffer<float> opacity_logits_hiding(const std::vector<std::uint8_t>& hidden) const;
 
   // A GaussianModel with these values (extras as logits; gradients and moments zero) on device(), for the
   // library functions that take a model (selection, picking, fingerprints).

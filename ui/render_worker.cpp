@@ -60,7 +60,7 @@ void RenderWorker::loop() {
     std::string error;
     try {
       const auto t0 = std::chrono::steady_clock::now();
-      frame = std::make_shared<DisplayFrame>(renderer.render(*r.model, r.camera, r.selection));
+      frame = std::make_shared<DisplayFrame>(renderer.render(*r.model, r.camera, r.selection, r.hidden));
       frame->id = id;
       frame->model_iteration = r.model->iteration();
       frame->gaussians = r.model->count();

@@ -22,6 +22,7 @@ struct RenderRequest {
   std::shared_ptr<const ModelSnapshot> model;  // rendered with its own settings
   Camera camera;
   std::shared_ptr<const SelectionMask> selection;  // null = nothing selected
+  std::shared_ptr<const SelectionMask> hidden;     // not drawn; null = none
 };
 
 class RenderWorker {

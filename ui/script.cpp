@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/util/error.h"
+#include "ui/selection/selection_tools.h"
 
 namespace goris::ui {
 
@@ -50,7 +51,25 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::Screenshot, "screenshot"},
                                {Kind::ScreenshotNow, "screenshot_now"},
                                {Kind::WaitFrames, "wait_frames"},
-                               {Kind::Quit, "quit"}};
+                               {Kind::Quit, "quit"},
+                               {Kind::SelectRect, "select_rect"},
+                               {Kind::SelectPolygon, "select_polygon"},
+                               {Kind::SelectBrush, "select_brush"},
+                               {Kind::SelectThrough, "select_through"},
+                               {Kind::SelectSphere, "select_sphere"},
+                               {Kind::SelectBox, "select_box"},
+                               {Kind::SelectColour, "select_colour"},
+                               {Kind::SelectTool, "select_tool"},
+                               {Kind::Invert, "invert"},
+                               {Kind::GrowStep, "grow_step"},
+                               {Kind::ShrinkStep, "shrink_step"},
+                               {Kind::Hide, "hide"},
+                               {Kind::Lock, "lock"},
+                               {Kind::Unhide, "unhide"},
+                               {Kind::Unlock, "unlock"},
+                               {Kind::UseAsTargetMasks, "use_as_target_masks"},
+                               {Kind::ExpectSelected, "expect_selected"},
+                               {Kind::Drag, "drag"}};
 
 std::string trim(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t\r");
@@ -136,12 +155,40 @@ class LineParser {
   std::string where_, name_;
 };
 
+// A trailing "add" or "remove" sets the selection mode and is taken off `args`.
+void take_select_mode(std::vector<std::string>& args, ScriptAction& a) {
+  if (!args.empty() && (args.back() == "add" || args.back() == "remove")) {
+    a.select_mode = args.back();
+    args.pop_back();
+  }
+}
+
+// Coordinates "x y x y ..." (pixels or percent), at least `min_points` pairs.
+void parse_coords(const LineParser& p, const std::vector<std::string>& args, size_t first, size_t min_points,
+                  const char* usage, ScriptAction& a) {
+  if (args.size() < first + 2 * min_points || (args.size() - first) % 2 != 0) p.fail(std::string("expected '") + usage + "'");
+  for (size_t k = first; k < args.size(); ++k) {
+    ScriptAction::Coord c;
+    c.value = p.coordinate(args[k], k % 2 == first % 2 ? "X" : "Y", c.fraction);
+    a.coords.push_back(c);
+  }
+}
+
+// Exactly one of `counts` numbers.
+void parse_values(const LineParser& p, const std::vector<std::string>& args, std::vector<size_t> counts,
+                  const char* usage, ScriptAction& a) {
+  bool ok = false;
+  for (size_t c : counts) ok |= args.size() == c;
+  if (!ok) p.fail(std::string("expected '") + usage + "'");
+  for (const std::string& s : args) a.values.push_back(p.number(s, "value"));
+}
+
 ScriptAction parse_line(const std::string& line, const std::string& where) {
   const std::string text = trim(line);
   const size_t sp = text.find_first_of(" \t");
   const std::string name = text.substr(0, sp);
   const std::string rest = sp == std::string::npos ? "" : text.substr(sp + 1);
-  const std::vector<std::string> args = split_words(rest);
+  std::vector<std::string> args = split_words(rest);
   LineParser p(where, name);
 
   ScriptAction a;
@@ -300,7 +347,73 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
       if (a.what != "before" && a.what != "after") p.fail("expected before or after, not '" + a.what + "'");
       break;
     case Kind::Quit:
-      p.expect_args(args, 0, 0, "quit");
+    case Kind::Invert:
+    case Kind::Hide:
+    case Kind::Lock:
+    case Kind::Unhide:
+    case Kind::Unlock:
+      p.expect_args(args, 0, 0, action_name(a.kind));
+      break;
+    case Kind::SelectRect:
+      take_select_mode(args, a);
+      p.expect_args(args, 4, 4, "select_rect X0 Y0 X1 Y1 [add|remove]");
+      parse_coords(p, args, 0, 2, "select_rect X0 Y0 X1 Y1 [add|remove]", a);
+      break;
+    case Kind::SelectPolygon:
+      take_select_mode(args, a);
+      parse_coords(p, args, 0, 3, "select_polygon X Y X Y X Y ... [add|remove]", a);
+      break;
+    case Kind::SelectBrush:
+      take_select_mode(args, a);
+      if (args.empty()) p.fail("expected 'select_brush R X Y [X Y ...] [add|remove]'");
+      a.radius.value = p.coordinate(args[0], "R", a.radius.fraction);
+      if (!(a.radius.value > 0)) p.fail("the radius must be positive");
+      parse_coords(p, args, 1, 1, "select_brush R X Y [X Y ...] [add|remove]", a);
+      break;
+    case Kind::SelectThrough:
+      p.expect_args(args, 1, 1, "select_through visible|all");
+      a.what = args[0];
+      if (a.what != "visible" && a.what != "all") p.fail("expected visible or all, not '" + a.what + "'");
+      break;
+    case Kind::SelectSphere:
+      take_select_mode(args, a);
+      parse_values(p, args, {4}, "select_sphere CX CY CZ R [add|remove]", a);
+      if (a.values[3] < 0) p.fail("the radius must not be negative");
+      break;
+    case Kind::SelectBox:
+      take_select_mode(args, a);
+      parse_values(p, args, {6, 9}, "select_box CX CY CZ HX HY HZ [RX RY RZ] [add|remove]", a);
+      if (a.values[3] < 0 || a.values[4] < 0 || a.values[5] < 0) p.fail("half extents must not be negative");
+      break;
+    case Kind::SelectColour:
+      take_select_mode(args, a);
+      parse_values(p, args, {4}, "select_colour R G B D [add|remove]", a);
+      if (a.values[3] < 0) p.fail("the distance must not be negative");
+      break;
+    case Kind::SelectTool:
+      p.expect_args(args, 1, 1, "select_tool click|rect|lasso|brush|sphere|box");
+      if (!select_tool_from_id(args[0])) p.fail("unknown tool '" + args[0] + "' (click, rect, lasso, brush, sphere, box)");
+      a.what = args[0];
+      break;
+    case Kind::GrowStep:
+    case Kind::ShrinkStep:
+      p.expect_args(args, 0, 1, a.kind == Kind::GrowStep ? "grow_step [N]" : "shrink_step [N]");
+      a.count = args.empty() ? 1 : p.integer(args[0], 1, 100, "step count");
+      break;
+    case Kind::UseAsTargetMasks:
+      if (!trim(rest).empty()) a.path = p.path(rest);
+      break;
+    case Kind::Drag:
+      if (!args.empty() && (args.back() == "shift" || args.back() == "ctrl" || args.back() == "alt")) {
+        a.modifier = args.back();
+        args.pop_back();
+      }
+      parse_coords(p, args, 0, 2, "drag X Y X Y ... [shift|ctrl|alt]", a);
+      break;
+    case Kind::ExpectSelected:
+      p.expect_args(args, 1, 2, "expect_selected MIN [MAX]");
+      a.count = p.integer(args[0], 0, 2000000000, "MIN");
+      a.count_max = args.size() == 2 ? p.integer(args[1], a.count, 2000000000, "MAX") : a.count;
       break;
   }
   return a;

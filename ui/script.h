@@ -17,6 +17,25 @@
 //   select_grow G              the grow / shrink slider, G in -1..1 (> 0 grows clicked regions, < 0 erodes)
 //   select_labels              select by the learned object label (> 0.3, closed)
 //   select_masks               select by the data set's training object masks (mask_XXX.png votes, closed)
+//   select_rect X0 Y0 X1 Y1 [add|remove]       the Rect tool: Gaussians whose centre lies in this rectangle
+//                              of the main viewport's image (only what the view shows, unless select_through all)
+//   select_polygon X Y X Y X Y ... [add|remove]   the Lasso tool: the same inside this polygon
+//   select_brush R X Y [X Y ...] [add|remove]     the Brush tool: a stroke through these points, radius R
+//   select_through visible|all the screen tools take what the view shows, or everything behind it too
+//   select_sphere CX CY CZ R [add|remove]         the Sphere tool: centres inside (world units)
+//   select_box CX CY CZ HX HY HZ [RX RY RZ] [add|remove]   the Box tool: centre, half extents, degrees
+//   select_colour R G B D [add|remove]            base colours within D of (R, G, B) (0..1)
+//   select_tool NAME           choose the viewport's tool: click, rect, lasso, brush, sphere, box
+//   invert                     select everything else (hidden and locked Gaussians stay out)
+//   grow_step [N] | shrink_step [N]   N graph steps out / in (default 1)
+//   hide | lock                hide (not drawn, not selectable) / lock (not selectable) the selection
+//   unhide | unlock            show / unlock every Gaussian again
+//   use_as_target_masks [DIR]  write every training view's object mask of the selection to DIR (default
+//                              RUN/target_masks) and select by their votes: the removal's target
+//   expect_selected MIN [MAX]  fails unless MIN..MAX Gaussians are selected (MAX default: MIN)
+//   drag X Y X Y ... [shift|ctrl|alt]   the mouse: press the left button at the first point of the main
+//                              viewport's image, move through the others, release (holding the key); waits
+//                              for the selection edit it makes
 //   undo | redo                undo / redo the last selection edit
 //   save_selection             write RUN/selection.json (+ .npy) for `goris remove`
 //   remove [ITERS]             run stage 2 on the run (ITERS fine-tune iterations; default: the panel's);
@@ -66,25 +85,38 @@ struct ScriptAction {
     Open, Out, Set, Train, Grid, Panels, Channel, Snap, Click, SelectClick, SelectGrow, SelectLabels, SelectMasks, Undo, Redo,
     SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, ExportDialog, ExportFrom,
     Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, CompareWith, BeforeAfter, Screenshot, ScreenshotNow,
-    WaitFrames, Quit
+    WaitFrames, Quit, SelectRect, SelectPolygon, SelectBrush, SelectThrough, SelectSphere, SelectBox, SelectColour,
+    SelectTool, Invert, GrowStep, ShrinkStep, Hide, Lock, Unhide, Unlock, UseAsTargetMasks, ExpectSelected, Drag
+  };
+  // A coordinate on the main viewport's image: pixels, or a fraction of its width / height ("45%").
+  struct Coord {
+    float value = 0;
+    bool fraction = false;
   };
   Kind kind = Kind::Quit;
   int line = 0;            // 1-based line in the script
-  std::string path;        // open, out, screenshot, export
+  std::string path;        // open, out, screenshot, export, use_as_target_masks
   std::string what;        // export: ply | baked | renders ("": the dialog's choices); export_from: run | removal;
+                           // select_through: visible | all; select_tool: its name;
                            // export_dialog: open | close; compare_with: photo | before; before_after: before | after
   std::string render_path = "test";  // export renders
   std::string text;        // expect_export_error
   std::vector<std::string> names;  // panels
   std::string key, value;  // set
-  int count = 0;           // train, grid, wait_frames, remove, export (0 = default)
+  int count = 0;           // train, grid, wait_frames, remove, export (0 = default); grow_step, shrink_step;
+                           // expect_selected MIN
+  int count_max = 0;       // expect_selected MAX
   int viewport = -1;       // channel: -1 = main, else grid tile index
   Channel channel = Channel::Final;
   int camera = 0;           // snap
   bool test_split = false;  // snap ... test
   float x = 0, y = 0;       // click, select_click (pixels, or fractions of the image when *_fraction)
   bool x_fraction = false, y_fraction = false;
-  std::string select_mode = "replace";  // select_click: replace | add | remove
+  std::string select_mode = "replace";  // select_click, select_rect, ...: replace | add | remove
+  std::string modifier;                 // drag: "", shift, ctrl or alt
+  std::vector<Coord> coords;            // select_rect, select_polygon, select_brush: x, y, x, y, ...
+  Coord radius;                         // select_brush (a fraction: of the image's width)
+  std::vector<float> values;            // select_sphere, select_box, select_colour
   float grow = 0;                       // select_grow
   std::string mode;         // compare
   float split = 0.5f;       // compare slider position

@@ -148,6 +148,89 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       return run_selection_edit(host, a, true, [&] { return st.select_labels(); });
     case Kind::SelectMasks:
       return run_selection_edit(host, a, true, [&] { return st.select_masks(); });
+    case Kind::SelectRect:
+    case Kind::SelectPolygon:
+    case Kind::SelectBrush:
+      return run_selection_edit(host, a, true, [&]() -> std::uint64_t {
+        const glm::vec2 size = host.main_image_size();
+        std::vector<glm::vec2> pts;
+        for (size_t k = 0; k + 1 < a.coords.size(); k += 2)
+          pts.push_back({a.coords[k].fraction ? a.coords[k].value * size.x : a.coords[k].value,
+                         a.coords[k + 1].fraction ? a.coords[k + 1].value * size.y : a.coords[k + 1].value});
+        const SelectMode mode = *select_mode_from_id(a.select_mode);
+        if (a.kind == Kind::SelectRect) return st.select_rect(pts[0], pts[1], size, mode);
+        if (a.kind == Kind::SelectPolygon) return st.select_polygon(pts, size, mode);
+        const float radius = a.radius.fraction ? a.radius.value * size.x : a.radius.value;
+        return st.select_brush(pts, radius, size, mode);
+      });
+    case Kind::SelectThrough:
+      st.tools.through_all = a.what == "all";
+      return true;
+    case Kind::SelectTool:
+      if (phase_ == 0) {
+        st.tools.tool = *select_tool_from_id(a.what);
+        if (st.tools.volume_tool()) {
+          st.place_volumes_if_needed();
+          std::printf("the %s\n", describe(st.tools.volume()).c_str());
+          std::fflush(stdout);
+        }
+        phase_ = 1;
+      }
+      return host.settled();
+    case Kind::SelectSphere:
+    case Kind::SelectBox:
+      return run_selection_edit(host, a, true, [&] {
+        VolumeRegion v;
+        v.kind = a.kind == Kind::SelectBox ? VolumeRegion::Kind::Box : VolumeRegion::Kind::Sphere;
+        v.centre = {a.values[0], a.values[1], a.values[2]};
+        if (v.kind == VolumeRegion::Kind::Sphere) {
+          v.radius = a.values[3];
+          st.tools.sphere = v;
+        } else {
+          v.half_extent = {a.values[3], a.values[4], a.values[5]};
+          if (a.values.size() == 9) v.rotation_degrees = {a.values[6], a.values[7], a.values[8]};
+          st.tools.box = v;
+        }
+        st.tools.volumes_placed = true;  // the panel and the gizmo show the volume the script used
+        return st.select_volume(v, *select_mode_from_id(a.select_mode));
+      });
+    case Kind::SelectColour:
+      return run_selection_edit(host, a, true, [&] {
+        st.tools.colour = {a.values[0], a.values[1], a.values[2]};
+        st.tools.colour_distance = a.values[3];
+        return st.select_colour(st.tools.colour, a.values[3], *select_mode_from_id(a.select_mode));
+      });
+    case Kind::Invert:
+      return run_selection_edit(host, a, true, [&] { return st.select_invert(); });
+    case Kind::GrowStep:
+    case Kind::ShrinkStep:
+      return run_selection_edit(host, a, true,
+                                [&] { return st.select_step(a.kind == Kind::GrowStep ? a.count : -a.count); });
+    case Kind::Hide:
+      return run_selection_edit(host, a, true, [&] { return st.hide_selected(); });
+    case Kind::Lock:
+      return run_selection_edit(host, a, true, [&] { return st.lock_selected(); });
+    case Kind::Unhide:
+      return run_selection_edit(host, a, true, [&] { return st.unhide_all(); });
+    case Kind::Unlock:
+      return run_selection_edit(host, a, true, [&] { return st.unlock_all(); });
+    case Kind::UseAsTargetMasks:
+      return run_selection_edit(host, a, true, [&] { return st.use_as_target_masks(a.path); });
+    case Kind::Drag:
+      return run_drag(host, a);
+    case Kind::ExpectSelected: {
+      if (!host.settled()) return false;
+      const SelectionView v = st.selection().view();
+      if (v.selected < size_t(a.count) || v.selected > size_t(a.count_max)) {
+        fail(a, std::to_string(v.selected) + " Gaussians are selected, expected " + std::to_string(a.count) +
+                    (a.count_max != a.count ? ".." + std::to_string(a.count_max) : ""));
+        return false;
+      }
+      std::printf("%zu of %zu Gaussians selected (%zu hidden, %zu locked)\n", v.selected, v.total, v.hidden_count,
+                  v.locked_count);
+      std::fflush(stdout);
+      return true;
+    }
     case Kind::Undo:
       return run_selection_edit(host, a, true, [&] { return st.undo_selection(); });
     case Kind::Redo:
@@ -291,6 +374,56 @@ bool ScriptRunner::run_selection_edit(ScriptHost& host, const ScriptAction& a, b
     phase_ = 2;
   }
   return host.settled();
+}
+
+bool ScriptRunner::run_drag(ScriptHost& host, const ScriptAction& a) {
+  if (phase_ == 0) {
+    if (!host.settled()) return false;
+    const glm::vec2 size = host.main_image_size(), origin = host.main_image_origin();
+    if (!(size.x > 0 && size.y > 0)) throw Error("the main viewport shows no image");
+    std::vector<glm::vec2> pts;
+    for (size_t k = 0; k + 1 < a.coords.size(); k += 2)
+      pts.push_back(origin + glm::vec2(a.coords[k].fraction ? a.coords[k].value * size.x : a.coords[k].value,
+                                       a.coords[k + 1].fraction ? a.coords[k + 1].value * size.y : a.coords[k + 1].value));
+    ScriptedMouse m;
+    m.shift = a.modifier == "shift";
+    m.ctrl = a.modifier == "ctrl";
+    m.alt = a.modifier == "alt";
+    // Hover, press, move in small steps through every point, release, then the real pointer again.
+    drag_.clear();
+    m.pos = pts[0];
+    drag_.push_back(m);
+    m.left_down = true;
+    drag_.push_back(m);
+    constexpr int kSteps = 4;
+    for (size_t k = 1; k < pts.size(); ++k)
+      for (int i = 1; i <= kSteps; ++i) {
+        m.pos = pts[k - 1] + (pts[k] - pts[k - 1]) * (float(i) / float(kSteps));
+        drag_.push_back(m);
+      }
+    m.left_down = false;
+    drag_.push_back(m);
+    drag_.push_back(m);
+    phase_ = 1;
+  }
+  if (phase_ == 1) {
+    if (!drag_.empty()) {
+      host.set_scripted_mouse(drag_.front());
+      drag_.erase(drag_.begin());
+      return false;
+    }
+    host.set_scripted_mouse(std::nullopt);
+    frames_left_ = 2;  // the release's edit is queued while that frame draws
+    phase_ = 2;
+  }
+  if (frames_left_-- > 0) return false;
+  if (!host.settled()) return false;
+  AppState& st = host.state();
+  if (st.tools.volume_tool()) {  // where the handles left the volume
+    std::printf("the %s\n", describe(st.tools.volume()).c_str());
+    std::fflush(stdout);
+  }
+  return true;
 }
 
 bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a, bool start) {

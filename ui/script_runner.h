@@ -13,6 +13,7 @@
 
 #include "ui/app_state.h"
 #include "ui/script.h"
+#include "ui/studio_window.h"
 
 namespace goris::ui {
 
@@ -31,6 +32,10 @@ class ScriptHost {
   virtual bool settled() const = 0;
   // Size in window pixels of the main viewport's image (0 x 0 without one).
   virtual glm::vec2 main_image_size() const = 0;
+  // Its top left corner in window pixels.
+  virtual glm::vec2 main_image_origin() const { return {0, 0}; }
+  // Drives the mouse from the next frame on (`drag`); nullopt gives it back to the real pointer.
+  virtual void set_scripted_mouse(const std::optional<ScriptedMouse>& /*mouse*/) {}
   // Asks for a screenshot at the end of this frame; screenshot_pending() turns false when it is written,
   // screenshot_error() then says whether it failed.
   virtual void request_screenshot(const std::filesystem::path& png) = 0;
@@ -63,6 +68,8 @@ class ScriptRunner {
   // until the tinted frame is shown.
   bool run_selection_edit(ScriptHost& host, const ScriptAction& a, bool strict,
                           const std::function<std::uint64_t()>& start);
+  // Plays a drag (the mouse of one frame per step), then waits for the edit it made.
+  bool run_drag(ScriptHost& host, const ScriptAction& a);
   // Starts the removal (or, with !start, takes the running one) and waits until it has ended.
   bool run_remove(ScriptHost& host, const ScriptAction& a, bool start);
   // Sets the Export dialog's choices to the line's one part (if it names one) and presses its Export button.
@@ -77,6 +84,7 @@ class ScriptRunner {
   size_t next_ = 0;
   int phase_ = 0;        // progress within the current action
   int frames_left_ = 0;  // wait_frames
+  std::vector<ScriptedMouse> drag_;  // drag: the mouse of each frame still to come
   std::uint64_t job_ = 0;  // the selection edit being waited for
   Status status_ = Status::Running;
   std::string error_;

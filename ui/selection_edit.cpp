@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/removal/selection_labels.h"
+#include "core/removal/selection_ops.h"
 #include "core/util/error.h"
 
 namespace goris::ui {
@@ -26,10 +27,32 @@ std::optional<SelectMode> select_mode_from_id(const std::string& id) {
   return std::nullopt;
 }
 
-SelectionState evaluate_selection(const SelectionModel& model, std::vector<SelectionPart> parts, float grow) {
+namespace {
+
+void check_size(const std::shared_ptr<const SelectionMask>& m, std::size_t n, const char* what) {
+  if (m && m->size() != n)
+    throw Error("selection", std::string("the ") + what + " mask has " + std::to_string(m->size()) + " entries for " +
+                                 std::to_string(n) + " Gaussians");
+}
+
+}  // namespace
+
+SelectionGuard guard_adding(SelectionGuard guard, const SelectionMask& mask, bool hide) {
+  std::shared_ptr<const SelectionMask>& target = hide ? guard.hidden : guard.locked;
+  const SelectionMask merged = target ? combine_selections(*target, mask, Combine::Union) : mask;
+  const std::size_t n = count_selected(merged);
+  target = n > 0 ? std::make_shared<const SelectionMask>(merged) : nullptr;
+  (hide ? guard.hidden_count : guard.locked_count) = n;
+  return guard;
+}
+
+SelectionState evaluate_selection(const SelectionModel& model, std::vector<SelectionPart> parts, float grow,
+                                  SelectionGuard guard) {
   if (!(grow >= -1.0f && grow <= 1.0f))
     throw Error("selection", "the grow slider " + std::to_string(grow) + " is outside -1..1");
   const std::size_t n = model.points.size();
+  check_size(guard.hidden, n, "hidden");
+  check_size(guard.locked, n, "locked");
   // Only the parts since the last replace matter.
   for (std::size_t k = parts.size(); k-- > 0;)
     if (parts[k].mode == SelectMode::Replace) {
@@ -73,6 +96,9 @@ SelectionState evaluate_selection(const SelectionModel& model, std::vector<Selec
     }
   }
   if (grow < 0.0f) result = shrink_selection(model.graph, result, int(std::ceil(-grow * kMaxShrinkSteps)));
+  for (const auto& off : {guard.hidden, guard.locked})
+    if (off) result = combine_selections(result, *off, Combine::Subtract);
+  s.guard = std::move(guard);
   s.parts = std::move(parts);
   s.selected = count_selected(result);
   if (s.selected > 0) s.mask = std::make_shared<const SelectionMask>(std::move(result));

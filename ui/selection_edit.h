@@ -6,8 +6,12 @@
 //                (grow_selection) and closed (close_selection), as `goris select --click --grow g`
 //   labels/masks a rule's closed result (select_by_label, labels_from_masks), or a saved selection
 //   mode         replace starts over, add unions, remove subtracts (plain / shift / ctrl click)
+//   region       a rectangle, lasso or brush stroke of a view, a sphere or box, a colour range
+//                (ui/selection/region_masks.h), or a whole-selection edit (invert, one grow / shrink step):
+//                a fixed mask, not grown
 //   slider g     in [-1, 1]: g > 0 is the grow of every clicked region (moving it re-runs the growth);
 //                g < 0 erodes the whole selection by ceil(-g * kMaxShrinkSteps) shrink_selection steps
+//   guard        hidden and locked Gaussians: never part of the result (hidden ones are also not drawn)
 //
 // Every edit is one entry of a SelectionHistory (undo / redo); a slider drag merges into one entry.
 // Nothing here touches threads or the GUI.
@@ -30,8 +34,14 @@ struct SelectionPart {
   SelectMode mode = SelectMode::Replace;
   SelectionMask seeds;
   bool grows = false;  // a click: grown with the slider
-  std::string method;  // "click", "labels", "masks", "saved" (selection.json's method)
+  std::string method;  // "click", "labels", "masks", "saved", "region", ... (selection.json's method)
   std::string what;    // for the panel, e.g. "click at (40, 52)", "labels > 0.3"
+};
+
+// Gaussians no edit selects: hidden ones (the viewports do not draw them) and locked ones. Null = none.
+struct SelectionGuard {
+  std::shared_ptr<const SelectionMask> hidden, locked;
+  std::size_t hidden_count = 0, locked_count = 0;
 };
 
 struct SelectionState {
@@ -39,6 +49,7 @@ struct SelectionState {
   float grow = 0.5f;
   std::shared_ptr<const SelectionMask> mask;  // the result; null = nothing selected
   std::size_t selected = 0;
+  SelectionGuard guard;
 };
 
 constexpr int kMaxShrinkSteps = 4;
@@ -50,10 +61,14 @@ struct SelectionModel {
   SelectionGraph graph;
 };
 
-// The selection `parts` and the slider describe. A replace part drops the parts before it. Throws
-// goris::Error for a slider outside [-1, 1], parts of the wrong size, or a growth that leaks into more than
-// half of the scene (as `goris select` refuses it).
-SelectionState evaluate_selection(const SelectionModel& model, std::vector<SelectionPart> parts, float grow);
+// The selection `parts` and the slider describe, less what `guard` hides or locks. A replace part drops the
+// parts before it. Throws goris::Error for a slider outside [-1, 1], parts or guard masks of the wrong size,
+// or a growth that leaks into more than half of the scene (as `goris select` refuses it).
+SelectionState evaluate_selection(const SelectionModel& model, std::vector<SelectionPart> parts, float grow,
+                                  SelectionGuard guard = {});
+
+// `guard` with the Gaussians of `mask` added to its hidden (hide = true) or locked ones.
+SelectionGuard guard_adding(SelectionGuard guard, const SelectionMask& mask, bool hide);
 
 // The undo stack: states, the current one last-but-redo. Bounded: the oldest entries go first.
 class SelectionHistory {

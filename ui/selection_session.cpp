@@ -8,19 +8,12 @@
 #include "core/removal/selection_labels.h"
 #include "core/util/error.h"
 #include "render/removal/selection_masks.h"
-#include "render/removal/selection_pick.h"
 #include "ui/background_priority.h"
+#include "ui/selection/session_context.h"
 
 namespace goris::ui {
 
 namespace fs = std::filesystem;
-
-// What the worker prepares once per model: the selection rules' view of it, the kNN graph and the picker.
-struct SelectionSession::Context {
-  std::shared_ptr<const ModelSnapshot> model;
-  SelectionModel selection;
-  std::unique_ptr<GaussianPicker> picker;
-};
 
 namespace {
 
@@ -139,8 +132,9 @@ SelectionState SelectionSession::current_state() const {
 }
 
 void SelectionSession::push_state(const Job& job, std::vector<SelectionPart> parts, float grow,
-                                  const std::string& done) {
-  SelectionState s = evaluate_selection(prepared(job.model).selection, std::move(parts), grow);
+                                  const std::string& done, std::optional<SelectionGuard> guard) {
+  if (!guard) guard = current_state().guard;
+  SelectionState s = evaluate_selection(prepared(job.model).selection, std::move(parts), grow, std::move(*guard));
   const std::string text = done + (done.empty() ? "" : ": ") + count_text(s.selected, job.model->count());
   {
     std::lock_guard lk(mutex_);
@@ -154,7 +148,7 @@ void SelectionSession::push_state(const Job& job, std::vector<SelectionPart> par
 std::uint64_t SelectionSession::click(const Camera& camera, float u, float v, SelectMode mode) {
   return submit([this, camera, u, v, mode](const Job& job) {
     Context& c = prepared(job.model);
-    const goris::PickResult p = c.picker->pick(camera, u, v);
+    const goris::PickResult p = c.shown_picker(current_state().guard.hidden).pick(camera, u, v);
     if (!p.hit) {
       char b[160];
       std::snprintf(b, sizeof b,
@@ -217,10 +211,10 @@ std::uint64_t SelectionSession::from_labels(float threshold) {
   });
 }
 
-std::uint64_t SelectionSession::from_masks(std::vector<View> views) {
-  return submit([this, views = std::move(views)](const Job& job) {
+std::uint64_t SelectionSession::from_masks(std::vector<View> views, std::optional<fs::path> dir) {
+  return submit([this, views = std::move(views), dir](const Job& job) {
     Context& c = prepared(job.model);
-    const std::vector<MaskedView> masked = load_masked_views(views);
+    const std::vector<MaskedView> masked = load_masked_views(views, dir);
     const MaskVotes votes = labels_from_masks(job.model->to_model(), masked, {}, job.model->settings());
     const SelectionResult r = close_selection(c.selection.points, votes.selected);
     if (r.summary.seeds == 0)
@@ -229,7 +223,7 @@ std::uint64_t SelectionSession::from_masks(std::vector<View> views) {
     SelectionPart part;
     part.seeds = r.mask;
     part.method = "masks";
-    part.what = "object masks of " + std::to_string(masked.size()) + " views";
+    part.what = "object masks of " + std::to_string(masked.size()) + " views" + (dir ? " in " + dir->string() : "");
     push_state(job, {std::move(part)}, current_state().grow, r.summary.describe("by mask votes"));
   });
 }
@@ -335,6 +329,9 @@ SelectionView SelectionSession::view() const {
   v.can_undo = history_.can_undo();
   v.can_redo = history_.can_redo();
   v.saved = s.mask && s.mask == saved_mask_;
+  v.hidden = s.guard.hidden;
+  v.hidden_count = s.guard.hidden_count;
+  v.locked_count = s.guard.locked_count;
   return v;
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // The selection of the shown model for the editor (docs/design/architecture.md, The editor): click -> picked
 // Gaussian -> grown selection, shift-click adds, ctrl-click removes, the grow / shrink slider, the learned
-// labels or the data set's object masks instead, undo / redo of every edit, and saving RUN/selection.json for
-// `goris remove`. The edits themselves are ui/selection_edit.h; this class runs them on a worker thread (the
-// picker's BVH, the kNN graph and the mask votes take a while on large models) so the GUI never waits: it
-// submits an edit, gets a job id, and polls.
+// labels or the data set's object masks instead, the tools' regions, hide / lock (ui/selection/), undo /
+// redo of every edit, and saving RUN/selection.json for `goris remove`. The edits themselves are
+// ui/selection_edit.h; this class runs them on a worker thread (the picker's BVH, the kNN graph and the mask
+// votes take a while on large models) so the GUI never waits: it submits an edit, gets a job id, and polls.
 //
 // A selection is a mask over one model's Gaussians: binding another model clears it (and its history).
 #include <condition_variable>
@@ -21,9 +21,12 @@
 #include <utility>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "core/io/camera.h"
 #include "core/io/dataset.h"
 #include "ui/model_snapshot.h"
+#include "ui/selection/region_masks.h"
 #include "ui/selection_edit.h"
 
 namespace goris::ui {
@@ -36,6 +39,8 @@ struct SelectionView {
   std::vector<std::string> parts;  // what the selection was made of, e.g. "click at (40, 52)" (+ / - prefixed)
   bool can_undo = false, can_redo = false;
   bool saved = false;  // the current mask is the one in RUN/selection.json
+  std::shared_ptr<const SelectionMask> hidden;  // not drawn (null = none)
+  std::size_t hidden_count = 0, locked_count = 0;
 };
 
 class SelectionSession {
@@ -59,8 +64,26 @@ class SelectionSession {
   // The slider; `merge` folds consecutive slider edits into one undo step (a drag).
   std::uint64_t set_grow(float grow, bool merge);
   std::uint64_t from_labels(float threshold = 0.3f);
-  // Votes of the Gaussian centres in these views' object masks (labels_from_masks), closed.
-  std::uint64_t from_masks(std::vector<View> views);
+  // Votes of the Gaussian centres in these views' object masks (labels_from_masks), closed: the data set's
+  // masks, or those in `dir` (mask_XXX.png).
+  std::uint64_t from_masks(std::vector<View> views, std::optional<std::filesystem::path> dir = std::nullopt);
+
+  // The selection tools (ui/selection/session_tools.cpp): a region in `mode` (ui/selection/region_masks.h).
+  std::uint64_t screen_region(ScreenRegion region, SelectMode mode);
+  std::uint64_t volume(VolumeRegion volume, SelectMode mode);
+  std::uint64_t colour(glm::vec3 reference, float max_distance, SelectMode mode);
+  // Everything else (hidden and locked Gaussians stay out).
+  std::uint64_t invert();
+  // `rings` graph steps out (> 0, dilate_selection) or in (< 0, shrink_selection) of the whole selection.
+  std::uint64_t step(int rings);
+  // Hides or locks the selected Gaussians (the selection becomes empty), or shows / unlocks all again.
+  std::uint64_t hide_selected();
+  std::uint64_t lock_selected();
+  std::uint64_t unhide_all();
+  std::uint64_t unlock_all();
+  // Writes every view's object mask of the selection into `dir` (mask_XXX.png, selection_view_mask), then
+  // selects by those masks' votes (as `goris select --masks DIR`): the target a removal takes.
+  std::uint64_t target_masks(std::vector<View> views, std::filesystem::path dir);
   std::uint64_t clear();
   std::uint64_t undo();
   std::uint64_t redo();
@@ -92,7 +115,13 @@ class SelectionSession {
   Context& prepared(const std::shared_ptr<const ModelSnapshot>& model);  // worker thread
   SelectionState current_state() const;
   // Evaluates the edit and makes it the current state, unless the model changed meanwhile.
-  void push_state(const Job& job, std::vector<SelectionPart> parts, float grow, const std::string& done);
+  // `guard`: the hidden / locked Gaussians of the new state (default: the current state's).
+  void push_state(const Job& job, std::vector<SelectionPart> parts, float grow, const std::string& done,
+                  std::optional<SelectionGuard> guard = std::nullopt);
+  // Hide / lock the selection (add) or show / unlock everything (!add).
+  std::uint64_t change_guard(bool hide, bool add);
+  // A region edit: `part` in `mode` added to the current parts.
+  void push_part(const Job& job, SelectionPart part, SelectMode mode, const std::string& done);
   void message(const std::string& text, bool error);
 
   mutable std::mutex mutex_;

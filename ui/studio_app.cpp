@@ -163,7 +163,7 @@ void StudioApp::frame() {
   }
   training_seen_ = training;
 
-  window_->begin_frame();
+  window_->begin_frame(scripted_mouse_);
   const std::uint64_t scene_before = state_->scene_version();
   state_->poll();
   if (state_->scene_version() != scene_before) {
@@ -239,11 +239,12 @@ void StudioApp::request_render() {
   if (state_->compare == CompareMode::SideBySide) box_w *= 0.5f;
   const Camera cam = state_->render_camera(box_w * scale, box_h * scale);
   // The selection is drawn only over the model it was made on (a new snapshot clears it anyway).
-  std::shared_ptr<const SelectionMask> selection = state_->selection().view().mask;
-  if (state_->selection().model() != model) selection.reset();
+  const SelectionView sel = state_->selection().view();
+  std::shared_ptr<const SelectionMask> selection = sel.mask, hidden = sel.hidden;
+  if (state_->selection().model() != model) selection.reset(), hidden.reset();
   const bool camera_changed = !requested_camera_ || !same_camera(cam, *requested_camera_);
   const bool model_changed = model.get() != requested_model_ || state_->model_version() != requested_model_version_ ||
-                             selection != requested_selection_;
+                             selection != requested_selection_ || hidden != requested_hidden_;
   if (!camera_changed && !model_changed) return;
   const auto now = std::chrono::steady_clock::now();
   if (!camera_changed && state_->session().state() == SessionState::Running) {
@@ -256,7 +257,8 @@ void StudioApp::request_render() {
   requested_model_version_ = state_->model_version();
   requested_camera_ = cam;
   requested_selection_ = selection;
-  requested_id_ = worker_->request({model, cam, selection});
+  requested_hidden_ = hidden;
+  requested_id_ = worker_->request({model, cam, selection, hidden});
 }
 
 void StudioApp::receive_frame() {

@@ -44,6 +44,8 @@ class StudioApp final : public ScriptHost {
   AppState& state() override { return *state_; }
   bool settled() const override;
   glm::vec2 main_image_size() const override;
+  glm::vec2 main_image_origin() const override { return {main_.image_rect().x, main_.image_rect().y}; }
+  void set_scripted_mouse(const std::optional<ScriptedMouse>& mouse) override { scripted_mouse_ = mouse; }
   void request_screenshot(const std::filesystem::path& png) override;
   bool screenshot_pending() const override { return screenshot_path_.has_value(); }
   std::optional<std::string> screenshot_error() const override { return screenshot_error_; }
@@ -88,6 +90,7 @@ class StudioApp final : public ScriptHost {
   std::unique_ptr<ScriptRunner> script_;
   FrameLimiter limiter_;
   CameraMode camera_mode_ = CameraMode::Orbit;
+  std::optional<ScriptedMouse> scripted_mouse_;
 
   // Layout of this frame (window pixels).
   Rect sidebar_, main_rect_, status_rect_;
@@ -97,7 +100,7 @@ class StudioApp final : public ScriptHost {
   // What the last render request asked for, to request again only on a change.
   const ModelSnapshot* requested_model_ = nullptr;
   std::uint64_t requested_model_version_ = 0;
-  std::shared_ptr<const SelectionMask> requested_selection_;
+  std::shared_ptr<const SelectionMask> requested_selection_, requested_hidden_;
   std::optional<Camera> requested_camera_;
   std::uint64_t requested_id_ = 0;
   std::chrono::steady_clock::time_point last_request_time_{};

@@ -64,9 +64,17 @@ void StudioWindow::process_events(double timeout_s) {
     glfwPollEvents();
 }
 
-void StudioWindow::begin_frame() {
+void StudioWindow::begin_frame(const std::optional<ScriptedMouse>& mouse) {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  if (mouse) {
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(mouse->pos.x, mouse->pos.y);
+    io.MouseDown[ImGuiMouseButton_Left] = mouse->left_down;
+    io.KeyShift = mouse->shift;
+    io.KeyCtrl = mouse->ctrl;
+    io.KeyAlt = mouse->alt;
+  }
   ImGui::NewFrame();
 }
 

@@ -2,11 +2,20 @@
 // The editor's window: GLFW with an OpenGL 3.3 core context and Dear ImGui (Debian's libimgui with its
 // GLFW and OpenGL3 backends). Owns nothing of the document.
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 
 struct GLFWwindow;
 
 namespace goris::ui {
+
+// A mouse the scripted mode drives (`drag`): replaces the real pointer, its left button and the modifier
+// keys for the frame it is given to.
+struct ScriptedMouse {
+  glm::vec2 pos{0.0f};  // window pixels
+  bool left_down = false;
+  bool shift = false, ctrl = false, alt = false;
+};
 
 class StudioWindow {
  public:
@@ -20,7 +29,7 @@ class StudioWindow {
   void request_close();
   // Waits up to timeout_s for input (idle) or just takes what arrived (timeout_s <= 0).
   void process_events(double timeout_s);
-  void begin_frame();  // starts an ImGui frame
+  void begin_frame(const std::optional<ScriptedMouse>& mouse = std::nullopt);  // starts an ImGui frame
   void render();       // ImGui draw data into the default framebuffer (not yet shown)
   void present();      // swap buffers
 

@@ -62,6 +62,7 @@ void Viewport::draw(const Rect& rect, ViewportContext& ctx, bool photo_half) {
                                           gain);
     }
     handle_mouse(ctx);
+    if (index_ < 0) tools_.draw_overlay(st, image_);
     if (photo_half && !ctx.textures.photo.empty()) {
       const Rect right{rect.x + area.w, rect.y, rect.w - area.w, rect.h};
       const Rect p = fit_aspect(right, float(ctx.textures.photo.width()) / float(ctx.textures.photo.height()));
@@ -124,10 +125,13 @@ void Viewport::handle_mouse(ViewportContext& ctx) {
       ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight | ImGuiButtonFlags_MouseButtonMiddle);
   ImGui::SetItemAllowOverlap();  // the channel chooser drawn on top gets the mouse where it is
   if (ImGui::IsItemActivated()) dragged_ = false;
+  // The selection tools take the left button on the main viewport (Alt+drag still orbits).
+  const bool tool_took = index_ < 0 && tools_.handle_mouse(st, image_);
+  if (tool_took) dragged_ = true;  // no pick on release
   if (ImGui::IsItemActive()) {
     const ImVec2 d = io.MouseDelta;
     const bool moved = d.x != 0 || d.y != 0;
-    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 3.0f) && moved) {
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 3.0f) && moved && !tool_took) {
       dragged_ = true;
       if (ctx.mode == CameraMode::Orbit)
         st.orbit.orbit(-d.x * 0.008f, d.y * 0.008f);

@@ -1,7 +1,8 @@
 #pragma once
 // One viewport: an ImGui window at a given rectangle showing one channel of the current frame (drawn
 // into its own framebuffer by the channel shader), with its channel chooser, and the mouse controls of
-// the view camera (left drag orbit / look, right or middle drag pan, wheel zoom, left click = pick).
+// the view camera (left drag orbit / look, right or middle drag pan, wheel zoom, left click = pick); the main
+// viewport also runs the selection tools (ui/selection/viewport_tools.h) on its left button.
 #include <string>
 
 #include "ui/app_state.h"
@@ -9,6 +10,7 @@
 #include "ui/frame_textures.h"
 #include "ui/gl/framebuffer.h"
 #include "ui/panel_layout.h"
+#include "ui/selection/viewport_tools.h"
 
 namespace goris::ui {
 
@@ -50,6 +52,7 @@ class Viewport {
   Rect image_;
   bool hovered_ = false;
   bool dragged_ = false;
+  ViewportTools tools_;  // the main viewport's
 };
 
 }  // namespace goris::ui

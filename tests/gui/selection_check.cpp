@@ -14,6 +14,14 @@
 //       when the removal has finished, and the before / after toggle back to the scene with the target.
 //       Passes when the cleaned scene differs from the scene with the target over the (dilated) object mask
 //       in the main viewport, by more than elsewhere, and the toggle brings the scene with the target back.
+//   gui_selection_check bbox MASK.png
+//       prints the object mask's bounding box as "X0% Y0% X1% Y1%" (percent of the image).
+//   gui_selection_check region BEFORE.png AFTER.png X0% Y0% X1% Y1%
+//       the selection tools' check: the pixels of the main viewport that changed between the two
+//       screenshots (the tint) lie inside this rectangle of the image (percent, widened by 8 % of the image
+//       for the splats' extent around their centres), and cover some of it.
+//   gui_selection_check same A.png B.png
+//       the main viewports of the two screenshots are alike (undo brought the view back).
 //   gui_selection_check slider WITH.png CLEANED.png SLIDER.png
 //       the compare slider at 0.5 against the scene with the target: left of it the main viewport shows the
 //       cleaned scene, right of it the scene with the target.
@@ -201,6 +209,75 @@ int tint(const std::string& before_png, const std::string& after_png, const std:
   return 0;
 }
 
+int bbox(const std::string& mask_png) {
+  const cv::Mat m = binary_mask(goris::load_mask(mask_png));
+  const cv::Rect r = cv::boundingRect(m);
+  if (r.area() == 0) return fail(mask_png + " is empty");
+  std::printf("%.2f%% %.2f%% %.2f%% %.2f%%\n", 100.0 * r.x / m.cols, 100.0 * r.y / m.rows,
+              100.0 * (r.x + r.width) / m.cols, 100.0 * (r.y + r.height) / m.rows);
+  return 0;
+}
+
+double percent(const std::string& s) {
+  std::size_t used = 0;
+  const double v = std::stod(s, &used);
+  if (used != s.size() && !(used + 1 == s.size() && s.back() == '%')) throw std::runtime_error("not a percentage: " + s);
+  return v / 100.0;
+}
+
+// Per pixel of the main viewport: whether it changed between the screenshots by more than `threshold`
+// (summed RGB).
+cv::Mat changed_pixels(const goris::Image& a, const goris::Image& b, const MainViewport& v, double threshold) {
+  if (a.width != b.width || a.height != b.height || a.channels != b.channels)
+    throw std::runtime_error("the screenshots differ in size");
+  cv::Mat out(v.h, v.w, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < v.h && v.y0 + y < a.height; ++y)
+    for (int x = 0; x < v.w && v.x0 + x < a.width; ++x) {
+      double d = 0;
+      for (int c = 0; c < std::min(3, a.channels); ++c) {
+        const size_t i = (size_t(v.y0 + y) * a.width + (v.x0 + x)) * a.channels + c;
+        d += std::abs(double(a.pixels[i]) - double(b.pixels[i]));
+      }
+      out.at<uint8_t>(y, x) = d > threshold ? 255 : 0;
+    }
+  return out;
+}
+
+int region(const std::string& before_png, const std::string& after_png, double x0, double y0, double x1, double y1) {
+  const MainViewport v = main_viewport(after_png);
+  const cv::Mat t = changed_pixels(goris::read_image(before_png), goris::read_image(after_png), v, 0.08);
+  constexpr double kMargin = 0.08;
+  long tinted = 0, inside = 0, rect_px = 0, rect_tinted = 0;
+  for (int y = 0; y < t.rows; ++y)
+    for (int x = 0; x < t.cols; ++x) {
+      const double fx = (x + 0.5) / v.w, fy = (y + 0.5) / v.h;
+      const bool on = t.at<uint8_t>(y, x) > 0;
+      const bool in_rect = fx >= x0 && fx <= x1 && fy >= y0 && fy <= y1;
+      const bool near = fx >= x0 - kMargin && fx <= x1 + kMargin && fy >= y0 - kMargin && fy <= y1 + kMargin;
+      tinted += on;
+      inside += on && near;
+      rect_px += in_rect;
+      rect_tinted += on && in_rect;
+    }
+  const double inside_fraction = tinted ? double(inside) / double(tinted) : 0.0;
+  const double coverage = rect_px ? double(rect_tinted) / double(rect_px) : 0.0;
+  std::printf("tinted %ld pixels, %.1f%% inside the region (widened by %.0f%%); %.1f%% of the region tinted\n", tinted,
+              100.0 * inside_fraction, 100.0 * kMargin, 100.0 * coverage);
+  if (tinted < 30) return fail("almost nothing is tinted: the selection is not shown");
+  if (inside_fraction < 0.8) return fail("the tint lies mostly outside the region");
+  if (coverage < 0.02) return fail("the tint covers next to nothing of the region");
+  return 0;
+}
+
+int same(const std::string& a_png, const std::string& b_png) {
+  const MainViewport v = main_viewport(b_png);
+  const cv::Mat t = changed_pixels(goris::read_image(a_png), goris::read_image(b_png), v, 0.03);
+  const long changed = cv::countNonZero(t);
+  std::printf("%ld of %d main-viewport pixels differ\n", changed, v.w * v.h);
+  if (changed > long(0.001 * v.w * v.h)) return fail("the main viewports differ");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -208,11 +285,16 @@ int main(int argc, char** argv) {
   try {
     if (mode == "target" && argc == 3) return target(argv[2]);
     if (mode == "tint" && argc == 5) return tint(argv[2], argv[3], argv[4]);
+    if (mode == "bbox" && argc == 3) return bbox(argv[2]);
+    if (mode == "region" && argc == 8)
+      return region(argv[2], argv[3], percent(argv[4]), percent(argv[5]), percent(argv[6]), percent(argv[7]));
+    if (mode == "same" && argc == 4) return same(argv[2], argv[3]);
     if (mode == "slider" && argc == 5) return slider(argv[2], argv[3], argv[4]);
     if (mode == "removed" && argc == 6) return removed(argv[2], argv[3], argv[4], argv[5]);
   } catch (const std::exception& e) {
     return fail(e.what());
   }
   return fail("usage: gui_selection_check target DATASET | tint BEFORE.png AFTER.png MASK.png | removed WITH.png "
-              "CLEANED.png RESTORED.png MASK.png | slider WITH.png CLEANED.png SLIDER.png");
+              "CLEANED.png RESTORED.png MASK.png | slider WITH.png CLEANED.png SLIDER.png | bbox MASK.png | region "
+              "BEFORE.png AFTER.png X0% Y0% X1% Y1% | same A.png B.png");
 }

@@ -1,8 +1,9 @@
 #pragma once
-// What the editor's unit tests look at: a small camera in front of the origin, and Gaussians set up one by
-// one.
+// What the editor's unit tests look at: a small camera in front of the origin, Gaussians set up one by
+// one, and two separate blobs of them.
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include <glm/glm.hpp>
 
@@ -37,6 +38,25 @@ inline void set_studio_gaussian(GaussianModel& m, int i, glm::vec3 position, glm
   float* sh = m.values(Param::Sh) + i * 48;
   std::fill(sh, sh + 48, 0.0f);
   for (int c = 0; c < 3; ++c) sh[c] = dc[c];
+}
+
+// Two blobs of `per_blob` Gaussians each: blob 0 (red, label logit +4) around x = -1, blob 1 (blue, label
+// logit -4) around x = +1, both about z = 0. Seen from studio_front_camera(), blob 0 projects to
+// u ~ 11.5 and blob 1 to u ~ 36.5 (v ~ 20).
+inline GaussianModel studio_two_blobs(int per_blob) {
+  std::mt19937 rng(5);
+  std::normal_distribution<float> g(0.0f, 0.12f);
+  GaussianModel m(Device::CPU);
+  m.allocate(std::size_t(2 * per_blob));
+  for (int i = 0; i < 2 * per_blob; ++i) {
+    const int blob = i / per_blob;
+    const glm::vec3 position((blob == 0 ? -1.0f : 1.0f) + g(rng), g(rng), g(rng));
+    const glm::vec3 dc = blob == 0 ? glm::vec3(1.5f, 0.0f, -1.5f) : glm::vec3(-1.5f, 0.0f, 1.5f);  // red or blue
+    set_studio_gaussian(m, i, position, glm::vec3(0.06f), dc);
+    for (int k = 0; k < extra::kCount; ++k)
+      m.values(Param::ExtraLogit)[i * extra::kCount + k] = k == extra::kLabel ? (blob == 0 ? 4.0f : -4.0f) : 0.0f;
+  }
+  return m;
 }
 
 }  // namespace goris::test

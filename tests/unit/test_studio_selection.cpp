@@ -21,22 +21,7 @@ namespace {
 
 constexpr int kPerBlob = 150;
 
-// Blob 0 (red, label logit +4) around x = -1, blob 1 (blue, label logit -4) around x = +1; z = 0 plane.
-GaussianModel two_blobs() {
-  std::mt19937 rng(5);
-  std::normal_distribution<float> g(0.0f, 0.12f);
-  GaussianModel m(Device::CPU);
-  m.allocate(2 * kPerBlob);
-  for (int i = 0; i < 2 * kPerBlob; ++i) {
-    const int blob = i / kPerBlob;
-    const glm::vec3 position((blob == 0 ? -1.0f : 1.0f) + g(rng), g(rng), g(rng));
-    const glm::vec3 dc = blob == 0 ? glm::vec3(1.5f, 0.0f, -1.5f) : glm::vec3(-1.5f, 0.0f, 1.5f);  // red or blue
-    test::set_studio_gaussian(m, i, position, glm::vec3(0.06f), dc);
-    for (int k = 0; k < extra::kCount; ++k)
-      m.values(Param::ExtraLogit)[i * extra::kCount + k] = k == extra::kLabel ? (blob == 0 ? 4.0f : -4.0f) : 0.0f;
-  }
-  return m;
-}
+GaussianModel two_blobs() { return test::studio_two_blobs(kPerBlob); }
 
 // Blob 0 projects to u ~ 11.5, blob 1 to u ~ 36.5.
 Camera front_camera() { return test::studio_front_camera(); }

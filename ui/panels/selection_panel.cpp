@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include "ui/selection/tool_bar.h"
+
 namespace goris::ui {
 
 void SelectionPanel::draw(AppState& st) {
@@ -17,10 +19,11 @@ void SelectionPanel::draw(AppState& st) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1, 0.85f, 0.3f, 1), "working ...");
   }
-  ImGui::TextDisabled("click: select   shift+click: add   ctrl+click: remove");
   if (blocked) ImGui::TextWrapped("(%s)", blocked);
 
   ImGui::BeginDisabled(blocked != nullptr);
+  draw_selection_tools(st);
+  ImGui::Separator();
   // The slider follows the selection unless the user is dragging it.
   if (!dragging_) grow_ = v.grow;
   ImGui::SetNextItemWidth(160);

@@ -1,7 +1,8 @@
 #pragma once
-// Selecting the target (docs/user/editor.md): what is selected, the grow / shrink slider, selection by the
-// learned labels or the data set's object masks, clear, undo / redo, and saving RUN/selection.json. Clicks in
-// the viewports select too (plain: replace, shift: add, ctrl: remove).
+// Selecting the target (docs/user/editor.md): what is selected, the tools (ui/selection/tool_bar.h), the grow /
+// shrink slider, selection by the learned labels or the data set's object masks, clear, undo / redo, and
+// saving RUN/selection.json. Clicks and drags in the main viewport select too (plain: replace, shift: add,
+// ctrl: remove).
 #include "ui/panels/panel.h"
 
 namespace goris::ui {
