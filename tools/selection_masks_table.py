@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """The IoU table of docs/results/selection_masks.md: object masks written from a selection
-(`goris select ... --write-masks DIR --masks-iou`) against the generator's exact masks, for
-  masks      the selection voted by the exact masks themselves (`--masks`): what the mask writer loses
-  two-click  a run trained WITHOUT masks, clicked once in each of two training views (`--click` twice):
+(`goris select ... --write-masks DIR --masks-iou`) against the generator's exact masks, on a run trained
+WITHOUT masks, for
+  masks      the selection voted by the exact masks themselves (`--masks`): what the mask writer loses, with
+             the coverage masks as rendered (default) and moved onto the photo's edges (`--mask-edges photo`)
+  two-click  clicked once in each of two training views (`--click` twice, the default `--click-by region`):
              the pixel deepest inside the exact mask (farthest from its border), in the view with the
              largest mask and in the one with the largest mask among those at least a quarter of the views away.
 
@@ -129,7 +131,8 @@ def main():
             s = a.resolution / len(mask[0])
             clicks += ["--click", v, str(int(x * s)), str(int(y * s))]
         row = {"scene": name, "clicks": " ".join(clicks)}
-        for method, args in (("masks", ["--masks"]), ("two-click", clicks)):
+        for method, args in (("masks", ["--masks"]), ("masks-photo", ["--masks", "--mask-edges", "photo"]),
+                             ("two-click", clicks)):
             out = os.path.join(work, method)
             os.makedirs(out, exist_ok=True)
             ok = run([a.goris, "select", run_dir, *args, "--out", os.path.join(out, "selection.json"), "--previews",
@@ -145,12 +148,20 @@ def main():
     print("Written by `tools/selection_masks_table.py --work DIR " + " ".join(a.scenes) +
           f"` (stage 1: {a.iters} iterations at {a.resolution} px, trained without the object masks; "
           "`goris select ... --write-masks DIR --masks-iou` on every training view).\n")
-    print("| scene | masks: mean / min IoU | two-click: mean / min IoU | two-click: selected / Gaussians | clicks |")
-    print("|---|--:|--:|--:|---|")
+    print("| scene | masks, coverage edges: mean / min IoU | masks, photo edges: mean / min IoU | "
+          "two-click: mean / min IoU | two-click: selected / Gaussians | clicks |")
+    print("|---|--:|--:|--:|--:|---|")
     for r in rows:
         cell = lambda k: f"{r[k][0]:.3f} / {r[k][1]:.3f}" if k in r else "failed"
         sel = f"{r['two-click'][2]} / {r['two-click'][3]}" if "two-click" in r else ""
-        print(f"| {r['scene']} | {cell('masks')} | {cell('two-click')} | {sel} | `{r['clicks']}` |")
+        print(f"| {r['scene']} | {cell('masks')} | {cell('masks-photo')} | {cell('two-click')} | {sel} | "
+              f"`{r['clicks']}` |")
+    done = [r for r in rows if "two-click" in r]
+    if done:
+        print(f"\nMean over the {len(done)} scenes: masks (coverage edges) "
+              f"{sum(r['masks'][0] for r in done if 'masks' in r) / len(done):.3f}, two-click "
+              f"{sum(r['two-click'][0] for r in done) / len(done):.3f}; scenes where two-click reaches a mean IoU "
+              f">= 0.9: {sum(r['two-click'][0] >= 0.9 for r in done)} of {len(rows)}.")
 
 
 if __name__ == "__main__":

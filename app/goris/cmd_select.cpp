@@ -36,6 +36,7 @@
 #include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/removal/selection.h"
+#include "render/removal/selection_click_region.h"
 #include "render/train/raster_renderer.h"
 
 namespace {
@@ -46,13 +47,14 @@ struct Options {
   std::string run, out, device = "auto", data;
   std::vector<std::string> click;  // VIEW X Y, repeated
   std::string clicks = "union";
+  std::string click_by;  // region | grow; empty: region, or grow when --grow is given
   std::string masks_dir;
   bool masks = false, labels = false, no_close = false, invert = false;
   std::vector<std::string> rects, polygons;  // VIEW COORDS pairs
   std::vector<std::string> spheres, boxes, colours;
   std::string through = "visible", combine = "union";
   int dilate = 0, shrink = 0;
-  std::string write_masks, masks_iou;
+  std::string write_masks, masks_iou, mask_edges = "coverage";
   bool masks_iou_given = false;
   float threshold = 0.3f, min_fraction = 0.5f, max_fraction = 0.5f;
   std::optional<float> grow;
@@ -134,8 +136,8 @@ std::vector<std::size_t> preview_views(std::size_t n_views, int wanted, std::opt
 
 // Every training view's object mask from the selection, DIR/mask_XXX.png; with --masks-iou scored against
 // the data set's (or DIR's) masks into DIR/iou.json.
-void write_view_masks(const Options& o, const Dataset& ds, const GaussianModel& model, const SelectionMask& sel,
-                      const RasterSettings& raster, const OutputGuard& guard) {
+void write_view_masks(const Options& o, const Dataset& ds, const DatasetOptions& ds_options, const GaussianModel& model,
+                      const SelectionMask& sel, const RasterSettings& raster, const OutputGuard& guard) {
   const fs::path dir = fs::absolute(o.write_masks);
   std::vector<MaskedView> exact;
   if (o.masks_iou_given) {
@@ -150,7 +152,10 @@ void write_view_masks(const Options& o, const Dataset& ds, const GaussianModel& 
   double sum = 0.0, worst = 1.0;
   std::size_t scored = 0;
   for (const View& v : ds.train) {
-    const Mask m = selection_view_mask(model, sel, v.camera, raster);
+    // --mask-edges photo: the coverage mask's border is moved onto the training photo's edges.
+    std::optional<Image> photo;
+    if (o.mask_edges == "photo") photo = load_view_image(v, ds_options, Device::CPU);
+    const Mask m = selection_view_mask(model, sel, v.camera, raster, {}, photo ? &*photo : nullptr);
     const fs::path file = dir / object_mask_file_name(v.name);
     check_output_file(file, guard);
     save_mask_png(file, m);
@@ -274,6 +279,11 @@ void run_select(const Options& o, int n_methods) {
     record.method = "click";
     nlohmann::json clicks = nlohmann::json::array();
     std::vector<SelectionMask> picked;
+    const bool by_region = o.click_by.empty() ? !o.grow.has_value() : o.click_by == "region";
+    if (by_region && o.grow && *o.grow > 0.0f)
+      throw Error("--grow", "grows a click over similar Gaussians (--click-by grow); --click-by region takes the "
+                            "clicked views' regions instead");
+    std::vector<ClickView> regions_2d;
     for (std::size_t c = 0; c + 2 < o.click.size(); c += 3) {
       const std::size_t vi = find_view(ds.train, o.click[c]);
       const View& view = ds.train[vi];
@@ -292,6 +302,16 @@ void run_select(const Options& o, int n_methods) {
       if (!clicked_view) clicked_view = vi;
       clicks.push_back({{"view", view.name}, {"x", x}, {"y", y}, {"picked", p.gaussian}, {"pick_weight", p.weight},
                         {"pick_depth", p.depth}});
+      if (by_region) {
+        const Image photo = load_view_image(view, dataset_options(config), Device::CPU);
+        const ClickRegion cr = grow_click_region(photo, render_median_depth(model, view.camera, raster), x, y);
+        std::printf("  region of the click in %s: %zu pixels (%s of the view), colour tolerance %.2f%s\n",
+                    view.name.c_str(), cr.area, percent(double(cr.area) / double(photo.pixel_count())).c_str(),
+                    cr.tolerance, cr.leaked_at_first ? " (leaks even at the lowest tolerance)" : "");
+        clicks.back()["region_pixels"] = cr.area;
+        clicks.back()["region_tolerance"] = cr.tolerance;
+        regions_2d.push_back({view.name, view.camera, cr.mask});
+      }
       SelectionMask seeds(model.count(), 0);
       seeds[p.gaussian] = 1;
       picked.push_back(std::move(seeds));
@@ -303,12 +323,34 @@ void run_select(const Options& o, int n_methods) {
       record.parameters["clicks"] = clicks;
       record.parameters["combine_clicks"] = o.clicks;
     }
-    // A click selects one Gaussian: growing is what makes it the object, so it grows by default.
-    if (!o.grow) grow = 0.5f;
-    clicked_seeds = std::move(picked);
-    result.summary.total = model.count();
-    result.summary.seeds = clicked_seeds.size();
-    seed_rule = "picked";
+    if (by_region) {
+      // The clicked views' regions vote (inside in every clicked view that sees the Gaussian), then the
+      // hull adds the object's interior and the side no clicked view saw.
+      record.parameters["click_by"] = "region";
+      const SelectionMask voted = select_from_click_regions(model, regions_2d, raster);
+      result = close_selection(pts, voted, close);
+      if (result.summary.seeds > 0 && regions_2d.size() > 1) {
+        const SelectionMask revoted = revote_with_view_masks(model, result.mask, ds.train, raster);
+        std::printf("  %zu Gaussians from the clicked views, %zu after every training view's vote\n",
+                    result.summary.selected, count_selected(revoted));
+        if (count_selected(revoted) > 0) result = close_selection(pts, revoted, close);
+      }
+      seed_rule = "in the clicked views' regions";
+      if (result.summary.seeds == 0)
+        throw Error("--click", "no Gaussian lies inside the clicked region of every clicked view that sees it: "
+                               "are the clicks on the same object?");
+      const fs::path json_dir = json_path.parent_path() / (json_path.stem().string() + "_preview");
+      fs::create_directories(json_dir);
+      for (const ClickView& v : regions_2d) save_mask_png(json_dir / ("click_region_" + v.name + ".png"), v.region);
+    } else {
+      // A click selects one Gaussian: growing is what makes it the object, so it grows by default.
+      record.parameters["click_by"] = "grow";
+      if (!o.grow) grow = 0.5f;
+      clicked_seeds = std::move(picked);
+      result.summary.total = model.count();
+      result.summary.seeds = clicked_seeds.size();
+      seed_rule = "picked";
+    }
   }
 
   nlohmann::json grow_json;
@@ -465,7 +507,7 @@ void run_select(const Options& o, int n_methods) {
   }
   if (!pv.empty())
     std::printf("previews (tinted | removed) of %zu views in %s\n", pv.size(), preview_dir.string().c_str());
-  if (!o.write_masks.empty()) write_view_masks(o, ds, model, result.mask, raster, guard);
+  if (!o.write_masks.empty()) write_view_masks(o, ds, dataset_options(config), model, result.mask, raster, guard);
   std::printf("done in %.1f s\n", seconds_since(t0));
 }
 
@@ -478,6 +520,11 @@ void setup_select(CLI::App& root) {
                               "index), grown over similar neighbours (--grow, default 0.5); repeat for more views")
                     ->expected(3)
                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--click-by", o->click_by,
+                "region | grow: a click selects its region of the clicked view (depth and colour edges of the "
+                "render and photo), voted across the clicked views (default), or the picked Gaussian grown over "
+                "similar neighbours (default when --grow is given)")
+      ->check(CLI::IsMember({"region", "grow"}));
   c->add_option("--clicks", o->clicks, "union | intersect: how several clicks' grown selections combine")
       ->check(CLI::IsMember({"union", "intersect"}));
   auto* masks = c->add_option("--masks", o->masks_dir,
@@ -524,6 +571,10 @@ void setup_select(CLI::App& root) {
   c->add_flag("--invert", o->invert, "Select everything else (last step; raise --max-fraction as needed)");
   c->add_option("--write-masks", o->write_masks,
                 "DIR: write every training view's object mask of the selection (mask_XXX.png, depth-tested coverage)");
+  c->add_option("--mask-edges", o->mask_edges,
+                "coverage | photo: with --write-masks, keep each mask as the selection's rendered coverage "
+                "(default), or move its border onto the training photo's edges (GrabCut in a band around it)")
+      ->check(CLI::IsMember({"photo", "coverage"}));
   auto* iou = c->add_option("--masks-iou", o->masks_iou,
                             "[DIR] with --write-masks: score them (IoU) against the data set's object masks, or "
                             "DIR's; writes iou.json beside them")
