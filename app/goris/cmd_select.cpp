@@ -5,8 +5,10 @@
 //
 //   --labels  Gaussians with learned label > T (0.3), closed by the hull of their centres (paper Sec. 3.3)
 //   --masks   depth-tested votes of the Gaussian centres in the training views' object masks, then closed
-//   --click   the Gaussian a pixel of a training view shows, grown over similar neighbours, then closed;
-//             repeated clicks (other views) are each grown and united, or intersected with --clicks intersect
+//   --click   a pixel of a training view: by default its region of that view (render depth and photo colour,
+//             selection_click_region.h), voted across the clicked views and again by every view, then closed;
+//             with --click-by grow (or --grow) the Gaussian it shows, grown over similar neighbours, then
+//             closed; repeated grown clicks are united, or intersected with --clicks intersect
 // Regions (each repeatable, united with one another): --rect / --polygon in a training view's pixels
 // (--through visible: only what that view shows; all: every centre inside), --sphere, --box, --colour.
 // With a rule above they are combined with its result by --combine (union, subtract, intersect).
@@ -472,7 +474,8 @@ void run_select(const Options& o, int n_methods) {
     if (o.invert) seed_rule += ", inverted";
   }
   record.parameters["grow"] = grow;
-  record.parameters["close"] = close.enabled && (record.method != "click" || grow > 0.0f);
+  record.parameters["close"] =
+      close.enabled && (record.method != "click" || grow > 0.0f || record.parameters.value("click_by", "") == "region");
   record.parameters["max_fraction"] = o.max_fraction;
   const SelectionSummary& s = result.summary;
   std::printf("selected %s\n", s.describe(seed_rule).c_str());
