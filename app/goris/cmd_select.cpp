@@ -6,7 +6,8 @@
 //   --labels  Gaussians with learned label > T (0.3), closed by the hull of their centres (paper Sec. 3.3)
 //   --masks   depth-tested votes of the Gaussian centres in the training views' object masks, then closed
 //   --click   a pixel of a training view: by default its region of that view (render depth and photo colour,
-//             selection_click_region.h), voted across the clicked views and again by every view, then closed;
+//             selection_click_region.h), lifted by the Gaussians' rendered weight in the clicked views,
+//             closed, voted again by every view, closed;
 //             with --click-by grow (or --grow) the Gaussian it shows, grown over similar neighbours, then
 //             closed; repeated grown clicks are united, or intersected with --clicks intersect
 // Regions (each repeatable, united with one another): --rect / --polygon in a training view's pixels
@@ -56,7 +57,7 @@ struct Options {
   std::vector<std::string> spheres, boxes, colours;
   std::string through = "visible", combine = "union";
   int dilate = 0, shrink = 0;
-  std::string write_masks, masks_iou, mask_edges = "coverage";
+  std::string write_masks, masks_iou;
   bool masks_iou_given = false;
   float threshold = 0.3f, min_fraction = 0.5f, max_fraction = 0.5f;
   std::optional<float> grow;
@@ -138,8 +139,8 @@ std::vector<std::size_t> preview_views(std::size_t n_views, int wanted, std::opt
 
 // Every training view's object mask from the selection, DIR/mask_XXX.png; with --masks-iou scored against
 // the data set's (or DIR's) masks into DIR/iou.json.
-void write_view_masks(const Options& o, const Dataset& ds, const DatasetOptions& ds_options, const GaussianModel& model,
-                      const SelectionMask& sel, const RasterSettings& raster, const OutputGuard& guard) {
+void write_view_masks(const Options& o, const Dataset& ds, const GaussianModel& model, const SelectionMask& sel,
+                      const RasterSettings& raster, const OutputGuard& guard) {
   const fs::path dir = fs::absolute(o.write_masks);
   std::vector<MaskedView> exact;
   if (o.masks_iou_given) {
@@ -154,10 +155,7 @@ void write_view_masks(const Options& o, const Dataset& ds, const DatasetOptions&
   double sum = 0.0, worst = 1.0;
   std::size_t scored = 0;
   for (const View& v : ds.train) {
-    // --mask-edges photo: the coverage mask's border is moved onto the training photo's edges.
-    std::optional<Image> photo;
-    if (o.mask_edges == "photo") photo = load_view_image(v, ds_options, Device::CPU);
-    const Mask m = selection_view_mask(model, sel, v.camera, raster, {}, photo ? &*photo : nullptr);
+    const Mask m = selection_view_mask(model, sel, v.camera, raster);
     const fs::path file = dir / object_mask_file_name(v.name);
     check_output_file(file, guard);
     save_mask_png(file, m);
@@ -326,8 +324,9 @@ void run_select(const Options& o, int n_methods) {
       record.parameters["combine_clicks"] = o.clicks;
     }
     if (by_region) {
-      // The clicked views' regions vote (inside in every clicked view that sees the Gaussian), then the
-      // hull adds the object's interior and the side no clicked view saw.
+      // The clicked views' regions take the Gaussians that draw their pixels (by rendered weight, in every
+      // clicked view that shows the Gaussian), then the hull adds the object's interior and the side no
+      // clicked view saw, and every view's coverage mask votes once more.
       record.parameters["click_by"] = "region";
       const SelectionMask voted = select_from_click_regions(model, regions_2d, raster);
       result = close_selection(pts, voted, close);
@@ -510,7 +509,7 @@ void run_select(const Options& o, int n_methods) {
   }
   if (!pv.empty())
     std::printf("previews (tinted | removed) of %zu views in %s\n", pv.size(), preview_dir.string().c_str());
-  if (!o.write_masks.empty()) write_view_masks(o, ds, dataset_options(config), model, result.mask, raster, guard);
+  if (!o.write_masks.empty()) write_view_masks(o, ds, model, result.mask, raster, guard);
   std::printf("done in %.1f s\n", seconds_since(t0));
 }
 
@@ -525,7 +524,7 @@ void setup_select(CLI::App& root) {
                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   c->add_option("--click-by", o->click_by,
                 "region | grow: a click selects its region of the clicked view (depth and colour edges of the "
-                "render and photo), voted across the clicked views (default), or the picked Gaussian grown over "
+                "render and photo), lifted by the Gaussians' rendered weight in the clicked views (default), or the picked Gaussian grown over "
                 "similar neighbours (default when --grow is given)")
       ->check(CLI::IsMember({"region", "grow"}));
   c->add_option("--clicks", o->clicks, "union | intersect: how several clicks' grown selections combine")
@@ -574,10 +573,6 @@ void setup_select(CLI::App& root) {
   c->add_flag("--invert", o->invert, "Select everything else (last step; raise --max-fraction as needed)");
   c->add_option("--write-masks", o->write_masks,
                 "DIR: write every training view's object mask of the selection (mask_XXX.png, depth-tested coverage)");
-  c->add_option("--mask-edges", o->mask_edges,
-                "coverage | photo: with --write-masks, keep each mask as the selection's rendered coverage "
-                "(default), or move its border onto the training photo's edges (GrabCut in a band around it)")
-      ->check(CLI::IsMember({"photo", "coverage"}));
   auto* iou = c->add_option("--masks-iou", o->masks_iou,
                             "[DIR] with --write-masks: score them (IoU) against the data set's object masks, or "
                             "DIR's; writes iou.json beside them")

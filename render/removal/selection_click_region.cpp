@@ -6,6 +6,7 @@
 
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
+#include "render/removal/gaussian_pixel_weights.h"
 #include "render/removal/select_view.h"
 #include "render/removal/selection_masks.h"
 #include "render/removal/selection_view_masks.h"
@@ -73,28 +74,28 @@ ClickRegion grow_click_region(const Image& photo, const std::vector<float>& dept
     ref[c] = v[v.size() / 2];
   }
   const std::size_t max_area = std::size_t(s.max_area_fraction * float(photo.pixel_count()));
-  std::size_t prev_area = 0;
-  for (std::size_t k = 0; k < s.colour_ladder.size(); ++k) {
-    Mask m = flood(photo, depth, x, y, ref, s.colour_ladder[k], s.depth_step);
-    const std::size_t area = count_set(m);
+  std::vector<Mask> rungs;
+  for (float tol : s.colour_ladder) {
+    rungs.push_back(flood(photo, depth, x, y, ref, tol, s.depth_step));
+    r.rung_areas.push_back(count_set(rungs.back()));
+  }
+  std::size_t pick = 0, prev_area = 0;
+  for (std::size_t k = 0; k < rungs.size(); ++k) {
+    const std::size_t area = r.rung_areas[k];
     // A leak is a jump both relative to the region and in absolute terms (a small textured region doubles
     // as the tolerance passes its texture's contrast without leaving the object).
     const bool leak = area > max_area || (prev_area > 0 && float(area) > s.leak_ratio * float(prev_area) &&
                                           float(area - prev_area) > s.leak_area_fraction * float(photo.pixel_count()));
     if (leak) {
-      if (k == 0) {
-        r.leaked_at_first = true;
-        r.mask = std::move(m);
-        r.tolerance = s.colour_ladder[0];
-        r.area = area;
-      }
+      if (k == 0) r.leaked_at_first = true;
       break;
     }
-    r.mask = std::move(m);
-    r.tolerance = s.colour_ladder[k];
-    r.area = area;
+    pick = k;
     prev_area = area;
   }
+  r.mask = std::move(rungs[pick]);
+  r.tolerance = s.colour_ladder[pick];
+  r.area = r.rung_areas[pick];
   return r;
 }
 
@@ -103,18 +104,20 @@ std::vector<float> render_median_depth(const GaussianModel& model, const Camera&
 }
 
 SelectionMask select_from_click_regions(const GaussianModel& model, const std::vector<ClickView>& views,
-                                        const RasterSettings& raster) {
-  std::vector<MaskedView> masked;
+                                        const RasterSettings& raster, const WeightVoteSettings& s) {
+  const std::size_t n = model.count();
+  std::vector<std::uint8_t> seen(n, 0), outside_once(n, 0);
   for (const ClickView& v : views) {
-    MaskedView mv;
-    mv.name = v.name;
-    mv.camera = v.camera;
-    mv.mask = mask_to_image(v.region);
-    masked.push_back(std::move(mv));
+    const PixelWeights w = gaussian_pixel_weights(model, {v.camera}, {v.region}, raster);
+    for (std::size_t k = 0; k < n; ++k) {
+      const float total = w.inside[k] + w.outside[k];
+      if (!(total >= s.min_weight)) continue;
+      seen[k] = 1;
+      if (w.inside[k] < s.min_inside_share * total) outside_once[k] = 1;
+    }
   }
-  MaskVoteSettings ms;
-  ms.min_fraction = 1.0f;
-  SelectionMask sel = labels_from_masks(model, masked, ms, raster).selected;
+  SelectionMask sel(n, 0);
+  for (std::size_t k = 0; k < n; ++k) sel[k] = seen[k] && !outside_once[k];
   return sel;
 }
 

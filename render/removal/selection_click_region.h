@@ -8,12 +8,20 @@
 // training photo: contact lines between touching surfaces of different colour stop it). The tolerance is
 // not a user setting: it climbs a ladder, and the region is the last one before the area jumps by more
 // than leak_ratio from one rung to the next (the fill has crossed a weak edge into the surroundings) or
-// exceeds max_area_fraction of the view. The clicked views' regions then act as object masks: a Gaussian
-// is selected when its centre is visible in at least one clicked view and lies inside the region of every
-// clicked view where it is visible (labels_from_masks with min_fraction 1), so the second click's view
-// prunes what the first view's region let through and vice versa; the centre must also project inside every
-// clicked region (the clicked views' visual hull). The caller closes the result (close_selection) for the
-// object's interior and far side, and may let every training view vote once more (revote_with_view_masks).
+// exceeds max_area_fraction of the view (the ladder reaches 0.80: a metal object's reflections span a wide
+// range of colours, and the depth steps at its silhouette still bound the fill).
+//
+// The clicked views' regions then act as object masks, read by rendered weight rather than by centres: a
+// Gaussian's weight in a pixel is its alpha * T there (gaussian_pixel_weights). In each clicked view where
+// its weight reaches min_weight pixels, at least min_inside_share of that weight must fall inside the view's
+// region; it is selected when that holds in every such view and there is at least one. The second click's
+// view prunes what the first view's region let through and vice versa (a floor Gaussian under the object
+// shows mostly floor in one of the views), while a large or elongated Gaussian of the object whose centre
+// projects just outside a region, or hides behind its own neighbours, still counts; one hidden in both
+// clicked views is left to the closing and to the other views' vote. The share is low (0.1) because that
+// vote (revote_with_view_masks) removes what the clicked views let through better than a strict share does.
+// The caller closes the result (close_selection) for the object's interior and far side, and lets every
+// training view vote once more (revote_with_view_masks).
 #include <cstdint>
 #include <vector>
 
@@ -30,7 +38,8 @@ class GaussianModel;
 
 struct ClickRegionSettings {
   float depth_step = 0.02f;                 // relative depth change allowed between neighbouring pixels
-  std::vector<float> colour_ladder = {0.04f, 0.06f, 0.08f, 0.10f, 0.13f, 0.16f, 0.20f, 0.25f, 0.30f, 0.35f, 0.40f};  // RGB
+  std::vector<float> colour_ladder = {0.04f, 0.06f, 0.08f, 0.10f, 0.13f, 0.16f, 0.20f,
+                                      0.25f, 0.30f, 0.35f, 0.40f, 0.50f, 0.60f, 0.80f};  // RGB distance
   float leak_ratio = 1.6f;                  // area growth between rungs that counts as a leak ...
   float leak_area_fraction = 0.02f;         // ... when it also adds this fraction of the view's pixels
   float max_area_fraction = 0.4f;           // of the view's pixels
@@ -41,6 +50,7 @@ struct ClickRegion {
   float tolerance = 0.0f; // the ladder rung it was taken at
   std::size_t area = 0;
   bool leaked_at_first = false;  // even the first rung leaked: the region is the first rung's
+  std::vector<std::size_t> rung_areas;  // the fill's area at every rung of the ladder
 };
 
 // The region grown from pixel (x, y) of an RGB photo (values in [0, 1]) and the render's median depth of
@@ -52,14 +62,18 @@ ClickRegion grow_click_region(const Image& photo, const std::vector<float>& medi
 // The median depth of the model's render of `camera` (CPU vector, [H][W]).
 std::vector<float> render_median_depth(const GaussianModel& model, const Camera& camera, const RasterSettings& raster);
 
-// The clicked views' regions lifted to the Gaussians as described above.
 struct ClickView {
   std::string name;
   Camera camera;
   Mask region;
 };
+// The clicked views' regions lifted to the Gaussians as described above.
+struct WeightVoteSettings {
+  float min_inside_share = 0.1f;  // of the Gaussian's weight in a clicked view
+  float min_weight = 0.05f;       // pixels: less weight in a view = hidden there, no say
+};
 SelectionMask select_from_click_regions(const GaussianModel& model, const std::vector<ClickView>& views,
-                                        const RasterSettings& raster = {});
+                                        const RasterSettings& raster = {}, const WeightVoteSettings& settings = {});
 
 // One pass of "masks from the selection, selection from the masks": every view's object mask is written
 // from `selection` (its rendered coverage: selection_view_mask) and the masks vote
@@ -68,5 +82,6 @@ SelectionMask select_from_click_regions(const GaussianModel& model, const std::v
 // they see inside it. The caller closes the result.
 SelectionMask revote_with_view_masks(const GaussianModel& model, const SelectionMask& selection,
                                      const std::vector<View>& views, const RasterSettings& raster = {});
+
 
 }  // namespace goris

@@ -1,15 +1,18 @@
-// The two-click selection's 2D part and the mask writer's photo edges, on constructed images: a click's
-// region stops at a depth step (an object nearer than the floor it stands on, of nearly the same colour)
-// and at a colour edge (a flat decal), and the GrabCut refinement moves a displaced, swollen coverage mask
-// back onto the photo's square.
+// The two-click selection: a click's region stops at a depth step (an object nearer than the floor it
+// stands on, of nearly the same colour) and at a colour edge (a flat decal), on constructed images; the
+// regions are lifted to the Gaussians by rendered weight, which keeps the object's border where centres
+// lose it (the table-and-box scene).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "core/util/error.h"
+#include "render/removal/gaussian_pixel_weights.h"
 #include "render/removal/selection_click_region.h"
+#include "render/removal/selection_masks.h"
 #include "render/removal/selection_view_masks.h"
+#include "tests/support/table_box_scene.h"
 
 namespace goris {
 namespace {
@@ -76,26 +79,63 @@ TEST(ClickRegion, NoDepthUnderTheClickIsAnEmptyRegionAndBadInputsThrow) {
   EXPECT_THROW(grow_click_region(photo, std::vector<float>(10, 1.0f), 1, 1), Error);
 }
 
-TEST(MaskPhotoEdges, GrabCutMovesADisplacedSwollenMaskOntoThePhotosSquare) {
-  // The photo: a bright square on a dark floor. The coverage: the square shifted by 3 px and swollen by
-  // 2 px, fully covered in its middle - what a blurry run renders.
-  const Image photo = photo_with_square(0.9f, 0.2f, 20, 20, 40, 40);
-  Mask coarse(kW, kH);
-  std::vector<float> coverage(kW * kH, 0.0f);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const bool in = in_square(x, y, 21, 21, 45, 45);
-      coarse.set(x, y, in);
-      coverage[std::size_t(y) * kW + x] = in ? (in_square(x, y, 25, 25, 41, 41) ? 0.97f : 0.6f) : 0.05f;
-    }
-  const double before = iou_with_square(coarse, 20, 20, 40, 40);
-  const Mask refined = refine_mask_with_photo(coarse, coverage, photo);
-  const double after = iou_with_square(refined, 20, 20, 40, 40);
-  EXPECT_LT(before, 0.72);
-  EXPECT_GT(after, 0.9);  // 0.93: the cut keeps a pixel or two of the swollen side
-  // An empty coverage mask stays empty; a photo of another size is an error.
-  EXPECT_EQ(count_set(refine_mask_with_photo(Mask(kW, kH), coverage, photo)), 0u);
-  EXPECT_THROW(refine_mask_with_photo(coarse, coverage, Image(8, 8, 3)), Error);
+// The region a click grows stops a little short of the object's silhouette (the photo's anti-aliased edge,
+// the render's soft depth edge), so the large Gaussians at the object's border have their centres just
+// outside it: voting by centres loses them, voting by rendered weight keeps them.
+TEST(ClickRegionLift, WeightKeepsTheBorderThatCentresLose) {
+  constexpr int kShort = 1;
+  // The table of table_and_box with a box of large Gaussians (a short run's): 0.1 apart on a box 0.4 wide.
+  test::SceneBuilder scene = test::table_and_box(0.0f, 0.0f);
+  for (float x = -test::kHalf + 0.05f; x < test::kHalf; x += 0.1f)
+    for (float y = -test::kHalf + 0.05f; y < test::kHalf; y += 0.1f)
+      for (float z = 0.05f; z < 0.4f; z += 0.1f) scene.add({x, y, z}, glm::vec3(0.05f), 0.2f, true);
+  const GaussianModel model = scene.model();
+  const std::vector<Camera> all = test::table_cameras();
+  const std::vector<Camera> cams = {all[0], all[3]};
+  std::vector<ClickView> views;
+  for (std::size_t v = 0; v < cams.size(); ++v) {
+    const Mask exact = selection_view_mask(model, scene.target, cams[v]);
+    // kShort pixels short of the silhouette: the erosion as the complement's dilation.
+    Mask outside(exact.width, exact.height);
+    for (std::size_t p = 0; p < outside.data.size(); ++p) outside.data[p] = exact.data[p] ? 0 : 255;
+    const Mask grown_out = dilate_mask(outside, kShort);
+    Mask region(exact.width, exact.height);
+    for (std::size_t p = 0; p < region.data.size(); ++p) region.data[p] = grown_out.data[p] ? 0 : 255;
+    ASSERT_GT(count_set(region), 20u);
+    views.push_back({"v" + std::to_string(v), cams[v], region});
+  }
+  // The target Gaussians the clicked views show at all (the others are for the closing).
+  std::vector<Mask> full;
+  for (const Camera& c : cams) {
+    Mask m(c.width, c.height);
+    m.data.assign(m.data.size(), 255);
+    full.push_back(m);
+  }
+  const PixelWeights shown = gaussian_pixel_weights(model, cams, full, {});
+  std::size_t visible_target = 0;
+  for (std::size_t k = 0; k < scene.target.size(); ++k) visible_target += scene.target[k] && shown.inside[k] >= 0.5f;
+  ASSERT_GT(visible_target, 30u);
+
+  auto score = [&](const SelectionMask& sel, std::size_t& target, std::size_t& table) {
+    target = table = 0;
+    for (std::size_t k = 0; k < sel.size(); ++k)
+      if (sel[k]) ++(scene.target[k] ? target : table);
+  };
+  std::size_t w_target = 0, w_table = 0, c_target = 0, c_table = 0;
+  score(select_from_click_regions(model, views), w_target, w_table);
+  std::vector<MaskedView> masked;
+  for (const ClickView& v : views) masked.push_back({v.name, v.camera, mask_to_image(v.region)});
+  MaskVoteSettings centres;
+  centres.min_fraction = 1.0f;
+  score(labels_from_masks(model, masked, centres, {}).selected, c_target, c_table);
+  // Centres: 20 of the 56 target Gaussians the views show; weight: all of them (60: a few more that show
+  // less than half a pixel). The table's Gaussians at the box's foot draw a tenth of their weight inside
+  // both regions and come too (32 of them): the every-view vote (revote_with_view_masks) is what drops them,
+  // and centres take none.
+  EXPECT_GE(double(w_target), 0.9 * double(visible_target));
+  EXPECT_LE(double(c_target), 0.4 * double(visible_target));
+  EXPECT_EQ(c_table, 0u);
+  EXPECT_LT(w_table, w_target);
 }
 
 }  // namespace
