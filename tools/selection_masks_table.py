@@ -1,19 +1,26 @@
 #!/usr/bin/env python3
-"""The IoU table of docs/results/selection_masks.md: object masks written from a selection
-(`goris select ... --write-masks DIR --masks-iou`) against the generator's exact masks, for
-  masks      the selection voted by the exact masks themselves (`--masks`): what the mask writer loses
-  two-click  a run trained WITHOUT masks, clicked once in each of two training views (`--click` twice):
+"""The table of docs/results/selection_masks.md: object masks written from a selection
+(`goris select ... --write-masks DIR --masks-iou`) against the generator's exact masks, on a run trained
+WITHOUT masks, and the removal each set of masks drives, for
+  masks      the selection voted by the exact masks themselves (`--masks`): what the mask writer loses; the
+             removal is `goris select RUN --masks` (the exact masks)
+  two-click  clicked once in each of two training views (`--click` twice, the default `--click-by region`):
              the pixel deepest inside the exact mask (farthest from its border), in the view with the
-             largest mask and in the one with the largest mask among those at least a quarter of the views away.
+             largest mask and in the one with the largest mask among those at least a quarter of the views
+             away; the removal is `goris select RUN --masks DIR` with the masks the two clicks wrote
+Each removal runs on a copy of the same stage-1 run (`goris remove`, then `goris eval --split test`: PSNR and
+ghost ratio in the changed region).
 
   tools/selection_masks_table.py --work DIR [--goris build/bin/goris] [--iters 2000] [--resolution 128] SCENE...
 
-Stage 1 runs go to DIR/<scene>/run (reused when finished: its point_cloud.ply exists); the table is printed on
-stdout. Standard library only (PNG masks are decoded here).
+Stage 1 runs go to DIR/<scene>/run (reused when finished: its point_cloud.ply exists), the removals to
+DIR/<scene>/<method>/run (reused when evaluated: removal/metrics.json exists); the table is printed on stdout
+with paths relative to the current folder. Standard library only (PNG masks are decoded here).
 """
 import argparse
 import json
 import os
+import shutil
 import struct
 import subprocess
 import sys
@@ -133,25 +140,71 @@ def main():
             out = os.path.join(work, method)
             os.makedirs(out, exist_ok=True)
             ok = run([a.goris, "select", run_dir, *args, "--out", os.path.join(out, "selection.json"), "--previews",
-                      "2", "--device", a.device, "--write-masks", os.path.join(out, "masks"), "--masks-iou"],
+                      "0", "--device", a.device, "--write-masks", os.path.join(out, "masks"), "--masks-iou"],
                      os.path.join(out, "select.log"))
-            if ok:
-                iou = json.load(open(os.path.join(out, "masks", "iou.json")))
-                sel = json.load(open(os.path.join(out, "selection.json")))
-                row[method] = (iou["mean_iou"], iou["min_iou"], sel["selected"], sel["gaussian_count"])
+            if not ok:
+                continue
+            iou = json.load(open(os.path.join(out, "masks", "iou.json")))
+            sel = json.load(open(os.path.join(out, "selection.json")))
+            row[method] = (iou["mean_iou"], iou["min_iou"], sel["selected"], sel["gaussian_count"])
+            # The removal these masks drive, on a copy of the stage-1 run.
+            rm_run = os.path.join(out, "run")
+            metrics = os.path.join(rm_run, "removal", "metrics.json")
+            if not os.path.exists(metrics):
+                shutil.rmtree(rm_run, ignore_errors=True)
+                shutil.copytree(run_dir, rm_run, ignore=shutil.ignore_patterns("removal", "selection*"))
+                masks = ["--masks"] if method == "masks" else ["--masks", os.path.join(out, "masks")]
+                if not (run([a.goris, "select", rm_run, *masks, "--previews", "1", "--device", a.device],
+                            os.path.join(out, "select_masks.log")) and
+                        run([a.goris, "remove", rm_run, "--device", a.device], os.path.join(out, "remove.log")) and
+                        run([a.goris, "eval", os.path.join(rm_run, "removal"), "--split", "test", "--device",
+                             a.device], os.path.join(out, "eval.log"))):
+                    continue
+            rem = json.load(open(metrics))["removal"]
+            row[method + "-removal"] = (rem["region_psnr"], rem["ghost_ratio"])
         rows.append(row)
 
-    print("# Object masks from a selection: IoU against the exact masks\n")
-    print("Written by `tools/selection_masks_table.py --work DIR " + " ".join(a.scenes) +
-          f"` (stage 1: {a.iters} iterations at {a.resolution} px, trained without the object masks; "
-          "`goris select ... --write-masks DIR --masks-iou` on every training view).\n")
-    print("| scene | masks: mean / min IoU | two-click: mean / min IoU | two-click: selected / Gaussians | clicks |")
-    print("|---|--:|--:|--:|---|")
+    print("# Object masks from a selection: IoU against the exact masks, and the removal they drive\n")
+    opts = (f" --iters {a.iters}" if a.iters != 2000 else "") + (
+        f" --resolution {a.resolution}" if a.resolution != 128 else "")
+    print("Written by `tools/selection_masks_table.py --work DIR" + opts + " " + " ".join(a.scenes) +
+          " > docs/results/selection_masks.md` (SUITE: the generalization suite's rendered scenes, "
+          f"`goris bench pipeline --suite generalization`; stage 1: {a.iters} iterations at {a.resolution} px, "
+          "trained without the object masks; "
+          "`goris select ... --write-masks DIR --masks-iou` on every training view; the removal: "
+          "`goris select RUN --masks [DIR]`, `goris remove`, `goris eval --split test` on a copy of the same run).\n")
+    print("| scene | exact masks: mean / min IoU | two-click: mean / min IoU | two-click: selected / Gaussians | "
+          "removal, exact masks: changed-region PSNR / ghost | removal, two-click masks: changed-region PSNR / ghost | "
+          "two-click - exact (dB) | clicks |")
+    print("|---|--:|--:|--:|--:|--:|--:|---|")
     for r in rows:
         cell = lambda k: f"{r[k][0]:.3f} / {r[k][1]:.3f}" if k in r else "failed"
+        rcell = lambda k: f"{r[k][0]:.2f} dB / {r[k][1]:.3f}" if k in r else "failed"
         sel = f"{r['two-click'][2]} / {r['two-click'][3]}" if "two-click" in r else ""
-        print(f"| {r['scene']} | {cell('masks')} | {cell('two-click')} | {sel} | `{r['clicks']}` |")
-
+        diff = (f"{r['two-click-removal'][0] - r['masks-removal'][0]:+.2f}"
+                if "two-click-removal" in r and "masks-removal" in r else "")
+        print(f"| {r['scene']} | {cell('masks')} | {cell('two-click')} | {sel} | {rcell('masks-removal')} | "
+              f"{rcell('two-click-removal')} | {diff} | `{r['clicks']}` |")
+    done = [r for r in rows if "two-click" in r]
+    if done:
+        print(f"\nMean over the {len(done)} scenes: IoU with the exact masks' selection "
+              f"{sum(r['masks'][0] for r in done if 'masks' in r) / len(done):.3f}, two-click "
+              f"{sum(r['two-click'][0] for r in done) / len(done):.3f} (worst scene "
+              f"{min(r['two-click'][0] for r in done):.3f}); scenes where two-click reaches a mean IoU >= 0.9: "
+              f"{sum(r['two-click'][0] >= 0.9 for r in done)} of {len(rows)}.")
+    both = [r for r in rows if "two-click-removal" in r and "masks-removal" in r]
+    if both:
+        d = [r["two-click-removal"][0] - r["masks-removal"][0] for r in both]
+        print(f"Removal: two-click minus exact masks, changed-region PSNR: mean {sum(d) / len(d):+.2f} dB, worst "
+              f"{min(d):+.2f} dB; within 0.5 dB on {sum(x >= -0.5 for x in d)} of {len(both)} scenes.")
+    print("""
+`exact masks` is the selection voted by the exact masks (`goris select --masks`): what the mask writer loses
+on a selection that is about right. `two-click` is the default `--click-by region`: each click's region of
+its view (median depth and photo colour on a tolerance ladder), lifted to the Gaussians by their rendered
+weight in the clicked views, closed, then voted once more by every view's coverage mask. The removal columns
+drive `goris remove` with each set of masks on copies of the same stage-1 run (changed region: the pixels
+where the test views with and without the target differ; ghost: what is left of the target there, 0 is
+none). docs/lab/2026-12-04-click-regions-and-mask-edges.md has the variants that lost.""")
 
 if __name__ == "__main__":
     main()

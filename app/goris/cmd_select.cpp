@@ -5,8 +5,11 @@
 //
 //   --labels  Gaussians with learned label > T (0.3), closed by the hull of their centres (paper Sec. 3.3)
 //   --masks   depth-tested votes of the Gaussian centres in the training views' object masks, then closed
-//   --click   the Gaussian a pixel of a training view shows, grown over similar neighbours, then closed;
-//             repeated clicks (other views) are each grown and united, or intersected with --clicks intersect
+//   --click   a pixel of a training view: by default its region of that view (render depth and photo colour,
+//             selection_click_region.h), lifted by the Gaussians' rendered weight in the clicked views,
+//             closed, voted again by every view, closed;
+//             with --click-by grow (or --grow) the Gaussian it shows, grown over similar neighbours, then
+//             closed; repeated grown clicks are united, or intersected with --clicks intersect
 // Regions (each repeatable, united with one another): --rect / --polygon in a training view's pixels
 // (--through visible: only what that view shows; all: every centre inside), --sphere, --box, --colour.
 // With a rule above they are combined with its result by --combine (union, subtract, intersect).
@@ -36,6 +39,7 @@
 #include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/removal/selection.h"
+#include "render/removal/selection_click_region.h"
 #include "render/train/raster_renderer.h"
 
 namespace {
@@ -46,6 +50,7 @@ struct Options {
   std::string run, out, device = "auto", data;
   std::vector<std::string> click;  // VIEW X Y, repeated
   std::string clicks = "union";
+  std::string click_by;  // region | grow; empty: region, or grow when --grow is given
   std::string masks_dir;
   bool masks = false, labels = false, no_close = false, invert = false;
   std::vector<std::string> rects, polygons;  // VIEW COORDS pairs
@@ -274,6 +279,11 @@ void run_select(const Options& o, int n_methods) {
     record.method = "click";
     nlohmann::json clicks = nlohmann::json::array();
     std::vector<SelectionMask> picked;
+    const bool by_region = o.click_by.empty() ? !o.grow.has_value() : o.click_by == "region";
+    if (by_region && o.grow && *o.grow > 0.0f)
+      throw Error("--grow", "grows a click over similar Gaussians (--click-by grow); --click-by region takes the "
+                            "clicked views' regions instead");
+    std::vector<ClickView> regions_2d;
     for (std::size_t c = 0; c + 2 < o.click.size(); c += 3) {
       const std::size_t vi = find_view(ds.train, o.click[c]);
       const View& view = ds.train[vi];
@@ -292,6 +302,16 @@ void run_select(const Options& o, int n_methods) {
       if (!clicked_view) clicked_view = vi;
       clicks.push_back({{"view", view.name}, {"x", x}, {"y", y}, {"picked", p.gaussian}, {"pick_weight", p.weight},
                         {"pick_depth", p.depth}});
+      if (by_region) {
+        const Image photo = load_view_image(view, dataset_options(config), Device::CPU);
+        const ClickRegion cr = grow_click_region(photo, render_median_depth(model, view.camera, raster), x, y);
+        std::printf("  region of the click in %s: %zu pixels (%s of the view), colour tolerance %.2f%s\n",
+                    view.name.c_str(), cr.area, percent(double(cr.area) / double(photo.pixel_count())).c_str(),
+                    cr.tolerance, cr.leaked_at_first ? " (leaks even at the lowest tolerance)" : "");
+        clicks.back()["region_pixels"] = cr.area;
+        clicks.back()["region_tolerance"] = cr.tolerance;
+        regions_2d.push_back({view.name, view.camera, cr.mask});
+      }
       SelectionMask seeds(model.count(), 0);
       seeds[p.gaussian] = 1;
       picked.push_back(std::move(seeds));
@@ -303,12 +323,35 @@ void run_select(const Options& o, int n_methods) {
       record.parameters["clicks"] = clicks;
       record.parameters["combine_clicks"] = o.clicks;
     }
-    // A click selects one Gaussian: growing is what makes it the object, so it grows by default.
-    if (!o.grow) grow = 0.5f;
-    clicked_seeds = std::move(picked);
-    result.summary.total = model.count();
-    result.summary.seeds = clicked_seeds.size();
-    seed_rule = "picked";
+    if (by_region) {
+      // The clicked views' regions take the Gaussians that draw their pixels (by rendered weight, in every
+      // clicked view that shows the Gaussian), then the hull adds the object's interior and the side no
+      // clicked view saw, and every view's coverage mask votes once more.
+      record.parameters["click_by"] = "region";
+      const SelectionMask voted = select_from_click_regions(model, regions_2d, raster);
+      result = close_selection(pts, voted, close);
+      if (result.summary.seeds > 0 && regions_2d.size() > 1) {
+        const SelectionMask revoted = revote_with_view_masks(model, result.mask, ds.train, raster);
+        std::printf("  %zu Gaussians from the clicked views, %zu after every training view's vote\n",
+                    result.summary.selected, count_selected(revoted));
+        if (count_selected(revoted) > 0) result = close_selection(pts, revoted, close);
+      }
+      seed_rule = "in the clicked views' regions";
+      if (result.summary.seeds == 0)
+        throw Error("--click", "no Gaussian lies inside the clicked region of every clicked view that sees it: "
+                               "are the clicks on the same object?");
+      const fs::path json_dir = json_path.parent_path() / (json_path.stem().string() + "_preview");
+      fs::create_directories(json_dir);
+      for (const ClickView& v : regions_2d) save_mask_png(json_dir / ("click_region_" + v.name + ".png"), v.region);
+    } else {
+      // A click selects one Gaussian: growing is what makes it the object, so it grows by default.
+      record.parameters["click_by"] = "grow";
+      if (!o.grow) grow = 0.5f;
+      clicked_seeds = std::move(picked);
+      result.summary.total = model.count();
+      result.summary.seeds = clicked_seeds.size();
+      seed_rule = "picked";
+    }
   }
 
   nlohmann::json grow_json;
@@ -430,7 +473,8 @@ void run_select(const Options& o, int n_methods) {
     if (o.invert) seed_rule += ", inverted";
   }
   record.parameters["grow"] = grow;
-  record.parameters["close"] = close.enabled && (record.method != "click" || grow > 0.0f);
+  record.parameters["close"] =
+      close.enabled && (record.method != "click" || grow > 0.0f || record.parameters.value("click_by", "") == "region");
   record.parameters["max_fraction"] = o.max_fraction;
   const SelectionSummary& s = result.summary;
   std::printf("selected %s\n", s.describe(seed_rule).c_str());
@@ -478,6 +522,11 @@ void setup_select(CLI::App& root) {
                               "index), grown over similar neighbours (--grow, default 0.5); repeat for more views")
                     ->expected(3)
                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--click-by", o->click_by,
+                "region | grow: a click selects its region of the clicked view (depth and colour edges of the "
+                "render and photo), lifted by the Gaussians' rendered weight in the clicked views (default), or the picked Gaussian grown over "
+                "similar neighbours (default when --grow is given)")
+      ->check(CLI::IsMember({"region", "grow"}));
   c->add_option("--clicks", o->clicks, "union | intersect: how several clicks' grown selections combine")
       ->check(CLI::IsMember({"union", "intersect"}));
   auto* masks = c->add_option("--masks", o->masks_dir,
