@@ -18,12 +18,6 @@ const std::vector<ConfigSpec>& ladder() {
       {"default-nofill", "default", {}, "", false,
        "default without every other view's own fill of its hole (--view-fill 0): the reference views alone "
        "supervise it", {"--view-fill", "0"}},
-      {"default-unsup05", "default", {}, "", false,
-       "default that also deletes the Gaussians only the target's pixels showed (--unsupported 0.05)",
-       {"--unsupported", "0.05"}},
-      {"default-unsup20", "default", {}, "", false,
-       "default that also deletes the Gaussians only the target's pixels showed (--unsupported 0.2)",
-       {"--unsupported", "0.2"}},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,

@@ -29,7 +29,6 @@ struct Options {
   std::vector<std::string> ablate;
   int iters = 0;
   double view_fill = RemovalOptions{}.view_fill_weight;
-  double unsupported = RemovalOptions{}.unsupported_share;
 };
 
 void run_remove(const Options& o) {
@@ -42,7 +41,6 @@ void run_remove(const Options& o) {
   }
   ro.finetune_iterations = o.iters;
   ro.view_fill_weight = float(o.view_fill);
-  ro.unsupported_share = float(o.unsupported);
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = o.device;
@@ -124,11 +122,6 @@ void setup_remove(CLI::App& root) {
                 "point lands (0 = the reference views alone)")
       ->capture_default_str()
       ->check(cli::real(0.0, 10.0));
-  c->add_option("--unsupported", o->unsupported,
-                "Also delete the Gaussians that only the target's pixels showed: those with less than this share of "
-                "their rendered weight outside the target's coverage (0 = keep them)")
-      ->capture_default_str()
-      ->check(cli::real(0.0, 1.0));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_remove(*o); });

@@ -39,7 +39,6 @@
 #include "render/removal/finetune_views.h"
 #include "render/removal/inpaint_mask.h"
 #include "render/removal/inpaint_mask_scene.h"
-#include "render/removal/unsupported_gaussians.h"
 #include "render/removal/inpainted_maps.h"
 #include "render/removal/lift.h"
 #include "render/removal/lighting_aware_mask.h"
@@ -168,7 +167,6 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
   j["view_fill_weight"] = o.view_fill_weight;
-  if (o.unsupported_share > 0) j["unsupported_share"] = o.unsupported_share;
   return j;
 }
 
@@ -305,28 +303,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     write_selection(out / "selection.json", record, selected);
     made_from["selection"] = {{"gaussians", report.selected}, {"fingerprint", selection_fingerprint(selected)}};
     apply_selection_to_labels(model, selected);
-    std::string unsupported_note;
-    if (o.unsupported_share > 0 && !cancelled()) {
-      UnsupportedSettings us;
-      us.max_outside_share = o.unsupported_share;
-      const SelectionMask drop =
-          unsupported_gaussians(unsupported_weights(model, selected, cameras, raster, us), selected, us);
-      report.unsupported = count_selected(drop);
-      if (report.unsupported > 0) {
-        auto keep = [&](SelectionMask& m) {
-          if (m.size() != drop.size()) return;
-          SelectionMask k;
-          for (std::size_t i = 0; i < m.size(); ++i)
-            if (!drop[i]) k.push_back(m[i]);
-          m = std::move(k);
-        };
-        keep(selected), keep(twins), keep(target_only);
-        model = split_removed(model, drop).kept;
-        unsupported_note = "; " + std::to_string(report.unsupported) + " more that only the target's pixels showed";
-      }
-    }
-    s.finish(std::to_string(report.selected) + " of " + std::to_string(report.gaussians_before) + " Gaussians" +
-             twin_note + unsupported_note);
+    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + twin_note);
   }
 
   // The scene without the target (and twin): the dereflection's and the inpainting's renders, the lift's base.
@@ -660,7 +637,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["dereflected_pixels"] = report.dereflected_pixels;
     j["shadow"] = {{"found", report.shadow_found}, {"summary", report.shadow}, {"relit_pixels", report.shadow_pixels}};
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
-    j["unsupported"] = report.unsupported;
     j["glossy_mask_filled_pixels"] = report.glossy_filled_pixels;
     j["reference_views"] = report.reference_views;
     j["finetune_iterations"] = report.finetune_iterations;

@@ -60,9 +60,6 @@ struct RemovalOptions {
   // point lands (finetune_views.h; the reference views' own weight is 1). 0 = only the reference views and
   // their points supervise the hole, and novel views between them keep what stage 1 had behind the target.
   float view_fill_weight = 1.0f;
-  // Gaussians that only the target's pixels ever showed (unsupported_gaussians.h) are deleted with the target
-  // when less than this share of their rendered weight lies outside its coverage; 0 = keep them all.
-  float unsupported_share = 0.0f;
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the
@@ -87,7 +84,6 @@ struct RemovalReport {
   std::filesystem::path out_dir;            // RUN/removal
   double seconds[kRemovalStepCount] = {};   // per step
   std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
-  std::size_t unsupported = 0;   // deleted besides the selection: only the target's pixels showed them
   std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   MirrorPlane glossy_plane;           // the glossy surface's plane (found = false: none)

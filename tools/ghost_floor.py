@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Where a suite scene's ghost comes from: stage 1's own error against the photos with the target, next to
+the ghost left after the removal, inside the changed region of every test view.
+
+    tools/ghost_floor.py BENCH_OUT [--config default] [--schedule medium] [--work DIR] [--goris BIN] [SCENE ...]
+
+BENCH_OUT is a `goris bench pipeline --suite ...` output folder; the scenes' data sets are read from each
+stage-1 run's config.json. Per scene (Markdown table on stdout):
+  floor   sum |stage-1 render - full_| / sum |full_ - r_|: how far stage 1 itself is from the photos where
+          the target changed them (a removal that reproduced r_ exactly through this model would still be off
+          by about this much);
+  ghost   sum |render after removal - r_| / sum |full_ - r_| (as goris eval, after a 3x3 median);
+  inside  the part of the ghost inside the target's own mask (mask_XXX.png of the test views).
+Needs numpy and OpenCV (Debian: python3-numpy python3-opencv).
+"""
+import argparse, glob, json, os, subprocess
+import cv2
+import numpy as np
+
+
+def load(path):
+    return cv2.medianBlur(cv2.imread(path, cv2.IMREAD_COLOR), 3)[:, :, ::-1].astype(np.float64) / 255.0
+
+
+def render(goris, run, out):
+    if not os.path.isdir(out):
+        os.makedirs(os.path.dirname(out), exist_ok=True)
+        subprocess.run([goris, 'render', run, '--split', 'test', '--out', out, '--device', 'cpu'], check=True,
+                       capture_output=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('bench')
+    ap.add_argument('scenes', nargs='*')
+    ap.add_argument('--config', default='default')
+    ap.add_argument('--schedule', default='medium')
+    ap.add_argument('--work', default='ghost_floor_renders')
+    ap.add_argument('--goris', default=os.path.join(os.path.dirname(__file__), '..', 'build', 'bin', 'goris'))
+    a = ap.parse_intermixed_args()
+    runs = os.path.join(a.bench, 'runs')
+    scenes = a.scenes or sorted(os.listdir(runs))
+    print('| scene | floor (stage 1) | ghost after removal | of it inside the target |')
+    print('|---|--:|--:|--:|')
+    for s in scenes:
+        base = os.path.join(runs, s, a.schedule)
+        run = os.path.join(base, a.config, 'run')
+        if not os.path.isdir(os.path.join(run, 'removal')):
+            continue
+        test = os.path.join(json.load(open(os.path.join(run, 'config.json')))['data'], 'test')
+        s1 = os.path.join(a.work, s + '_stage1')
+        rm = os.path.join(a.work, s + '_removed')
+        render(a.goris, run, s1)
+        render(a.goris, os.path.join(run, 'removal'), rm)
+        floor = imprint = ghost = inside = 0.0
+        for full_path in sorted(glob.glob(os.path.join(test, 'full_*.png'))):
+            k = full_path[-7:-4]
+            full, after = load(full_path), load(os.path.join(test, 'r_%s.png' % k))
+            region = cv2.dilate((np.abs(full - after).max(axis=2) > 0.04).astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
+            mask = cv2.imread(os.path.join(test, 'mask_%s.png' % k), cv2.IMREAD_GRAYSCALE) > 127
+            before_model, after_model = load(os.path.join(s1, 'r_%s.png' % k)), load(os.path.join(rm, 'r_%s.png' % k))
+            imprint += np.abs(full - after)[region].sum()
+            floor += np.abs(before_model - full)[region].sum()
+            e = np.abs(after_model - after)
+            ghost += e[region].sum()
+            inside += e[region & mask].sum()
+        print('| %s | %.2f | %.2f | %.2f |' % (s, floor / imprint, ghost / imprint, inside / imprint), flush=True)
+
+
+if __name__ == '__main__':
+    main()
