@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
-#include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
 
@@ -12,14 +11,10 @@ namespace goris::ui {
 namespace fs = std::filesystem;
 
 void apply_config_override(TrainConfig& config, const std::string& key, const std::string& value) {
-  nlohmann::json j = config;
   if (key.empty()) throw Error("set: no setting name given");
-  if (!j.contains(key)) throw Error("set " + key + ": unknown setting (see config.json of a run)");
-  nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
-  j[key] = v.is_discarded() ? nlohmann::json(value) : v;
-  TrainConfig updated;
+  TrainConfig updated = config;
+  apply_config_overrides({key + "=" + value}, updated, "set");  // core's parser: unknown and removed keys named
   try {
-    from_json(j, updated);
     updated.validate("value");
   } catch (const std::exception& e) {
     throw Error("set " + key + " " + value + ": " + e.what());

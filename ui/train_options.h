@@ -12,8 +12,9 @@
 
 namespace goris::ui {
 
-// Applies KEY=VALUE to `config`: VALUE parsed as JSON (number, true/false, "text", [1,2,3]) or else taken
-// as plain text. Throws goris::Error for an unknown key or a value the configuration rejects.
+// Applies KEY=VALUE to `config` as `goris train --set KEY=VALUE` does (core/train/train_config.h), then
+// validates it, so that a script or the panel fails at the line that sets a bad value. Throws goris::Error
+// for an unknown or removed key or a value the configuration rejects.
 void apply_config_override(TrainConfig& config, const std::string& key, const std::string& value);
 
 // The panel's options (mode, iterations, resolution, initial points, device, background), its preset's

@@ -365,23 +365,23 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
   }
 }
 
-void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config) {
+void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config, const std::string& label) {
   nlohmann::json j = config;
   for (const std::string& kv : sets) {
     const size_t eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) throw Error("--set " + kv + ": expected KEY=VALUE");
+    if (eq == std::string::npos || eq == 0) throw Error(label + " " + kv + ": expected KEY=VALUE");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     if (!j.contains(key) && retired_key(key))
-      throw Error("--set " + kv + ": '" + key + "' was removed: it measured no better than without "
+      throw Error(label + " " + kv + ": '" + key + "' was removed: it measured no better than without "
                   "(docs/design/deviations.md, Removed settings)");
-    if (!j.contains(key)) throw Error("--set " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
+    if (!j.contains(key)) throw Error(label + " " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
     nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
     j[key] = v.is_discarded() ? nlohmann::json(value) : v;
   }
   try {
     from_json(j, config);
   } catch (const Error& e) {
-    throw Error(std::string("--set: ") + e.what());
+    throw Error(label + ": " + e.what());
   }
 }
 

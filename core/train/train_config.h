@@ -261,8 +261,10 @@ void to_json(nlohmann::json& j, const TrainConfig& c);
 // Missing keys keep their defaults; unknown keys are errors (typos must not pass silently).
 void from_json(const nlohmann::json& j, TrainConfig& c);
 // `--set KEY=VALUE` overrides of config.json keys (VALUE as JSON: number, true/false, "string" or [1,2,3],
-// else a plain string); goris::Error naming the setting for an unknown key or a value that fails validation.
-void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config);
+// else a plain string); goris::Error naming the setting for an unknown or removed key or a value that does
+// not parse. `label` heads the messages: the CLI's "--set", the editor's "set".
+void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config,
+                            const std::string& label = "--set");
 
 // Named groups of `--set` overrides (`goris train --preset NAME`, applied before --set). "planar-glossy":
 // the stage-1 setting for one planar glossy surface with glossy masks (an opaque table held to its plane
