@@ -1,7 +1,7 @@
 # A capture import from the scripted editor, through the Open panel's code path: a short orbit video of
 # the shared lego scene (gui_capture_input, as the capture unit test makes it) imported with COLMAP as a
-# background job (a screenshot while it runs), the new data set opened, its report printed and a few
-# training iterations run on it. Skipped with a message without COLMAP or without ../shared/datasets/lego
+# background job: a first import cancelled (nothing written), then one to the end (a screenshot while it
+# runs), the new data set opened, its report printed and a few training iterations run on it. Skipped with a message without COLMAP or without ../shared/datasets/lego
 # (the embedded 128 px scene gives COLMAP too few features to start a model).
 include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 if(GUI_SKIP)
@@ -28,6 +28,10 @@ file(WRITE "${WORK}/config/goris-studio/settings.json" "{\"display_max_side\": 1
 set(script "${WORK}/import.txt")
 file(WRITE "${script}" "# written by tests/gui/studio_import_capture.cmake
 panels Open
+import_capture_start ${WORK}/orbit.mp4 ${WORK}/cancelled_data --max-images 20
+wait_frames 5
+import_cancel
+screenshot ${WORK}/import_cancelled.png
 import_capture_start ${WORK}/orbit.mp4 ${WORK}/lego_data --max-images 20
 wait_frames 20
 screenshot_now ${WORK}/import_running.png
@@ -49,6 +53,9 @@ foreach(f capture_report.json capture_report.txt sparse/0 images)
     message(FATAL_ERROR "the imported data set has no ${f}")
   endif()
 endforeach()
-if(EXISTS "${WORK}/.lego_data.capture-tmp")
-  message(FATAL_ERROR "the import left its temporary folder")
-endif()
+foreach(p .lego_data.capture-tmp cancelled_data .cancelled_data.capture-tmp)
+  if(EXISTS "${WORK}/${p}")
+    message(FATAL_ERROR "the imports left ${WORK}/${p}")
+  endif()
+endforeach()
+expect_text("${R_OUT}" "import cancelled: cancelled: COLMAP stopped, nothing was written")

@@ -3,6 +3,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "core/capture/capture_frames.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
@@ -142,9 +145,12 @@ void OpenPanel::draw_import_progress(const AppState& st) {
       ImGui::Text("mean reprojection error %.3f px, %lld points", r->mean_reprojection_error_px, r->points);
       ImGui::Text("%dx%d photos, %s matching, %s", r->width, r->height, r->matcher.c_str(),
                   duration_text(r->seconds_total).c_str());
-      if (r->registered < r->images * 0.9)
-        ImGui::TextColored(kBusyColour, "%d photos were not placed: see %s", r->images - r->registered,
+      if (r->registered < r->images * 0.9) {
+        ImGui::PushStyleColor(ImGuiCol_Text, kBusyColour);
+        ImGui::TextWrapped("%d photos were not placed and are left out: see %s", r->images - r->registered,
                            (r->out / "capture_report.txt").string().c_str());
+        ImGui::PopStyleColor();
+      }
     }
   }
 }
