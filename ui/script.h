@@ -77,8 +77,8 @@
 //   quit                       close the editor (exit status 0)
 //
 // PATH is the rest of the line (it may contain spaces; surrounding double quotes are removed), except in
-// `export` and `import_capture` lines, where PATH is one word or a double-quoted string; relative paths are taken from the
-// current directory. X and Y may be given in percent of the image ("45%").
+// `export` and `import_capture` lines, where PATH is one word or a double-quoted string; relative paths
+// are taken from the current directory. X and Y may be given in percent of the image ("45%").
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -60,8 +60,8 @@ std::filesystem::path find_colmap(const std::filesystem::path& requested = {});
 
 // Runs the whole import. Throws goris::Error naming the file and the problem: COLMAP missing, too few
 // photos, an unreadable video, mapping that registered too few photos (with what to try), an output that
-// exists, lies inside the input folder or would land inside a data set. `stop` (optional) ends the work early: the temporary folder is
-// removed and goris::Error says so.
+// exists, lies inside the input folder or would land inside a data set. `stop` (optional) ends the work
+// early: the temporary folder is removed and goris::Error says so.
 CaptureReport run_capture(const CaptureOptions& options, const std::function<void(const CaptureProgress&)>& on_progress = {},
                           const std::atomic<bool>* stop = nullptr);
 

@@ -21,7 +21,8 @@ goris_fails("exists already" capture "${WORK}/three" --out "${WORK}/two")
 goris_fails("lies inside the input folder" capture "${WORK}/three" --out "${WORK}/three/out")
 goris_fails("inside the data set" capture "${WORK}/three" --out "${RESOURCES}/default_scene/captured" --colmap /bin/true)
 goris_fails("--matcher" capture "${WORK}/three" --out "${WORK}/out" --matcher nearest)
-foreach(p "${WORK}/out" "${WORK}/.out.capture-tmp" "${WORK}/three/out" "${WORK}/three/.out.capture-tmp" "${RESOURCES}/default_scene/captured"
+foreach(p "${WORK}/out" "${WORK}/.out.capture-tmp" "${WORK}/three/out" "${WORK}/three/.out.capture-tmp"
+          "${RESOURCES}/default_scene/captured"
           "${RESOURCES}/default_scene/.captured.capture-tmp")
   if(EXISTS "${p}")
     message(FATAL_ERROR "a refused capture left ${p}")

@@ -1,8 +1,9 @@
 # A capture import from the scripted editor, through the Open panel's code path: a short orbit video of
 # the shared lego scene (gui_capture_input, as the capture unit test makes it) imported with COLMAP as a
 # background job: a first import cancelled (nothing written), then one to the end (a screenshot while it
-# runs), the new data set opened, its report printed and a few training iterations run on it. Skipped with a message without COLMAP or without ../shared/datasets/lego
-# (the embedded 128 px scene gives COLMAP too few features to start a model).
+# runs), the new data set opened, its report printed and a few training iterations run on it. Skipped
+# with a message without COLMAP or without ../shared/datasets/lego (the embedded 128 px scene gives COLMAP
+# too few features to start a model).
 include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 if(GUI_SKIP)
   return()

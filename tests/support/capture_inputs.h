@@ -1,7 +1,8 @@
 #pragma once
-// Inputs of the capture tests. write_orbit_clip: a short video: a rendered scene's training views at one band of heights (neighbours
-// overlap), in orbit order by azimuth, resized to size x size and written by OpenCV as MPEG-4. Returns the
-// number of frames written (0 when OpenCV cannot write the file).
+// Inputs of the capture tests: a folder of noise photos, and a short video (write_orbit_clip) of a
+// rendered scene's training views at one band of heights (neighbours overlap), in orbit order by azimuth,
+// resized to size x size and written by OpenCV as MPEG-4; it returns the number of frames written (0 when
+// OpenCV cannot write the file).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>

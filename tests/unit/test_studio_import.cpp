@@ -133,9 +133,12 @@ TEST(StudioImportJob, CancelStopsColmapAndWritesNothing) {
   st.start_import(o);
   EXPECT_THROW(st.start_import(o), Error);  // one at a time
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (st.importer().progress().current < 1 && st.importer().active() && std::chrono::steady_clock::now() < end)
+  // The stand-in's line has come: it runs (the stage reports 0 of 0 before its program starts).
+  auto waiting = [&] { return st.importer().progress().stages[1].done < 1 && st.importer().active(); };
+  while (waiting() && std::chrono::steady_clock::now() < end)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_EQ(st.importer().progress().current, 1) << st.importer().status();  // the features stage runs
+  ASSERT_EQ(st.importer().progress().current, 1) << st.importer().status();  // the features stage
+  ASSERT_EQ(st.importer().progress().stages[1].done, 1) << st.importer().status();
   EXPECT_TRUE(st.importer().progress().stages[0].complete);
   st.importer().cancel();
   ASSERT_EQ(st.importer().wait(std::chrono::seconds(30)), JobState::Cancelled) << st.importer().status();

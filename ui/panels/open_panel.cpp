@@ -121,7 +121,8 @@ void OpenPanel::draw_import_progress(const AppState& st) {
       const CaptureStageStatus& s = p.stages[size_t(k)];
       char overlay[96];
       if (s.complete)
-        std::snprintf(overlay, sizeof overlay, "%s: done in %s", capture_stage_name(k), duration_text(s.seconds).c_str());
+        std::snprintf(overlay, sizeof overlay, "%s: done in %s", capture_stage_name(k),
+                      duration_text(s.seconds).c_str());
       else if (s.started && s.total > 0)
         std::snprintf(overlay, sizeof overlay, "%s: %d/%d, ETA %s", capture_stage_name(k), s.done, s.total,
                       s.eta_s >= 0 ? duration_text(s.eta_s).c_str() : "--");
