@@ -199,11 +199,35 @@ void AppState::poll() {
       message("showing the cleaned scene " + removal_result_.string() + " (Display: before / after)");
     }
   }
+  if (importer_.runs_ended() != import_runs_seen_ && !opening()) {
+    import_runs_seen_ = importer_.runs_ended();
+    const JobState js = importer_.state();
+    message("import " + std::string(job_state_name(js)) + ": " + importer_.status(), js == JobState::Error);
+    // The new data set replaces what is shown, ready to train (unless training or a removal holds the scene).
+    if (js == JobState::Done && importer_.report()) {
+      try {
+        open(importer_.report()->out);
+      } catch (const Error& e) {
+        message(std::string("the imported data set is not opened: ") + e.what(), true);
+      }
+    }
+  }
   if (exporter_.runs_ended() != export_runs_seen_) {
     export_runs_seen_ = exporter_.runs_ended();
     const ExportState es = exporter_.state();
     message(std::string("export ") + export_state_name(es) + ": " + exporter_.status(), es == ExportState::Error);
   }
+}
+
+void AppState::start_import(const capture::CaptureOptions& options) {
+  const std::string what = "import " + options.input.string();
+  if (options.input.empty()) throw Error("import: no photo folder or video given");
+  if (options.out.empty()) throw Error(what, "no output folder given");
+  if (opening()) throw Error(what, "cannot import while " + opening_path_.string() + " is opening");
+  if (training_active()) throw Error(what, "cannot import while training runs: stop the training first");
+  if (removal_.active()) throw Error(what, "cannot import while the removal runs: cancel it first");
+  importer_.start(options);
+  message("importing " + options.input.string() + " into " + options.out.string() + " (COLMAP on the CPU)");
 }
 
 void AppState::add_override(const std::string& key, const std::string& value) {

@@ -14,6 +14,7 @@
 
 #include "core/io/camera.h"
 #include "render/maps/channels.h"
+#include "ui/capture_job.h"
 #include "ui/display_frame.h"
 #include "ui/export_job.h"
 #include "ui/model_snapshot.h"
@@ -161,6 +162,17 @@ class AppState {
   // Whether poll() has taken in the end of the last export (its message).
   bool export_reported() const { return exporter_.runs_ended() == export_runs_seen_; }
 
+  // --- Capture import (ui/capture_job.h): photos or a video to a data set, opened when it is done ---
+  CaptureJob& importer() { return importer_; }
+  const CaptureJob& importer() const { return importer_; }
+  // The Open panel's import fields (input, output, max images, resolution, matcher, masks); the script's
+  // `import_capture` fills them in too, so the panel shows what runs.
+  capture::CaptureOptions import_form;
+  // Starts the import. Throws goris::Error while one runs, training or a removal runs, or a scene opens.
+  void start_import(const capture::CaptureOptions& options);
+  // Whether poll() has taken in the end of the last import (its message, the open of its data set).
+  bool import_reported() const { return importer_.runs_ended() == import_runs_seen_; }
+
   // --- View ---
   OrbitCamera orbit;
   std::optional<Camera> snapped;  // the exact data set camera, until the view moves
@@ -232,6 +244,8 @@ class AppState {
   bool keep_view_on_open_ = false;  // the next finish_open keeps the camera (the cleaned scene after Remove)
   ExportJob exporter_;  // reads its own copy of the run from disk: nothing shared with the display
   std::uint64_t export_runs_seen_ = 0;
+  CaptureJob importer_;  // writes a new data set folder: nothing shared with the display
+  std::uint64_t import_runs_seen_ = 0;
   std::string last_message_;
   bool last_message_error_ = false;
 };

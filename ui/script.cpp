@@ -69,7 +69,12 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::Unlock, "unlock"},
                                {Kind::UseAsTargetMasks, "use_as_target_masks"},
                                {Kind::ExpectSelected, "expect_selected"},
-                               {Kind::Drag, "drag"}};
+                               {Kind::Drag, "drag"},
+                               {Kind::ImportCapture, "import_capture"},
+                               {Kind::ImportCaptureStart, "import_capture_start"},
+                               {Kind::ImportWait, "import_wait"},
+                               {Kind::ImportCancel, "import_cancel"},
+                               {Kind::ExpectImportError, "expect_import_error"}};
 
 std::string trim(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t\r");
@@ -308,6 +313,34 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
       }
       break;
     }
+    case Kind::ImportCapture:
+    case Kind::ImportCaptureStart: {
+      std::string problem;
+      const std::vector<std::string> w = split_quoted(rest, problem);
+      if (!problem.empty()) p.fail(problem);
+      const std::string usage = std::string(action_name(a.kind)) +
+                                " INPUT OUT [--max-images N] [--resolution W] [--matcher exhaustive|sequential] "
+                                "[--masks DIR]";
+      if (w.size() < 2 || w[0].empty() || w[1].empty()) p.fail("expected '" + usage + "'");
+      a.path = w[0];
+      a.out = w[1];
+      for (size_t k = 2; k < w.size(); k += 2) {
+        if (k + 1 >= w.size()) p.fail("'" + w[k] + "' needs a value ('" + usage + "')");
+        const std::string& v = w[k + 1];
+        if (w[k] == "--max-images") a.count = p.integer(v, 0, 100000, "--max-images");
+        else if (w[k] == "--resolution") a.width = p.integer(v, 0, 100000, "--resolution");
+        else if (w[k] == "--matcher" && (v == "exhaustive" || v == "sequential")) a.matcher = v;
+        else if (w[k] == "--matcher") p.fail("unknown matcher '" + v + "' (exhaustive, sequential)");
+        else if (w[k] == "--masks") a.masks = v;
+        else p.fail("unknown option '" + w[k] + "' ('" + usage + "')");
+      }
+      break;
+    }
+    case Kind::ImportWait:
+    case Kind::ImportCancel:
+      p.expect_args(args, 0, 0, action_name(a.kind));
+      break;
+    case Kind::ExpectImportError:
     case Kind::ExpectExportError: {
       a.text = trim(rest);
       if (a.text.size() >= 2 && a.text.front() == '"' && a.text.back() == '"')

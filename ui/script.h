@@ -57,6 +57,14 @@
 //   export_wait                waits for the running export; fails unless it completes
 //   export_cancel              cancels the running export and waits until it has stopped
 //   expect_export_error [TEXT] waits for the export to end; fails unless it failed with TEXT in its message
+//   import_capture INPUT OUT [--max-images N] [--resolution W] [--matcher exhaustive|sequential] [--masks DIR]
+//                              the Open panel's "Import photos / video" (COLMAP: a folder of photos or a
+//                              video into the new data set OUT); waits until it has ended and the new data
+//                              set is open, fails when the import fails or is cancelled
+//   import_capture_start INPUT OUT [...]   the same, going on at once (progress screenshots, cancelling)
+//   import_wait                waits for the running import; fails unless it completes and its data set opens
+//   import_cancel              cancels the running import and waits until it has stopped
+//   expect_import_error [TEXT] waits for the import to end; fails unless it failed with TEXT in its message
 //   compare MODE [SPLIT]       off | side_by_side | slider (SPLIT in 0..1 for the slider)
 //   compare_with photo|before  what the compare modes set the render against: the nearest input photo, or
 //                              (a cleaned scene) the scene with the target
@@ -69,8 +77,8 @@
 //   quit                       close the editor (exit status 0)
 //
 // PATH is the rest of the line (it may contain spaces; surrounding double quotes are removed), except in
-// `export` lines, where PATH is one word or a double-quoted string; relative paths are taken from the
-// current directory. X and Y may be given in percent of the image ("45%").
+// `export` and `import_capture` lines, where PATH is one word or a double-quoted string; relative paths
+// are taken from the current directory. X and Y may be given in percent of the image ("45%").
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -86,7 +94,8 @@ struct ScriptAction {
     SaveSelection, Remove, RemoveStart, RemoveWait, RemoveCancel, ExpectStepComplete, ExportDialog, ExportFrom,
     Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, CompareWith, BeforeAfter, Screenshot, ScreenshotNow,
     WaitFrames, Quit, SelectRect, SelectPolygon, SelectBrush, SelectThrough, SelectSphere, SelectBox, SelectColour,
-    SelectTool, Invert, GrowStep, ShrinkStep, Hide, Lock, Unhide, Unlock, UseAsTargetMasks, ExpectSelected, Drag
+    SelectTool, Invert, GrowStep, ShrinkStep, Hide, Lock, Unhide, Unlock, UseAsTargetMasks, ExpectSelected, Drag,
+    ImportCapture, ImportCaptureStart, ImportWait, ImportCancel, ExpectImportError
   };
   // A coordinate on the main viewport's image: pixels, or a fraction of its width / height ("45%").
   struct Coord {
@@ -100,7 +109,10 @@ struct ScriptAction {
                            // select_through: visible | all; select_tool: its name;
                            // export_dialog: open | close; compare_with: photo | before; before_after: before | after
   std::string render_path = "test";  // export renders
-  std::string text;        // expect_export_error
+  std::string text;        // expect_export_error, expect_import_error
+  // import_capture: path = INPUT, out = OUT, count = --max-images, width = --resolution
+  std::string out, masks, matcher = "exhaustive";
+  int width = 0;
   std::vector<std::string> names;  // panels
   std::string key, value;  // set
   int count = 0;           // train, grid, wait_frames, remove, export (0 = default); grow_step, shrink_step;

@@ -327,6 +327,44 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
         return false;
       }
       return true;
+    case Kind::ImportCapture:
+      if (phase_ == 0) {
+        if (!host.settled()) return false;
+        start_import(st, a);
+        phase_ = 1;
+        return false;
+      }
+      return wait_import(host, a, JobState::Done);
+    case Kind::ImportCaptureStart:
+      if (!host.settled()) return false;
+      start_import(st, a);
+      return true;
+    case Kind::ImportWait:
+      if (phase_ == 0) {
+        if (st.importer().state() == JobState::Idle) throw Error("no import was started");
+        phase_ = 1;
+      }
+      return wait_import(host, a, JobState::Done);
+    case Kind::ImportCancel:
+      if (phase_ == 0) {
+        if (!st.importer().active()) throw Error("no import is running");
+        st.importer().cancel();
+        phase_ = 1;
+      }
+      return wait_import(host, a, JobState::Cancelled);
+    case Kind::ExpectImportError:
+      if (phase_ == 0) {
+        if (st.importer().state() == JobState::Idle) throw Error("no import was started");
+        phase_ = 1;
+      }
+      if (!wait_import(host, a, JobState::Error)) return false;
+      if (st.importer().status().find(a.text) == std::string::npos) {
+        fail(a, "the import failed with '" + st.importer().status() + "', which does not contain '" + a.text + "'");
+        return false;
+      }
+      std::printf("import refused: %s\n", st.importer().status().c_str());
+      std::fflush(stdout);
+      return true;
     case Kind::Screenshot:
     case Kind::ScreenshotNow:
       if (phase_ == 0) {
@@ -490,6 +528,55 @@ bool ScriptRunner::wait_export(ScriptHost& host, const ScriptAction& a, ExportSt
       std::fflush(stdout);
     }
     phase_ = 2;
+  }
+  return host.settled();
+}
+
+}  // namespace goris::ui
+
+namespace goris::ui {
+
+void ScriptRunner::start_import(AppState& st, const ScriptAction& a) {
+  capture::CaptureOptions& f = st.import_form;
+  f = capture::CaptureOptions();
+  f.input = fs::absolute(a.path).lexically_normal();  // scripts: from the current folder
+  f.out = fs::absolute(a.out).lexically_normal();
+  f.max_images = a.count;
+  f.width = a.width;
+  f.matcher = a.matcher;
+  if (!a.masks.empty()) f.masks = fs::absolute(a.masks).lexically_normal();
+  st.start_import(f);
+}
+
+bool ScriptRunner::wait_import(ScriptHost& host, const ScriptAction& a, JobState expect) {
+  AppState& st = host.state();
+  if (phase_ == 1) {
+    if (st.importer().active() || !st.import_reported()) return false;
+    const JobState s = st.importer().state();
+    if (s != expect) {
+      fail(a, std::string("the import ended ") + job_state_name(s) + " (expected " + job_state_name(expect) +
+                  "): " + st.importer().status());
+      return false;
+    }
+    if (s == JobState::Done) {
+      std::printf("import: %s (%.1f s)\n%s", st.importer().status().c_str(), st.importer().elapsed_s(),
+                  capture::report_text(*st.importer().report()).c_str());
+      std::fflush(stdout);
+    }
+    phase_ = 2;
+  }
+  if (phase_ == 2 && expect == JobState::Done) {
+    if (st.opening()) return false;
+    const fs::path out = st.importer().report()->out;
+    if (!st.scene() || st.scene()->path != out) {
+      fail(a, "the imported data set " + out.string() + " was not opened" +
+                  (st.open_error().empty() ? std::string() : ": " + st.open_error()));
+      return false;
+    }
+    std::printf("opened the imported data set %s (%zu training views)\n", out.string().c_str(),
+                st.scene()->dataset ? st.scene()->dataset->train.size() : size_t(0));
+    std::fflush(stdout);
+    phase_ = 3;
   }
   return host.settled();
 }

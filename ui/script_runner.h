@@ -77,6 +77,11 @@ class ScriptRunner {
   // Waits until the running (or, with !started_here, the last) export has ended and the display settled;
   // `expect` is the state it must end in.
   bool wait_export(ScriptHost& host, const ScriptAction& a, ExportState expect);
+  // The Open panel's import fields from the line, then its Import button.
+  static void start_import(AppState& st, const ScriptAction& a);
+  // Waits until the import has ended (and been taken in by the editor) and the display settled; `expect`
+  // is the state it must end in. A finished import also waits for its data set to be open.
+  bool wait_import(ScriptHost& host, const ScriptAction& a, JobState expect);
   void fail(const ScriptAction& a, const std::string& problem);
 
   std::vector<ScriptAction> actions_;

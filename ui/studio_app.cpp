@@ -122,7 +122,9 @@ bool StudioApp::busy() const {
   const SessionState s = state_->session().state();
   if (s == SessionState::Running || s == SessionState::Stopping) return true;
   if (state_->opening() || !worker_->idle() || stable_frames_ < 3) return true;
-  if (state_->removal().active() || state_->selection().busy() || state_->exporter().active()) return true;
+  if (state_->removal().active() || state_->selection().busy() || state_->exporter().active() ||
+      state_->importer().active())
+    return true;
   return ImGui::IsAnyMouseDown() || glfwGetKey(window_->handle(), GLFW_KEY_W) == GLFW_PRESS ||
          glfwGetKey(window_->handle(), GLFW_KEY_A) == GLFW_PRESS ||
          glfwGetKey(window_->handle(), GLFW_KEY_S) == GLFW_PRESS ||
@@ -425,6 +427,7 @@ bool StudioApp::settled() const {
   if (!worker_->idle()) return false;
   if (state_->selection().busy() || state_->removal().active() || !state_->removal_reported()) return false;
   if (state_->exporter().active() || !state_->export_reported()) return false;
+  if (state_->importer().active() || !state_->import_reported()) return false;
   // What the frame loop last looked at is still current (an edit may have finished since).
   if (state_->selection().version() != display_signature_.selection ||
       state_->model_version() != display_signature_.model)

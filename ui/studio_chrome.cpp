@@ -88,6 +88,8 @@ void StudioApp::draw_status() {
     ImGui::Text("[removal %s]", removal_state_name(state_->removal().state()));
   else if (state_->exporter().active())
     ImGui::Text("[export %s]", export_state_name(state_->exporter().state()));
+  else if (state_->importer().active())
+    ImGui::Text("[import %s]", job_state_name(state_->importer().state()));
   else
     ImGui::Text("[%s]", state_name(s.state()));
   ImGui::SameLine();

@@ -140,6 +140,15 @@ fs::path largest_model(const fs::path& sparse, int* registered) {
   return best;
 }
 
+// Whether `path` is `dir` or lies below it (both absolute and normal).
+bool is_inside(const fs::path& path, fs::path dir) {
+  if (dir.filename().empty()) dir = dir.parent_path();
+  auto p = path.begin();
+  for (auto d = dir.begin(); d != dir.end(); ++d, ++p)
+    if (p == path.end() || *p != *d) return false;
+  return true;
+}
+
 void move_into(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::rename(from, to, ec);
@@ -178,6 +187,10 @@ CaptureReport run_capture(const CaptureOptions& o, const std::function<void(cons
   if (rep.masks && !fs::is_directory(o.masks, ec)) throw Error(o.masks.string(), "masks folder not found");
   if (fs::exists(rep.out, ec))
     throw Error(rep.out.string(), "exists already: a capture writes a new data set folder (choose another --out)");
+  // A data set inside the photo folder would mix with the photos of the next capture of that folder.
+  if (!video && is_inside(rep.out, fs::absolute(o.input).lexically_normal()))
+    throw Error(rep.out.string(), "lies inside the input folder " + o.input.string() +
+                                      ": choose an output folder outside it (e.g. beside it)");
   const fs::path colmap = find_colmap(o.colmap);
   if (video && rep.masks) throw Error(o.masks.string(), "--masks needs a folder of photos, not a video");
 

@@ -4,8 +4,8 @@
 // undistortion to PINHOLE cameras); the result is COLMAP's undistorted layout, images/ + sparse/0 (+ masks/
 // when a masks folder was given), with capture_report.json and capture_report.txt beside it. Everything is
 // written into a temporary folder next to the output, renamed into place at the end: a failed or stopped
-// capture leaves no half data set. Used by `goris capture`; written so that a background job (the editor's
-// Open panel, not yet) can run it with progress and a stop flag.
+// capture leaves no half data set. Used by `goris capture` and by the editor's Open panel (ui/capture_job.h,
+// a background job with progress and a stop flag).
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -60,8 +60,8 @@ std::filesystem::path find_colmap(const std::filesystem::path& requested = {});
 
 // Runs the whole import. Throws goris::Error naming the file and the problem: COLMAP missing, too few
 // photos, an unreadable video, mapping that registered too few photos (with what to try), an output that
-// exists or would land inside a data set. `stop` (optional) ends the work early: the temporary folder is
-// removed and goris::Error says so.
+// exists, lies inside the input folder or would land inside a data set. `stop` (optional) ends the work
+// early: the temporary folder is removed and goris::Error says so.
 CaptureReport run_capture(const CaptureOptions& options, const std::function<void(const CaptureProgress&)>& on_progress = {},
                           const std::atomic<bool>* stop = nullptr);
 

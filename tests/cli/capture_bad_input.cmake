@@ -1,6 +1,6 @@
 # `goris capture` refuses bad input before any COLMAP work, exits non-zero and names the file and the
 # problem: a missing input, too few photos, a video that does not decode, COLMAP missing (with the apt
-# command), an output that exists or lies inside a data set. Needs no COLMAP.
+# command), an output that exists, lies inside the input folder or inside a data set. Needs no COLMAP.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/two")
@@ -18,9 +18,11 @@ goris_fails("only 2 photos: a capture needs at least 3" capture "${WORK}/two" --
 goris_fails("broken.mp4: cannot read the video" capture "${WORK}/broken.mp4" --out "${WORK}/out")
 goris_fails("sudo apt-get install colmap" capture "${WORK}/three" --out "${WORK}/out" --colmap "${WORK}/no_colmap")
 goris_fails("exists already" capture "${WORK}/three" --out "${WORK}/two")
+goris_fails("lies inside the input folder" capture "${WORK}/three" --out "${WORK}/three/out")
 goris_fails("inside the data set" capture "${WORK}/three" --out "${RESOURCES}/default_scene/captured" --colmap /bin/true)
 goris_fails("--matcher" capture "${WORK}/three" --out "${WORK}/out" --matcher nearest)
-foreach(p "${WORK}/out" "${WORK}/.out.capture-tmp" "${RESOURCES}/default_scene/captured"
+foreach(p "${WORK}/out" "${WORK}/.out.capture-tmp" "${WORK}/three/out" "${WORK}/three/.out.capture-tmp"
+          "${RESOURCES}/default_scene/captured"
           "${RESOURCES}/default_scene/.captured.capture-tmp")
   if(EXISTS "${p}")
     message(FATAL_ERROR "a refused capture left ${p}")

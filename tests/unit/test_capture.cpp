@@ -18,6 +18,7 @@
 #include "core/capture/pose_alignment.h"
 #include "core/io/dataset.h"
 #include "core/util/logged_process.h"
+#include "tests/support/capture_inputs.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -83,28 +84,13 @@ TEST(Capture, PosesOfADataSetAgreeWithThemselves) {
   EXPECT_LT(c.mean_angle_deg, 0.05);
 }
 
-namespace {
-
-// A folder with `n` small photos (noise, so that they are images but nothing COLMAP could map).
-fs::path photo_folder(const fs::path& dir, int n) {
-  fs::create_directories(dir);
-  for (int i = 0; i < n; ++i) {
-    cv::Mat img(40, 60, CV_8UC3);
-    cv::randu(img, cv::Scalar::all(0), cv::Scalar::all(255));
-    cv::imwrite((dir / ("p" + std::to_string(i) + ".png")).string(), img);
-  }
-  return dir;
-}
-
-}  // namespace
-
 TEST(Capture, RefusesBadInputBeforeAnyWork) {
   const fs::path dir = test::scratch_dir("capture_bad_input");
   CaptureOptions o;
   o.out = dir / "out";
   o.input = dir / "missing";
   test::expect_error([&] { run_capture(o); }, "missing: not found");
-  o.input = photo_folder(dir / "two", 2);
+  o.input = test::photo_folder(dir / "two", 2);
   test::expect_error([&] { run_capture(o); }, "only 2 photos: a capture needs at least 3");
   o.input = dir / "broken.mp4";
   std::ofstream(o.input) << "not a video";
@@ -113,14 +99,17 @@ TEST(Capture, RefusesBadInputBeforeAnyWork) {
   std::ofstream(o.input) << "x";
   test::expect_error([&] { run_capture(o); }, "not a folder of images or a video file");
   // COLMAP missing: an explicit program that is not there names the apt command.
-  o.input = photo_folder(dir / "five", 5);
+  o.input = test::photo_folder(dir / "five", 5);
   o.colmap = dir / "no_colmap";
   test::expect_error([&] { run_capture(o); }, "sudo apt-get install colmap");
-  // The output guard: an existing folder, a folder inside a data set.
+  // The output guard: an existing folder, a folder inside the input, a folder inside a data set.
   o.colmap.clear();
   fs::create_directories(dir / "exists");
   o.out = dir / "exists";
   test::expect_error([&] { run_capture(o); }, "exists already");
+  o.out = o.input / "captured";
+  test::expect_error([&] { run_capture(o); }, "lies inside the input folder");
+  EXPECT_FALSE(fs::exists(o.out));
   o.out = test::resource_dir() / "default_scene" / "captured";
   o.colmap = "/bin/true";  // gets past the COLMAP check wherever COLMAP is absent
   test::expect_error([&] { run_capture(o); }, "data set");
@@ -154,22 +143,9 @@ TEST(Capture, VideoOfARenderedOrbitImportsAndTrains) {
   GORIS_REQUIRE_SHARED("datasets/lego");
   const fs::path dir = test::scratch_dir("capture_video");
   const Dataset scene = load_dataset(test::shared_dir() / "datasets" / "lego");
-  std::vector<const View*> views;
-  for (const View& v : scene.train)
-    if (v.camera.center().z > 1.5f) views.push_back(&v);  // one band of heights: neighbours overlap
-  std::sort(views.begin(), views.end(), [](const View* a, const View* b) {
-    const glm::vec3 ca = a->camera.center(), cb = b->camera.center();
-    return std::atan2(ca.y, ca.x) < std::atan2(cb.y, cb.x);
-  });
   const fs::path clip = dir / "orbit.mp4";
-  cv::VideoWriter writer(clip.string(), cv::VideoWriter::fourcc('m', 'p', '4', 'v'), 12, cv::Size(200, 200));
-  ASSERT_TRUE(writer.isOpened());
-  for (const View* v : views) {
-    cv::Mat img = cv::imread(v->image.string(), cv::IMREAD_COLOR), big;
-    cv::resize(img, big, cv::Size(200, 200), 0, 0, cv::INTER_AREA);
-    writer.write(big);
-  }
-  writer.release();
+  const int frames = test::write_orbit_clip(scene, clip);
+  ASSERT_GT(frames, 0);
 
   CaptureOptions o;
   o.input = clip;
@@ -177,8 +153,8 @@ TEST(Capture, VideoOfARenderedOrbitImportsAndTrains) {
   o.max_images = 20;
   const CaptureReport r = run_capture(o);
   EXPECT_TRUE(r.from_video);
-  EXPECT_EQ(r.candidates, int(views.size()));
-  EXPECT_EQ(r.images, std::min(20, int(views.size())));
+  EXPECT_EQ(r.candidates, frames);
+  EXPECT_EQ(r.images, std::min(20, frames));
   EXPECT_GE(r.registered, r.images / 2);  // measured: 14 of 20 (frames far apart in height stay out)
   EXPECT_TRUE(fs::exists(o.out / "capture_report.json"));
   const Dataset d = load_dataset(o.out);
