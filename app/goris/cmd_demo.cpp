@@ -43,7 +43,7 @@ struct Options {
   std::string out = "goris-demo";
   std::string device = "auto";
   int iters = 2000;
-  std::string mode = "radiance";
+  std::string mode = "auto";
   int report_views = 4;
 };
 
@@ -189,6 +189,16 @@ std::string stage2_rows(const goris::Dataset& ds, const fs::path& removed, const
   return md;
 }
 
+// The channels the report shows for an intrinsic run (render/maps/channels.h names), in the paper's order.
+constexpr const char* kIntrinsicChannels[] = {"diffuse", "glossy", "f0", "roughness", "normal"};
+
+// The stage-1 mode a run trained in (config.json; --mode auto has written its decision there).
+std::string run_mode(const fs::path& run) {
+  std::ifstream f(run / "config.json");
+  if (!f) throw Error((run / "config.json").string(), "missing: the training step wrote no config");
+  return nlohmann::json::parse(f).value("mode", std::string());
+}
+
 void write_report(const Options& o, const fs::path& out, const fs::path& run, const fs::path& renders,
                   const StepTimes& times) {
   const goris::Dataset ds = goris::load_dataset(o.data, {});
@@ -200,7 +210,8 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
   md += "Data: `" + o.data + "` (" + ds.format + ", " + std::to_string(ds.train.size()) + " train / " +
         std::to_string(ds.test.size()) + " test views at " + std::to_string(ds.train[0].camera.width) + "x" +
         std::to_string(ds.train[0].camera.height) + ")  \n";
-  md += "Training: " + std::to_string(o.iters) + " iterations, " + o.mode + " mode, device `" + m.value("device", "?") +
+  md += "Training: " + std::to_string(o.iters) + " iterations, " + run_mode(run) + " mode" +
+        (o.mode == "auto" ? std::string(" (chosen by --mode auto)") : std::string()) + ", device `" + m.value("device", "?") +
         "`, " + std::to_string(m.value("gaussians", 0)) + " Gaussians  \n";
   char line[256];
   std::snprintf(line, sizeof line, "Test views against the images with the target (`--gt full`): PSNR %.2f dB, SSIM %.4f  \n",
@@ -233,6 +244,21 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
         write_png(out / file, row);
         md += "![" + v.name + " changed region](" + file + ")\n\n";
       }
+    }
+  }
+  if (fs::is_directory(out / "maps")) {
+    md += "## The intrinsic maps\n\nStage 1 splits every view into a diffuse colour D and a glossy reflection G, "
+          "traced from the Gaussians' Fresnel F0, roughness and normals (C = D + G, the paper's Eq. 1); removing the target's "
+          "Gaussians removes its reflection from G. Each row: photo with the target | D | G | F0 | roughness | "
+          "normal\n\n";
+    for (int i = 0; i < n; ++i) {
+      const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];
+      std::vector<Tile> parts = {{v.full_image ? *v.full_image : v.image, "photo"}};
+      for (const char* channel : kIntrinsicChannels)
+        parts.push_back({out / "maps" / channel / (v.name + ".png"), channel, true});
+      const std::string file = "maps_" + v.name + ".png";
+      write_png(out / file, tile_row(parts));
+      md += "![" + v.name + " intrinsic maps](" + file + ")\n\n";
     }
   }
   md += "## Stage 1\n\nEach row: ground truth | render | depth (TURBO on inverse depth) | normal (n*0.5+0.5)\n\n";
@@ -296,7 +322,7 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
   double total = 0;
   for (const auto& [title, sec] : times) total += sec;
   std::printf("\n== demo: report %s (%.0f s in all, %s mode)\n", (out / "report.md").string().c_str(), total,
-              o.mode.c_str());
+              run_mode(run).c_str());
 }
 
 void run_demo(const Options& o) {
@@ -322,6 +348,14 @@ void run_demo(const Options& o) {
        {"render", run.string(), "--split", "test", "--out", renders.string(), "--maps", "--device", o.device});
   step("evaluate against the views with the target",
        {"eval", run.string(), "--split", "test", "--gt", "full", "--device", o.device});
+  // The intrinsic maps the paper's method reasons with, when stage 1 trained them (--mode auto decides).
+  if (run_mode(run) == "intrinsic") {
+    fs::create_directories(out / "maps");
+    for (const char* channel : kIntrinsicChannels)
+      step(std::string("render the test views' ") + channel + " map",
+           {"export", run.string(), "--renders", (out / "maps" / channel).string(), "--channel", channel, "--frames",
+            std::to_string(o.report_views), "--device", o.device});
+  }
   // Stage 2: the target from the data set's object masks, removed with its reflections, evaluated against
   // the after-removal ground truth (test/r_XXX.png).
   const fs::path removed = run / "removal", removed_renders = out / "renders_removed";
@@ -354,7 +388,9 @@ void setup_demo(CLI::App& root) {
   c->add_option("--out", o->out, "Output folder (report.md, images, run/)")->capture_default_str();
   c->add_option("--iters", o->iters, "Training iterations")->capture_default_str()->check(goris::cli::whole(1, goris::cli::kIntMax));
   c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
-  c->add_option("--mode", o->mode, "Stage-1 mode: radiance (fast), intrinsic or auto")
+  c->add_option("--mode", o->mode,
+                "Stage-1 mode: auto (intrinsic where the data set's glossy masks mark a glossy surface, as on the "
+                "embedded scene; else radiance), radiance (fast) or intrinsic")
       ->capture_default_str()
       ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
   c->callback([o] { run_demo(*o); });
