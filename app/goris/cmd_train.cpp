@@ -147,9 +147,23 @@ void run_train(const Options& o) {
   if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;
   config.device = o.device;
   config.validate("training options");
-  if (resumed && resumed->checkpoint.state.iteration >= config.iterations)
-    throw Error(run_dir.string(), "already trained for " + std::to_string(resumed->checkpoint.state.iteration) +
-                                      " iterations; pass a larger --iters to train further");
+  // A run that reached its last iteration is finished once its outputs are written after that checkpoint:
+  // then there is nothing to do. One killed in between (the checkpoint saved, the model not yet) is resumed
+  // to write them.
+  if (resumed && resumed->checkpoint.state.iteration >= config.iterations) {
+    auto written_after_checkpoint = [&](const fs::path& f) {
+      std::error_code e1, e2;
+      const auto t = fs::last_write_time(f, e1);
+      return !e1 && t >= fs::last_write_time(resumed->file, e2) && !e2;
+    };
+    const int done = resumed->checkpoint.state.iteration;
+    if (written_after_checkpoint(run_ply_path(run_dir)) &&
+        (config.mode != "intrinsic" || written_after_checkpoint(run_dir / "environment.png"))) {
+      std::printf("already trained for %d iterations: nothing to do (pass a larger --iters to train further)\n", done);
+      return;
+    }
+    std::printf("the run reached iteration %d but stopped before writing its model: writing it\n", done);
+  }
 
   // The shared set-up (render/train/training_setup.h, also the editor's): data, auto mode, images, state,
   // renderer, trainer. The line before it says the command has started (a large data set loads for a while).
