@@ -205,12 +205,13 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
   std::ifstream mf(run / "metrics.json");
   if (!mf) throw Error((run / "metrics.json").string(), "missing: the evaluation step wrote no metrics");
   const nlohmann::json m = nlohmann::json::parse(mf);
+  const std::string mode = run_mode(run);  // what stage 1 trained (--mode auto's decision)
 
   std::string md = "# GOR-IS Studio demo\n\n";
   md += "Data: `" + o.data + "` (" + ds.format + ", " + std::to_string(ds.train.size()) + " train / " +
         std::to_string(ds.test.size()) + " test views at " + std::to_string(ds.train[0].camera.width) + "x" +
         std::to_string(ds.train[0].camera.height) + ")  \n";
-  md += "Training: " + std::to_string(o.iters) + " iterations, " + run_mode(run) + " mode" +
+  md += "Training: " + std::to_string(o.iters) + " iterations, " + mode + " mode" +
         (o.mode == "auto" ? std::string(" (chosen by --mode auto)") : std::string()) + ", device `" + m.value("device", "?") +
         "`, " + std::to_string(m.value("gaussians", 0)) + " Gaussians  \n";
   char line[256];
@@ -322,7 +323,7 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
   double total = 0;
   for (const auto& [title, sec] : times) total += sec;
   std::printf("\n== demo: report %s (%.0f s in all, %s mode)\n", (out / "report.md").string().c_str(), total,
-              run_mode(run).c_str());
+              mode.c_str());
 }
 
 void run_demo(const Options& o) {
