@@ -62,6 +62,10 @@ void run_detect(const Options& o) {
     const double c = std::clamp(std::abs(glm::dot(up, glm::dvec3(det.plane_normals[k]))), 0.0, 1.0);
     std::printf("plane %zu: %.1f degrees from level (the cameras' mean up)\n", k + 1, glm::degrees(std::acos(c)));
   }
+  for (std::size_t k = 0; k < det.plane_in_front.size(); ++k)
+    std::printf("plane fit %zu: %.1f %% of its detections stand in front of its surface (at most %.0f %%)%s\n", k + 1,
+                100.0 * det.plane_in_front[k], 100.0 * s.plane_max_in_front,
+                det.rejected_planes[k] ? ": not a reflector, not grown over" : "");
   MaskAgreement all;
   for (size_t i = 0; i < views.size(); ++i) {
     if (views[i].glossy_mask.size() != det.masks[i].size()) continue;

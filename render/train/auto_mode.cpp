@@ -54,12 +54,14 @@ void write_summary(const fs::path& dir, const std::vector<TrainView>& views, con
   j["scored_pixels"] = d.scored;
   j["detected_pixels"] = d.detected;
   j["planes"] = d.planes;
+  j["plane_in_front"] = det.plane_in_front;  // per plane found: share of the detections in front of its surface
   j["mask_pixels"] = d.mask_pixels;
   j["seconds"] = d.seconds;
   j["settings"] = {{"neighbours", s.neighbours},         {"pixel_threshold", s.threshold},
                    {"depth_tolerance", s.depth_tolerance}, {"search_radius", s.search_radius},
                    {"min_visible", s.min_visible},       {"morph_radius", s.morph_radius},
-                   {"work_width", s.work_width},         {"plane_tolerance", s.grow_planes ? s.plane_tolerance : 0.0f}};
+                   {"work_width", s.work_width},         {"plane_tolerance", s.grow_planes ? s.plane_tolerance : 0.0f},
+                   {"plane_max_in_front", s.plane_max_in_front}};
   nlohmann::json per_view = nlohmann::json::array();
   for (size_t i = 0; i < views.size(); ++i) {
     size_t n = 0;
@@ -171,7 +173,11 @@ std::string AutoDecision::message() const {
                                        : "";
   return "--mode auto after iteration " + std::to_string(iteration) + ": " +
          (glossy ? "glossy regions (" + found + grown + ") -> intrinsic from now on with the masks in " + mask_dir.string()
-                 : "no glossy regions (" + found + ") -> radiance to the end; masks in " + mask_dir.string()) +
+                 : "no glossy regions (" + found +
+                       (backdrops > 0             ? ", most of it in front of the plane it was found near: not a reflector"
+                        : fraction >= threshold ? ", on no plane"
+                                                : "") +
+                       ") -> radiance to the end; masks in " + mask_dir.string()) +
          (extended_by > 0 ? "; the run grows by " + std::to_string(extended_by) +
                                 " iterations so that the shading phase keeps its planned length"
                           : "") +
@@ -195,6 +201,7 @@ std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& ru
   d.scored = det.scored;
   d.detected = det.detected;
   d.planes = det.planes;
+  d.backdrops = int(std::count(det.rejected_planes.begin(), det.rejected_planes.end(), true));
   d.mask_pixels = det.in_masks;
   d.mask_dir = run_dir / "detected_gloss";
   write_masks(d.mask_dir, trainer.views(), det);

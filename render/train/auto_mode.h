@@ -78,6 +78,7 @@ struct AutoDecision {
   double fraction = 0, threshold = 0;  // detected fraction of the covered pixels, and the threshold
   std::size_t covered = 0, scored = 0, detected = 0;
   int planes = 0;                // planes the masks were grown over
+  int backdrops = 0;             // planes found but rejected: most of the evidence stands in front of them
   std::size_t mask_pixels = 0;   // pixels in the grown masks (at the detection's size, like `covered`)
   double seconds = 0;            // rendering the depths and detecting
   int extended_by = 0;           // iterations added to the run (lengthened_for_late_decision)

@@ -69,6 +69,11 @@ struct GlossyDetectionSettings {
   float plane_min_share = 0.5f;   // a plane must hold this share of the detected points left (a further one
                                   // also a tenth of all)
   int plane_min_points = 50;      // fewer detected points: no growing
+  // A plane is not grown over (nor counts as the glossy surface) when more than this share of its detections
+  // stand in front of its surface: a table, floor or mirror shows its reflections on itself (0 - 6 % in
+  // front on the GOR-IS-style suite), a textured wall behind a mounted fox shows the fox's fur and plaque
+  // in front of it (39 %). See evidence_in_front in glossy_detection.cpp.
+  float plane_max_in_front = 0.25f;
   bool require_plane = true;      // glossy only when the detections lie on a plane (with grow_planes)
 
   // The settings of a run (IntrinsicSettings::detect_*).
@@ -94,6 +99,10 @@ struct GlossyDetection {
   bool glossy = false;       // fraction >= min_fraction (and something was detected)
   int planes = 0;            // planes the masks were grown over
   std::vector<glm::vec3> plane_normals;  // unit, of the planes grown over, in the order found
+  // Every plane the fit found, in order: the share of its detections in front of its surface, and whether
+  // it was rejected for it (plane_max_in_front).
+  std::vector<float> plane_in_front;
+  std::vector<bool> rejected_planes;
   std::size_t on_planes = 0;      // pixels the growing added because their surface point lies on a plane
   std::size_t behind_planes = 0;  // ... because it lies behind a plane, seen through it (a mirror world)
   std::size_t in_masks = 0;  // pixels in the final masks (grown)

@@ -99,12 +99,12 @@ Camera base_camera(int size) {
 }
 
 // Eight cameras on a ring around the origin, looking at it from 40 degrees above the plane.
-std::vector<SyntheticView> ring_views(const SyntheticScene& s) {
+std::vector<SyntheticView> ring_views(const SyntheticScene& s, int size = 48) {
   std::vector<SyntheticView> out;
   for (int k = 0; k < 8; ++k) {
     const float a = 2.0f * 3.14159265f * float(k) / 8.0f;
     const glm::vec3 eye(3.0f * std::cos(a), 3.0f * std::sin(a), 2.5f);
-    out.push_back(cast(s, look_at_camera(base_camera(48), eye, glm::vec3(0.0f), glm::vec3(0, 0, 1))));
+    out.push_back(cast(s, look_at_camera(base_camera(size), eye, glm::vec3(0.0f), glm::vec3(0, 0, 1))));
   }
   return out;
 }
@@ -297,6 +297,54 @@ TEST(GlossyDetection, MasksGrowOverReflectionsTheModelPutsBehindThePlane) {
   EXPECT_GT(grown.on_planes, grown.behind_planes);
   ASSERT_EQ(grown.plane_normals.size(), 1u);
   EXPECT_GT(std::abs(grown.plane_normals[0].z), 0.99f);
+}
+
+// The disc at 96 px, view-dependent only on a patch [0.1, 0.9] x [-0.4, 0.4] (9 % of it) whose surface stands
+// `height` above the disc (depths moved along each pixel's ray; the colours stay those of the patch on it).
+std::vector<SyntheticView> patch_views(float height) {
+  std::vector<SyntheticView> views = ring_views({true, false}, 96);
+  const std::vector<SyntheticView> lambertian = ring_views({}, 96);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const Camera& c = views[i].camera;
+    const size_t hw = size_t(c.width) * c.height;
+    for (size_t p = 0; p < hw; ++p) {
+      if (!(views[i].alpha[p] > 0.5f)) continue;
+      const glm::vec3 d = c.ray_direction(float(p % c.width) + 0.5f, float(p / c.width) + 0.5f);
+      const glm::vec3 x = c.center() + (views[i].depth[p] / glm::dot(d, c.forward())) * d;
+      if (std::abs(x.x - 0.5f) < 0.4f && std::abs(x.y) < 0.4f) {
+        views[i].depth[p] *= (height - c.center().z) / (x.z - c.center().z);
+      } else {
+        for (int ch = 0; ch < 3; ++ch) views[i].image[ch * hw + p] = lambertian[i].image[ch * hw + p];
+      }
+    }
+  }
+  return views;
+}
+
+TEST(GlossyDetection, ViewDependenceInFrontOfAPlaneIsNotItsReflection) {
+  // On the disc's surface the patch is a reflection of the disc: the plane is kept and grown over.
+  const GlossyDetection on = detect(patch_views(0.0f));
+  ASSERT_TRUE(on.glossy) << on.detected << " detected, " << on.planes << " planes, fraction " << on.fraction;
+  EXPECT_EQ(on.planes, 1);
+  ASSERT_EQ(on.plane_in_front.size(), 1u);
+  EXPECT_LT(on.plane_in_front[0], 0.05f);
+  EXPECT_GT(on.on_planes, on.detected);
+  // Standing 0.12 in front of it (inside the plane fit's tolerance, beyond the disc's thickness), the
+  // view dependence belongs to something before the disc (fur before a papered wall): no plane, radiance.
+  const GlossyDetection front = detect(patch_views(0.12f));
+  EXPECT_GT(front.detected, 200u);
+  ASSERT_EQ(front.plane_in_front.size(), 1u);
+  EXPECT_GT(front.plane_in_front[0], 0.5f);
+  EXPECT_EQ(front.rejected_planes, std::vector<bool>{true});
+  EXPECT_EQ(front.planes, 0);
+  EXPECT_EQ(front.on_planes + front.behind_planes, 0u);
+  EXPECT_FALSE(front.glossy);
+  // The same with the test off: the backdrop would be grown over and the scene called glossy.
+  GlossyDetectionSettings s;
+  s.plane_max_in_front = 1.0f;
+  const GlossyDetection without = detect(patch_views(0.12f), s);
+  EXPECT_EQ(without.planes, 1);
+  EXPECT_TRUE(without.glossy);
 }
 
 TEST(GlossyDetection, NearestViewsFollowTheCameraDirection) {
