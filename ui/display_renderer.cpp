@@ -1,7 +1,7 @@
 #include "ui/display_renderer.h"
 
 #include "core/util/error.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 
 namespace goris::ui {

@@ -8,7 +8,7 @@
 
 #include "app/goris/command.h"
 #include "core/compute/primitives.h"
-#include "core/util/bench.h"
+#include "core/compute/bench.h"
 
 namespace {
 

@@ -27,10 +27,10 @@
 #include "core/train/image_losses.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
-#include "core/util/bench.h"
+#include "core/compute/bench.h"
 #include "core/util/error.h"
 #include "core/util/median.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/train/run_renderer.h"
 
 namespace {

@@ -14,7 +14,7 @@
 
 #include "app/goris/command.h"
 #include "core/compute/memory.h"
-#include "core/util/bench.h"
+#include "core/compute/bench.h"
 #include "core/util/error.h"
 #include "core/util/median.h"
 #include "render/raster/rasterizer.h"

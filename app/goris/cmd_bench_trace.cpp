@@ -18,7 +18,7 @@
 #include "app/goris/number_checks.h"
 #include "core/compute/buffer.h"
 #include "core/io/npy.h"
-#include "core/util/bench.h"
+#include "core/compute/bench.h"
 #include "core/util/error.h"
 #include "render/trace/gaussian_tracer.h"
 

@@ -43,7 +43,7 @@
 #include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
-#include "core/util/bench.h"
+#include "core/compute/bench.h"
 #include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "core/compute/memory.h"

@@ -23,7 +23,7 @@
 #include "render/raster/rasterizer.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "core/compute/memory.h"
 
 namespace {

@@ -15,7 +15,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,13 +43,6 @@ struct GaussianPly {
   // misnamed (empty, whitespace, a standard property's name) or named twice.
   void check_consistent(const std::string& what) const;
 };
-
-// SH coefficients in the engine's coefficient-major layout [N][16][3] (core/scene/gaussian_view.h):
-// k = 0 is f_dc, k >= 1 comes from f_rest; coefficients above sh_degree are zero.
-std::vector<float> sh_to_engine_layout(const GaussianPly& ply);
-// The inverse: fills ply.f_dc and ply.f_rest from `sh` ([count][16][3]) using ply.count and
-// ply.sh_degree; coefficients above sh_degree are dropped.
-void sh_from_engine_layout(std::span<const float> sh, GaussianPly& ply);
 
 // Reads a 3D Gaussian PLY file; every problem throws goris::Error naming the file.
 GaussianPly read_ply(const std::filesystem::path& path);

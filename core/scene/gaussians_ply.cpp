@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/io/ply.h"
+#include "core/scene/sh_layout.h"
 #include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 // The median every report and heuristic here uses: the upper middle element (v[n/2] of the sorted sample),
 // 0 for an empty sample. O(n) by nth_element; the sample is taken by value (std::move it in to reuse it).
-// Benchmark timings (core/util/bench.h) average the two middle values instead.
+// Benchmark timings (core/compute/bench.h) average the two middle values instead.
 #include <algorithm>
 #include <cstddef>
 #include <vector>

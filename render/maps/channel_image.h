@@ -6,7 +6,7 @@
 // would change from frame to frame of a video).
 #include <vector>
 
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/maps/channels.h"
 #include "render/raster/rasterizer.h"
 

@@ -6,7 +6,7 @@
 #include "core/io/image.h"
 #include "core/train/train_setup.h"
 #include "core/util/error.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 
 namespace goris {
 

@@ -10,7 +10,7 @@
 #include "core/io/ply.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/train/run_renderer.h"
 
 namespace goris {

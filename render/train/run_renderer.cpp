@@ -6,7 +6,7 @@
 #include "core/train/train_setup.h"
 #include "core/train/trainer.h"
 #include "core/util/error.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/train/auto_mode.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/training_setup.h"

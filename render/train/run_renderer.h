@@ -1,6 +1,6 @@
 #pragma once
 // The differentiable renderer a run's configuration asks for: the rasterizer (radiance mode) or the
-// intrinsic renderer (render/intrinsic/intrinsic_renderer.h). Shared by `goris train | render | eval`, the
+// intrinsic renderer (render/train/intrinsic_renderer.h). Shared by `goris train | render | eval`, the
 // removal stage and the editor, so every consumer shades a run the same way.
 #include <filesystem>
 #include <memory>

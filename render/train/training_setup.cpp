@@ -10,7 +10,7 @@
 #include "core/train/normal_prior.h"
 #include "core/train/train_setup.h"
 #include "core/util/error.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/train/auto_mode.h"
 #include "render/train/run_renderer.h"
 

@@ -11,7 +11,7 @@
 
 #include "core/scene/gaussians.h"
 #include "core/train/trainer.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "tests/support/test_scenes.h"
 
 namespace goris::test {

@@ -16,7 +16,7 @@
 #include "core/io/ply.h"
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/train/finite_outputs.h"
 #include "render/train/run_renderer.h"
 #include "tests/support/test_support.h"

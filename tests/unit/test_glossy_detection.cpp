@@ -14,7 +14,7 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "render/export/camera_path.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/train/auto_mode.h"
 #include "render/train/glossy_detection.h"
 #include "render/train/run_renderer.h"

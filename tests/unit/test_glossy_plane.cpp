@@ -13,7 +13,7 @@
 #include "core/removal/selection_points.h"
 #include "core/train/glossy_plane.h"
 #include "core/train/trainer.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "tests/support/intrinsic_scene.h"
 #include "tests/unit/test_selection_scene.h"
 

@@ -10,7 +10,7 @@
 
 #include "core/scene/gaussians.h"
 #include "core/train/trainer.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "tests/support/intrinsic_scene.h"
 
 using namespace goris;

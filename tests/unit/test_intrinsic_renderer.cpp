@@ -15,7 +15,7 @@
 #include "core/util/error.h"
 #include "core/train/densify.h"
 #include "core/train/emit_weights.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "render/removal/lighting_aware_mask.h"
 #include "render/train/raster_renderer.h"

@@ -8,7 +8,7 @@
 
 #include "core/train/checkpoint.h"
 #include "core/train/trainer.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "tests/support/intrinsic_scene.h"
 #include "tests/support/model_values.h"
 #include "tests/support/test_support.h"

@@ -16,6 +16,7 @@
 
 #include "core/io/npy.h"
 #include "core/io/ply.h"
+#include "core/scene/sh_layout.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 

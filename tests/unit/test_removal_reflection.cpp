@@ -16,7 +16,7 @@
 #include "core/removal/selection_points.h"
 #include "core/train/run_folder.h"
 #include "core/train/train_setup.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/removal/removal_pipeline.h"
 #include "render/removal/selection_masks.h"
 #include "render/train/raster_renderer.h"

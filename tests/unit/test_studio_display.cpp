@@ -10,7 +10,7 @@
 #include "render/train/raster_renderer.h"
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "ui/display_renderer.h"
 #include "tests/support/test_support.h"

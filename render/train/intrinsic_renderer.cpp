@@ -1,4 +1,4 @@
-#include "render/intrinsic/intrinsic_renderer.h"
+#include "render/train/intrinsic_renderer.h"
 
 #include "core/compute/primitives.h"
 #include "render/intrinsic/intrinsic_glue.h"

@@ -1,4 +1,4 @@
-#include "core/util/bench.h"
+#include "core/compute/bench.h"
 
 #include "core/compute/memory.h"
 

@@ -1,0 +1,33 @@
+# Which folders each folder of the engine, the editor and the programs may include from (besides itself,
+# the standard library and third-party headers). Checked on every build by check_folder_dependencies.cmake:
+# an #include of an undeclared folder, or a cycle in this table, fails the build. A folder is two levels
+# deep under core/, render/ and app/ (core/io, render/train, app/goris); ui/ is one folder.
+#
+# Keep it acyclic and pointing downwards: app -> ui -> render -> core.
+set(GORIS_FOLDER_DEPENDENCIES
+  "core/util:"
+  "core/compute:core/util"
+  "core/io:core/compute core/util"
+  "core/scene:core/compute core/io core/util"
+  "core/capture:core/io core/util"
+  "core/inpaint:core/io core/util"
+  "core/metrics:core/compute core/io core/util"
+  "core/report:core/util"
+  "core/synth:core/util"
+  "core/removal:core/io core/scene core/util"
+  "core/train:core/compute core/io core/removal core/scene core/util"
+  "render/math:core/compute"
+  "render/envmap:core/compute core/util"
+  "render/raster:core/compute core/io core/scene core/util render/math"
+  "render/trace:core/compute core/scene core/util render/math render/raster"
+  "render/shading:core/compute core/io core/util render/envmap render/raster"
+  "render/ssf:core/compute core/train core/util"
+  "render/intrinsic:core/compute core/train core/util render/shading render/ssf"
+  "render/train:core/compute core/io core/scene core/train core/util render/envmap render/intrinsic render/raster render/shading render/ssf render/trace"
+  "render/maps:core/io core/scene core/util render/raster render/train"
+  "render/export:core/compute core/io core/scene core/train core/util render/maps render/raster render/train"
+  "render/removal:core/compute core/inpaint core/io core/removal core/scene core/train core/util render/maps render/raster render/trace render/train"
+  "ui:core/capture core/compute core/inpaint core/io core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train"
+  "app/studio:core/util ui"
+  "app/goris:core/capture core/compute core/inpaint core/io core/metrics core/removal core/report core/scene core/synth core/train core/util render/export render/maps render/raster render/removal render/train render/trace"
+)

@@ -1,0 +1,51 @@
+# The folder-dependency check: the repository passes; a made-up tree with an undeclared include, a folder
+# missing from the table, or a cyclic table fails, naming what is wrong.
+# cmake -DSOURCE_DIR=<root> -DWORK=<scratch folder> -P check_folder_dependencies_test.cmake
+set(check ${SOURCE_DIR}/cmake/check_folder_dependencies.cmake)
+
+function(run_check root table out_rc out_text)
+  execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${root} -DTABLE=${table} -P ${check}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  set(${out_rc} "${rc}" PARENT_SCOPE)
+  set(${out_text} "${o}${e}" PARENT_SCOPE)
+endfunction()
+
+function(expect_failure root table pattern)
+  run_check(${root} ${table} rc text)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "the check passed ${root} with ${table}; expected a failure matching '${pattern}'")
+  endif()
+  if(NOT text MATCHES "${pattern}")
+    message(FATAL_ERROR "the check failed without naming '${pattern}':\n${text}")
+  endif()
+endfunction()
+
+run_check(${SOURCE_DIR} ${SOURCE_DIR}/cmake/folder_dependencies.cmake rc text)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the repository fails its own folder-dependency check:\n${text}")
+endif()
+
+file(REMOVE_RECURSE ${WORK})
+file(WRITE ${WORK}/tree/core/util/a.h "#pragma once\n#include <vector>\n")
+file(WRITE ${WORK}/tree/core/io/b.h "#pragma once\n#include \"core/util/a.h\"\n")
+file(WRITE ${WORK}/table.cmake "set(GORIS_FOLDER_DEPENDENCIES \"core/util:\" \"core/io:core/util\")\n")
+run_check(${WORK}/tree ${WORK}/table.cmake rc text)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "a declared include was refused:\n${text}")
+endif()
+
+# An include upwards (core/util -> core/io) that the table does not declare.
+file(WRITE ${WORK}/tree/core/util/c.cpp "#include \"core/util/a.h\"\n  #  include \"core/io/b.h\"\n")
+expect_failure(${WORK}/tree ${WORK}/table.cmake "core/util/c.cpp: includes core/io/b.h, but core/util does not declare core/io")
+file(REMOVE ${WORK}/tree/core/util/c.cpp)
+
+# A folder the table does not know.
+file(WRITE ${WORK}/tree/core/extra/d.cpp "#include \"core/util/a.h\"\n")
+expect_failure(${WORK}/tree ${WORK}/table.cmake "core/extra is not in the table")
+file(REMOVE_RECURSE ${WORK}/tree/core/extra)
+
+# A cycle in the table, even with no source using it.
+file(WRITE ${WORK}/cyclic.cmake
+     "set(GORIS_FOLDER_DEPENDENCIES \"core/util:core/scene\" \"core/io:core/util\" \"core/scene:core/io\")\n")
+expect_failure(${WORK}/tree ${WORK}/cyclic.cmake "cycle: core/util -> core/scene -> core/io -> core/util")
+message(STATUS "folder dependencies: the repository passes; undeclared includes, unknown folders and cycles fail")
