@@ -182,6 +182,7 @@ void AppState::poll() {
     show_model(session_.snapshot());
   }
   for (const auto& [text, error] : selection_.take_messages()) message(text, error);
+  two_click.sync(*this);
   const RemovalState rs = removal_.state();
   if (rs != last_removal_state_) {
     if (rs == RemovalState::Done || rs == RemovalState::Cancelled || rs == RemovalState::Error)

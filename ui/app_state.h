@@ -22,6 +22,7 @@
 #include "ui/removal_session.h"
 #include "ui/scene_loader.h"
 #include "ui/selection/selection_tools.h"
+#include "ui/selection/two_click_flow.h"
 #include "ui/selection_session.h"
 #include "ui/settings_store.h"
 #include "ui/trainer_session.h"
@@ -117,6 +118,8 @@ class AppState {
   // Use as target masks: every training view's object mask of the selection into `dir` (empty:
   // RUN/target_masks), and the selection becomes their votes, which Remove then takes.
   std::uint64_t use_as_target_masks(std::filesystem::path dir);
+  // The guided two-click flow (ui/selection/two_click_flow.h); poll() keeps it in step.
+  TwoClickFlow two_click;
   // Puts the sphere and box at the last picked point (else the surface in the middle of the view) unless
   // placed already.
   void place_volumes_if_needed();

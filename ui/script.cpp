@@ -1,6 +1,8 @@
 #include "ui/script.h"
 
+#include <algorithm>
 #include <charconv>
+#include <iterator>
 #include <fstream>
 #include <sstream>
 
@@ -74,7 +76,10 @@ constexpr KindName kNames[] = {{Kind::Open, "open"},
                                {Kind::ImportCaptureStart, "import_capture_start"},
                                {Kind::ImportWait, "import_wait"},
                                {Kind::ImportCancel, "import_cancel"},
-                               {Kind::ExpectImportError, "expect_import_error"}};
+                               {Kind::ExpectImportError, "expect_import_error"},
+                               {Kind::Press, "press"},
+                               {Kind::DragHandle, "drag_handle"},
+                               {Kind::TwoClick, "two_click"}};
 
 std::string trim(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t\r");
@@ -159,6 +164,38 @@ class LineParser {
  private:
   std::string where_, name_;
 };
+
+// two_click STEP [ARGS]: the step in `what`; a view, click or iteration count in `count` (-1: none given),
+// a click's coordinates in x, y.
+void parse_two_click(const LineParser& p, const std::vector<std::string>& args, ScriptAction& a) {
+  const char* usage = "two_click start [VIEW] | view N | click X Y | offered | take_back K | undo | cancel | use "
+                      "[ITERS] | expect STEP";
+  if (args.empty()) p.fail(std::string("expected '") + usage + "'");
+  a.what = args[0];
+  a.count = -1;
+  const std::string& w = a.what;
+  if (w == "start" || w == "use") {
+    p.expect_args(args, 1, 2, usage);
+    if (args.size() == 2) a.count = p.integer(args[1], 0, 1000000, w == "use" ? "ITERS" : "VIEW");
+  } else if (w == "view" || w == "take_back") {
+    p.expect_args(args, 2, 2, usage);
+    a.count = p.integer(args[1], w == "view" ? 0 : 1, 1000000, w == "view" ? "N" : "K");
+  } else if (w == "click") {
+    p.expect_args(args, 3, 3, usage);
+    a.x = p.coordinate(args[1], "X", a.x_fraction);
+    a.y = p.coordinate(args[2], "Y", a.y_fraction);
+  } else if (w == "offered" || w == "undo" || w == "cancel") {
+    p.expect_args(args, 1, 1, usage);
+  } else if (w == "expect") {
+    p.expect_args(args, 2, 2, usage);
+    static const char* kSteps[] = {"off", "first_click", "second_click", "review", "removing", "done"};
+    if (std::find(std::begin(kSteps), std::end(kSteps), args[1]) == std::end(kSteps))
+      p.fail("unknown step '" + args[1] + "' (off, first_click, second_click, review, removing, done)");
+    a.text = args[1];
+  } else {
+    p.fail("unknown step '" + w + "' (" + usage + ")");
+  }
+}
 
 // A trailing "add" or "remove" sets the selection mode and is taken off `args`.
 void take_select_mode(std::vector<std::string>& args, ScriptAction& a) {
@@ -442,6 +479,24 @@ ScriptAction parse_line(const std::string& line, const std::string& where) {
         args.pop_back();
       }
       parse_coords(p, args, 0, 2, "drag X Y X Y ... [shift|ctrl|alt]", a);
+      break;
+    case Kind::Press:
+      a.text = trim(rest);
+      if (a.text.empty()) p.fail("expected a button's label");
+      break;
+    case Kind::DragHandle:
+      if (!args.empty() && (args.back() == "shift" || args.back() == "ctrl" || args.back() == "alt")) {
+        a.modifier = args.back();
+        args.pop_back();
+      }
+      p.expect_args(args, 3, 3, "drag_handle centre|radius|x|y|z DX DY [shift|ctrl|alt]");
+      if (args[0] != "centre" && args[0] != "radius" && args[0] != "x" && args[0] != "y" && args[0] != "z")
+        p.fail("unknown handle '" + args[0] + "' (centre, radius, x, y, z)");
+      a.what = args[0];
+      a.values = {p.number(args[1], "DX"), p.number(args[2], "DY")};
+      break;
+    case Kind::TwoClick:
+      parse_two_click(p, args, a);
       break;
     case Kind::ExpectSelected:
       p.expect_args(args, 1, 2, "expect_selected MIN [MAX]");

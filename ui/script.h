@@ -36,6 +36,20 @@
 //   drag X Y X Y ... [shift|ctrl|alt]   the mouse: press the left button at the first point of the main
 //                              viewport's image, move through the others, release (holding the key); waits
 //                              for the selection edit it makes
+//   press LABEL                the mouse presses the Selection panel's tool-bar button (or tool) LABEL,
+//                              e.g. "Invert", "Grow step", "Sphere", "volume Select", "colour Add"; waits
+//                              for the selection edit it makes
+//   drag_handle NAME DX DY [shift|ctrl|alt]   the mouse drags the sphere / box tool's handle NAME (centre,
+//                              radius, x, y, z) by (DX, DY) pixels of the main viewport's image; a size
+//                              handle's DX is along its direction from the centre (outward), DY across it
+//   two_click start [VIEW] | view N | click X Y | offered | take_back K | undo | cancel | use [ITERS] |
+//             expect STEP      the Two-click panel (ui/selection/two_click_flow.h): start on training view
+//                              VIEW, show training view N, click at (X, Y) of the main viewport's image (the
+//                              mouse's path), click the point offered in the second view, take back click K
+//                              (1-based), undo a step, cancel the flow, use the masks and remove (waits
+//                              until the removal has ended, fails unless it finished), or fail unless the
+//                              flow is at STEP (off, first_click, second_click, review, removing, done);
+//                              each waits until the flow's step is done and fails when it failed
 //   undo | redo                undo / redo the last selection edit
 //   save_selection             write RUN/selection.json (+ .npy) for `goris remove`
 //   remove [ITERS]             run stage 2 on the run (ITERS fine-tune iterations; default: the panel's);
@@ -95,7 +109,7 @@ struct ScriptAction {
     Export, ExportStart, ExportWait, ExportCancel, ExpectExportError, Compare, CompareWith, BeforeAfter, Screenshot, ScreenshotNow,
     WaitFrames, Quit, SelectRect, SelectPolygon, SelectBrush, SelectThrough, SelectSphere, SelectBox, SelectColour,
     SelectTool, Invert, GrowStep, ShrinkStep, Hide, Lock, Unhide, Unlock, UseAsTargetMasks, ExpectSelected, Drag,
-    ImportCapture, ImportCaptureStart, ImportWait, ImportCancel, ExpectImportError
+    ImportCapture, ImportCaptureStart, ImportWait, ImportCancel, ExpectImportError, Press, DragHandle, TwoClick
   };
   // A coordinate on the main viewport's image: pixels, or a fraction of its width / height ("45%").
   struct Coord {
@@ -107,9 +121,10 @@ struct ScriptAction {
   std::string path;        // open, out, screenshot, export, use_as_target_masks
   std::string what;        // export: ply | baked | renders ("": the dialog's choices); export_from: run | removal;
                            // select_through: visible | all; select_tool: its name;
-                           // export_dialog: open | close; compare_with: photo | before; before_after: before | after
+                           // export_dialog: open | close; compare_with: photo | before; before_after: before | after;
+                           // drag_handle: the handle; two_click: the step (start, view, click, ...)
   std::string render_path = "test";  // export renders
-  std::string text;        // expect_export_error, expect_import_error
+  std::string text;        // expect_export_error, expect_import_error; press: the label
   // import_capture: path = INPUT, out = OUT, count = --max-images, width = --resolution
   std::string out, masks, matcher = "exhaustive";
   int width = 0;

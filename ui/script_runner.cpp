@@ -218,6 +218,12 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       return run_selection_edit(host, a, true, [&] { return st.use_as_target_masks(a.path); });
     case Kind::Drag:
       return run_drag(host, a);
+    case Kind::Press:
+      return run_press(host, a);
+    case Kind::DragHandle:
+      return run_drag_handle(host, a);
+    case Kind::TwoClick:
+      return run_two_click(host, a);
     case Kind::ExpectSelected: {
       if (!host.settled()) return false;
       const SelectionView v = st.selection().view();
@@ -457,7 +463,7 @@ bool ScriptRunner::run_drag(ScriptHost& host, const ScriptAction& a) {
   if (frames_left_-- > 0) return false;
   if (!host.settled()) return false;
   AppState& st = host.state();
-  if (st.tools.volume_tool()) {  // where the handles left the volume
+  if (st.tools.volume_tool() && a.kind != Kind::Press) {  // where the handles left the volume
     std::printf("the %s\n", describe(st.tools.volume()).c_str());
     std::fflush(stdout);
   }

@@ -70,6 +70,10 @@ class ScriptRunner {
                           const std::function<std::uint64_t()>& start);
   // Plays a drag (the mouse of one frame per step), then waits for the edit it made.
   bool run_drag(ScriptHost& host, const ScriptAction& a);
+  // The tool bar's buttons, the volume handles and the two-click flow (ui/selection/script_tools.cpp).
+  bool run_press(ScriptHost& host, const ScriptAction& a);
+  bool run_drag_handle(ScriptHost& host, const ScriptAction& a);
+  bool run_two_click(ScriptHost& host, const ScriptAction& a);
   // Starts the removal (or, with !start, takes the running one) and waits until it has ended.
   bool run_remove(ScriptHost& host, const ScriptAction& a, bool start);
   // Sets the Export dialog's choices to the line's one part (if it names one) and presses its Export button.
@@ -91,6 +95,7 @@ class ScriptRunner {
   int frames_left_ = 0;  // wait_frames
   std::vector<ScriptedMouse> drag_;  // drag: the mouse of each frame still to come
   std::uint64_t job_ = 0;  // the selection edit being waited for
+  ScriptAction handle_drag_;  // drag_handle: the drag it plays
   Status status_ = Status::Running;
   std::string error_;
 };

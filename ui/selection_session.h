@@ -31,6 +31,9 @@
 
 namespace goris::ui {
 
+struct FlowProgress;
+struct FlowResult;
+
 // What the panel and the viewports show of the selection.
 struct SelectionView {
   std::shared_ptr<const SelectionMask> mask;  // null = nothing selected
@@ -84,6 +87,11 @@ class SelectionSession {
   // Writes every view's object mask of the selection into `dir` (mask_XXX.png, selection_view_mask), then
   // selects by those masks' votes (as `goris select --masks DIR`): the target a removal takes.
   std::uint64_t target_masks(std::vector<View> views, std::filesystem::path dir);
+  // The two-click flow's evaluation (ui/selection/two_click_session.cpp): `goris select --click`'s regions
+  // of out->clicks in `views` lifted to a selection that replaces the current one, then every view's object
+  // mask written into out->dir; fills `out`, follows `progress` (whose cancel stops it).
+  std::uint64_t click_regions(std::vector<View> views, DatasetOptions photos, std::shared_ptr<FlowResult> out,
+                              std::shared_ptr<FlowProgress> progress);
   std::uint64_t clear();
   std::uint64_t undo();
   std::uint64_t redo();

@@ -20,6 +20,7 @@
 #include "ui/panels/plots_panel.h"
 #include "ui/panels/removal_panel.h"
 #include "ui/panels/selection_panel.h"
+#include "ui/panels/two_click_panel.h"
 #include "ui/panels/training_panel.h"
 #include "ui/screenshot.h"
 #include "ui/shader_paths.h"
@@ -58,6 +59,7 @@ StudioApp::StudioApp(const StudioOptions& options) : options_(options), limiter_
   panels_.push_back(std::make_unique<TrainingPanel>());
   panels_.push_back(std::make_unique<PlotsPanel>());
   panels_.push_back(std::make_unique<SelectionPanel>());
+  panels_.push_back(std::make_unique<TwoClickPanel>());
   panels_.push_back(std::make_unique<RemovalPanel>());
   panels_.push_back(std::make_unique<CamerasPanel>(camera_mode_));
   panels_.push_back(std::make_unique<DisplayPanel>());

@@ -39,7 +39,7 @@
 #include "core/train/run_output_guard.h"
 #include "core/util/error.h"
 #include "render/removal/selection.h"
-#include "render/removal/selection_click_region.h"
+#include "render/removal/selection_click_flow.h"
 #include "render/train/raster_renderer.h"
 
 namespace {
@@ -288,26 +288,25 @@ void run_select(const Options& o, int n_methods) {
       const std::size_t vi = find_view(ds.train, o.click[c]);
       const View& view = ds.train[vi];
       const int x = parse_int(o.click[c + 1], "X"), y = parse_int(o.click[c + 2], "Y");
-      if (x < 0 || y < 0 || x >= view.camera.width || y >= view.camera.height)
-        throw Error("--click", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside view " +
-                                   view.name + " (" + std::to_string(view.camera.width) + "x" +
-                                   std::to_string(view.camera.height) + " at the run's training resolution)");
-      const PickResult p = pick_gaussian(model, view.camera, x, y);
-      if (!p.hit)
-        throw Error("--click", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") of view " + view.name +
-                                   " shows background (the ray's opacity is " + num(p.ray_alpha) +
-                                   "): click on the object");
+      ClickOutcome click;
+      if (by_region) {
+        const Image photo = load_view_image(view, dataset_options(config), Device::CPU);
+        click = click_in_view(model, view, photo, x, y, raster);
+      } else {
+        click = click_in_view(model, view, Image(), x, y, raster, /*region=*/false);
+      }
+      const PickResult& p = click.pick;
       std::printf("picked Gaussian %u in %s at (%d, %d): weight %.3f, depth %.3f, point (%.3f, %.3f, %.3f)\n",
                   p.gaussian, view.name.c_str(), x, y, p.weight, p.depth, p.point.x, p.point.y, p.point.z);
       if (!clicked_view) clicked_view = vi;
       clicks.push_back({{"view", view.name}, {"x", x}, {"y", y}, {"picked", p.gaussian}, {"pick_weight", p.weight},
                         {"pick_depth", p.depth}});
       if (by_region) {
-        const Image photo = load_view_image(view, dataset_options(config), Device::CPU);
-        const ClickRegion cr = grow_click_region(photo, render_median_depth(model, view.camera, raster), x, y);
+        const ClickRegion& cr = click.region;
         std::printf("  region of the click in %s: %zu pixels (%s of the view), colour tolerance %.2f%s\n",
-                    view.name.c_str(), cr.area, percent(double(cr.area) / double(photo.pixel_count())).c_str(),
-                    cr.tolerance, cr.leaked_at_first ? " (leaks even at the lowest tolerance)" : "");
+                    view.name.c_str(), cr.area,
+                    percent(double(cr.area) / double(view.camera.width * view.camera.height)).c_str(), cr.tolerance,
+                    cr.leaked_at_first ? " (leaks even at the lowest tolerance)" : "");
         clicks.back()["region_pixels"] = cr.area;
         clicks.back()["region_tolerance"] = cr.tolerance;
         regions_2d.push_back({view.name, view.camera, cr.mask});
@@ -328,14 +327,11 @@ void run_select(const Options& o, int n_methods) {
       // clicked view that shows the Gaussian), then the hull adds the object's interior and the side no
       // clicked view saw, and every view's coverage mask votes once more.
       record.parameters["click_by"] = "region";
-      const SelectionMask voted = select_from_click_regions(model, regions_2d, raster);
-      result = close_selection(pts, voted, close);
-      if (result.summary.seeds > 0 && regions_2d.size() > 1) {
-        const SelectionMask revoted = revote_with_view_masks(model, result.mask, ds.train, raster);
+      const ClickSelection cs = select_by_click_regions(model, pts, regions_2d, ds.train, raster, close);
+      result = cs.result;
+      if (cs.revoted)
         std::printf("  %zu Gaussians from the clicked views, %zu after every training view's vote\n",
-                    result.summary.selected, count_selected(revoted));
-        if (count_selected(revoted) > 0) result = close_selection(pts, revoted, close);
-      }
+                    cs.from_clicked_views, result.summary.selected);
       seed_rule = "in the clicked views' regions";
       if (result.summary.seeds == 0)
         throw Error("--click", "no Gaussian lies inside the clicked region of every clicked view that sees it: "

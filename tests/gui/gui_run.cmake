@@ -71,3 +71,13 @@ function(expect_tiles png count what)
     message(FATAL_ERROR "${what}:\n${out}\n${err}")
   endif()
 endfunction()
+
+# check(<mode> <args...>): gui_selection_check (the selection tests' image and mask checks), its report
+# printed; fails the test when it fails.
+function(check)
+  execute_process(COMMAND "${SELECTION_CHECK}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${ARGV0} ${ARGV2}: ${out}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "gui_selection_check ${ARGN}:\n${out}\n${err}")
+  endif()
+endfunction()

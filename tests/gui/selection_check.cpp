@@ -22,17 +22,23 @@
 //       for the splats' extent around their centres), and cover some of it.
 //   gui_selection_check same A.png B.png
 //       the main viewports of the two screenshots are alike (undo brought the view back).
+//   gui_selection_check iou DIR DATASET MIN_MEAN
+//       the object masks a selection wrote (DIR/mask_XXX.png, any size) against the data set's own training
+//       masks at that size: prints every view's IoU, their mean and minimum; fails when the mean is below
+//       MIN_MEAN.
 //   gui_selection_check slider WITH.png CLEANED.png SLIDER.png
 //       the compare slider at 0.5 against the scene with the target: left of it the main viewport shows the
 //       cleaned scene, right of it the scene with the target.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "core/inpaint/mask.h"
 #include "core/io/dataset.h"
 #include "core/io/image.h"
 #include "tests/gui/layout_file.h"
@@ -278,6 +284,51 @@ int same(const std::string& a_png, const std::string& b_png) {
   return 0;
 }
 
+int iou(const std::string& dir, const std::string& dataset, double min_mean) {
+  namespace fs = std::filesystem;
+  // The written masks' size decides the size the data set's masks are loaded at.
+  int width = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("mask_", 0) == 0 && e.path().extension() == ".png") {
+      width = goris::read_mask_png(e.path()).width;
+      break;
+    }
+  if (width == 0) return fail(dir + ": no mask_XXX.png");
+  goris::DatasetOptions o;
+  o.target_width = width;
+  const goris::Dataset ds = goris::load_dataset(dataset, o);
+  double sum = 0, worst = 1;
+  int n = 0;
+  for (const goris::View& v : ds.train) {
+    if (!v.object_mask) continue;
+    const std::string name = v.name.rfind("r_", 0) == 0 ? "mask_" + v.name.substr(2) + ".png" : v.name + ".png";
+    const fs::path file = fs::path(dir) / name;
+    if (!fs::exists(file)) return fail(file.string() + " is missing");
+    const goris::Mask written = goris::read_mask_png(file);
+    const goris::Image exact = goris::load_view_object_mask(v);
+    if (written.width != exact.width || written.height != exact.height)
+      return fail(file.string() + ": " + std::to_string(written.width) + "x" + std::to_string(written.height) +
+                  ", the data set's mask is " + std::to_string(exact.width) + "x" + std::to_string(exact.height));
+    long inter = 0, uni = 0;
+    for (int y = 0; y < exact.height; ++y)
+      for (int x = 0; x < exact.width; ++x) {
+        const bool a = written(x, y), b = exact.pixels[size_t(y) * exact.width + x] > 0.5f;
+        inter += a && b;
+        uni += a || b;
+      }
+    const double j = uni == 0 ? 1.0 : double(inter) / double(uni);
+    std::printf("%s %.3f\n", v.name.c_str(), j);
+    sum += j;
+    worst = std::min(worst, j);
+    ++n;
+  }
+  if (n == 0) return fail(dataset + ": no training view has an object mask");
+  const double mean = sum / n;
+  std::printf("masks IoU against the data set's masks: mean %.4f, min %.4f over %d views\n", mean, worst, n);
+  if (mean < min_mean) return fail("the mean IoU " + std::to_string(mean) + " is below " + std::to_string(min_mean));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -289,6 +340,7 @@ int main(int argc, char** argv) {
     if (mode == "region" && argc == 8)
       return region(argv[2], argv[3], percent(argv[4]), percent(argv[5]), percent(argv[6]), percent(argv[7]));
     if (mode == "same" && argc == 4) return same(argv[2], argv[3]);
+    if (mode == "iou" && argc == 5) return iou(argv[2], argv[3], std::stod(argv[4]));
     if (mode == "slider" && argc == 5) return slider(argv[2], argv[3], argv[4]);
     if (mode == "removed" && argc == 6) return removed(argv[2], argv[3], argv[4], argv[5]);
   } catch (const std::exception& e) {
@@ -296,5 +348,5 @@ int main(int argc, char** argv) {
   }
   return fail("usage: gui_selection_check target DATASET | tint BEFORE.png AFTER.png MASK.png | removed WITH.png "
               "CLEANED.png RESTORED.png MASK.png | slider WITH.png CLEANED.png SLIDER.png | bbox MASK.png | region "
-              "BEFORE.png AFTER.png X0% Y0% X1% Y1% | same A.png B.png");
+              "BEFORE.png AFTER.png X0% Y0% X1% Y1% | same A.png B.png | iou DIR DATASET MIN_MEAN");
 }

@@ -3,8 +3,10 @@
 # sphere, box, colour range, invert, grow / shrink steps, hide, lock and "Use as target masks". Each tool's
 # tint must land inside the region it was given and nowhere else, and each undo must bring back the view
 # and the count of before. Then the same tools with the mouse (`drag`): a rectangle and a lasso drawn on
-# the view select what their script lines selected, a brush stroke selects, Alt+drag orbits instead, and
-# the sphere's centre handle follows the mouse. Screenshots stay in WORK as artefacts.
+# the view select what their script lines selected, a brush stroke selects, Alt+drag orbits instead, the
+# sphere's centre handle follows the mouse, and its radius and the box's size handles resize them. Last
+# the tool bar's buttons pressed with the mouse (`press`): the tools, the volume's Select, Invert, the
+# grow / shrink steps, Hide / Unhide all, Lock / Unlock all. Screenshots stay in WORK as artefacts.
 include(${CMAKE_CURRENT_LIST_DIR}/gui_run.cmake)
 if(GUI_SKIP)
   return()
@@ -102,6 +104,25 @@ select_tool rect
 drag 10% 10% 30% 10% alt
 expect_selected 1 100000000
 screenshot ${WORK}/orbited.png
+panels Selection
+press Sphere
+drag_handle radius 25 0
+press Box
+drag_handle x 20 0
+drag_handle z -5 0
+press volume Select
+expect_selected 1 100000000
+press Grow step
+press Shrink step
+press Hide
+expect_selected 0
+press Unhide all
+press volume Select
+press Lock
+expect_selected 0
+press Unlock all
+press Invert
+press Click
 quit
 ")
 studio_run_ok("${script}" R)
@@ -182,6 +203,48 @@ list(GET spheres -1 sphere_dragged)
 if(NOT spheres MATCHES "the sphere at \\(0, 0, 0.15\\)" OR sphere_dragged MATCHES "\\(0, 0, 0.15\\)")
   message(FATAL_ERROR "dragging the sphere's centre handle did not move it: ${spheres}")
 endif()
+# The size handles: dragged outward, the sphere's radius and the box's x half size grow; dragged inward,
+# its z half size shrinks.
+string(REGEX MATCHALL "the sphere at \\([^)]*\\), radius [0-9.e+-]+" radii "${R_OUT}")
+list(GET radii -2 r_before)
+list(GET radii -1 r_after)
+string(REGEX REPLACE ".*radius " "" r_before "${r_before}")
+string(REGEX REPLACE ".*radius " "" r_after "${r_after}")
+string(REGEX MATCHALL "the box at \\([^)]*\\), half \\([^)]*\\)" halves "${R_OUT}")
+list(LENGTH halves n_halves)
+if(NOT n_halves EQUAL 2 OR r_after LESS_EQUAL r_before)
+  message(FATAL_ERROR "dragging the size handles did not resize: sphere radius ${r_before} -> ${r_after}, box: ${halves}")
+endif()
+list(GET halves 0 half_x)
+list(GET halves 1 half_z)
+string(REGEX REPLACE ".*half \\(([^,]*), ([^,]*), ([^)]*)\\)" "\\1;\\2;\\3" half_x "${half_x}")
+string(REGEX REPLACE ".*half \\(([^,]*), ([^,]*), ([^)]*)\\)" "\\1;\\2;\\3" half_z "${half_z}")
+list(GET half_x 0 hx)
+list(GET half_z 2 hz)
+message("sphere radius ${r_before} -> ${r_after}; box half x 0.36 -> ${hx}, then half z 0.1 -> ${hz}")
+if(hx LESS_EQUAL 0.36 OR hz GREATER_EQUAL 0.1)
+  message(FATAL_ERROR "the box's size handles did not resize it: ${halves}")
+endif()
+# The tool bar's buttons, pressed: each made its edit.
+foreach(b "Sphere" "Box" "volume Select" "Invert" "Grow step" "Shrink step" "Hide" "Unhide all" "Lock" "Unlock all")
+  expect_text("${R_OUT}" "pressed ${b}")
+endforeach()
+string(FIND "${R_OUT}" "pressed Sphere" at)
+string(SUBSTRING "${R_OUT}" ${at} -1 pressing)
+string(REGEX MATCHALL "[^\n]*: [0-9]+ of [0-9]+ Gaussians selected" after_press "${pressing}")
+foreach(what "box at .*replace" "inverted" "grown by 1 step" "shrunk by 1 step" "hid " "showing every Gaussian again"
+        "locked " "unlocked every Gaussian")
+  set(found FALSE)
+  foreach(l ${after_press})
+    if(l MATCHES "^${what}")
+      set(found TRUE)
+    endif()
+  endforeach()
+  if(NOT found)
+    message(FATAL_ERROR "no selection edit '${what}' after pressing the tool bar's buttons")
+  endif()
+endforeach()
+
 # Alt+drag orbits: the view left the snapped camera (so the main image changed), and selected nothing new.
 execute_process(COMMAND "${SELECTION_CHECK}" same "${WORK}/before.png" "${WORK}/orbited.png" RESULT_VARIABLE rc
                 OUTPUT_QUIET ERROR_QUIET)
@@ -189,14 +252,6 @@ if(rc EQUAL 0)
   message(FATAL_ERROR "alt+drag did not orbit the view")
 endif()
 
-# check(<mode> <args...>): gui_selection_check, its report printed; fails the test when it fails.
-function(check)
-  execute_process(COMMAND "${SELECTION_CHECK}" ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  message("${ARGV0} ${ARGV2}: ${out}")
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "gui_selection_check ${ARGN}:\n${out}\n${err}")
-  endif()
-endfunction()
 # Each tool's tint lies in its region; the target's mask for the volumes.
 check(region "${WORK}/before.png" "${WORK}/rect.png" ${X0} ${Y0} ${X1} ${Y1})
 check(region "${WORK}/before.png" "${WORK}/polygon.png" ${X0} ${Y0} ${X1} ${Y1})

@@ -263,3 +263,39 @@ TEST(StudioSelectionTools, ScriptLinesParse) {
                           "drag 1 2\n", "drag 1 2 3 4 super\n"})
     EXPECT_THROW(parse_script(bad, "t.txt"), Error) << bad;
 }
+
+TEST(StudioSelectionTools, ToolBarHandleAndTwoClickLinesParse) {
+  using Kind = ScriptAction::Kind;
+  const auto a = parse_script(
+      "press Grow step\n"
+      "press volume Select\n"
+      "drag_handle radius 20 -5\n"
+      "drag_handle x 10 0 shift\n"
+      "two_click start\ntwo_click start 7\ntwo_click view 3\ntwo_click click 40% 52\ntwo_click offered\n"
+      "two_click take_back 2\ntwo_click undo\ntwo_click cancel\ntwo_click use 10\ntwo_click expect review\n",
+      "t.txt");
+  ASSERT_EQ(a.size(), 14u);
+  EXPECT_EQ(a[0].kind, Kind::Press);
+  EXPECT_EQ(a[0].text, "Grow step");
+  EXPECT_EQ(a[1].text, "volume Select");
+  EXPECT_EQ(a[2].kind, Kind::DragHandle);
+  EXPECT_EQ(a[2].what, "radius");
+  ASSERT_EQ(a[2].values.size(), 2u);
+  EXPECT_FLOAT_EQ(a[2].values[1], -5.0f);
+  EXPECT_EQ(a[3].modifier, "shift");
+  EXPECT_EQ(a[4].kind, Kind::TwoClick);
+  EXPECT_EQ(a[4].what, "start");
+  EXPECT_EQ(a[4].count, -1);
+  EXPECT_EQ(a[5].count, 7);
+  EXPECT_EQ(a[6].count, 3);
+  EXPECT_TRUE(a[7].x_fraction);
+  EXPECT_FLOAT_EQ(a[7].x, 0.4f);
+  EXPECT_FALSE(a[7].y_fraction);
+  EXPECT_EQ(a[9].count, 2);
+  EXPECT_EQ(a[12].count, 10);
+  EXPECT_EQ(a[13].text, "review");
+  for (const char* bad : {"press\n", "drag_handle top 1 2\n", "drag_handle radius 1\n", "two_click\n",
+                          "two_click jump\n", "two_click view\n", "two_click take_back 0\n", "two_click click 1\n",
+                          "two_click expect later\n", "two_click undo now\n"})
+    EXPECT_THROW(parse_script(bad, "t.txt"), Error) << bad;
+}

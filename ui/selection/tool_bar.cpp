@@ -3,12 +3,42 @@
 #include <imgui.h>
 
 #include <iterator>
+#include <map>
 
 #include "ui/panels/panel.h"
 
 namespace goris::ui {
 
 namespace {
+
+// The buttons drawn in the frame before (label -> rectangle) and in this one.
+struct DrawnButtons {
+  int frame = -1;
+  std::map<std::string, Rect> last, current;
+};
+DrawnButtons& drawn() {
+  static DrawnButtons d;
+  return d;
+}
+
+// Remembers where the last item was drawn under `label`.
+void remember(const std::string& label) {
+  DrawnButtons& d = drawn();
+  if (d.frame != ImGui::GetFrameCount()) {
+    d.last = std::move(d.current);
+    d.current.clear();
+    d.frame = ImGui::GetFrameCount();
+  }
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  d.current[label] = Rect{a.x, a.y, b.x - a.x, b.y - a.y};
+}
+
+// ImGui::Button, remembered for scripts (`prefix` tells apart buttons of the same label).
+bool button(const char* label, const char* prefix = nullptr) {
+  const bool pressed = ImGui::Button(label);
+  remember(prefix ? std::string(prefix) + " " + label : std::string(label));
+  return pressed;
+}
 
 constexpr SelectTool kTools[] = {SelectTool::Click, SelectTool::Rect,   SelectTool::Lasso,
                                  SelectTool::Brush, SelectTool::Sphere, SelectTool::Box};
@@ -35,11 +65,11 @@ const char* tool_tip(SelectTool t) {
 template <class Run>
 void mode_buttons(AppState& st, const char* id, Run run) {
   ImGui::PushID(id);
-  if (ImGui::Button("Select")) report_errors(st, [&] { run(SelectMode::Replace); });
+  if (button("Select", id)) report_errors(st, [&] { run(SelectMode::Replace); });
   ImGui::SameLine();
-  if (ImGui::Button("Add")) report_errors(st, [&] { run(SelectMode::Add); });
+  if (button("Add", id)) report_errors(st, [&] { run(SelectMode::Add); });
   ImGui::SameLine();
-  if (ImGui::Button("Subtract")) report_errors(st, [&] { run(SelectMode::Remove); });
+  if (button("Subtract", id)) report_errors(st, [&] { run(SelectMode::Remove); });
   ImGui::PopID();
 }
 
@@ -58,7 +88,7 @@ void volume_fields(AppState& st) {
     ImGui::SetNextItemWidth(200);
     ImGui::DragFloat3("rotation", &v.rotation_degrees.x, 0.5f, -180.0f, 180.0f, "%.1f deg");
   }
-  if (ImGui::Button("Place at the picked point")) {
+  if (button("Place at the picked point")) {
     if (st.last_pick && st.last_pick->hit)
       v.centre = st.last_pick->world;
     else
@@ -74,7 +104,7 @@ void colour_range(AppState& st) {
   ImGui::SetNextItemWidth(200);
   ImGui::SliderFloat("within", &t.colour_distance, 0.0f, 1.0f, "%.2f");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("RGB distance of the Gaussians' base (SH DC) colour");
-  if (ImGui::Button("Colour of the picked pixel")) {
+  if (button("Colour of the picked pixel")) {
     const auto& f = st.frame;
     if (f && st.last_pick && st.last_pick->hit && !f->color.empty()) {
       const size_t i = 3 * (size_t(st.last_pick->y) * size_t(f->width) + size_t(st.last_pick->x));
@@ -93,7 +123,9 @@ void draw_selection_tools(AppState& st) {
   for (std::size_t k = 0; k < std::size(kTools); ++k) {  // three to a row, in columns
     const SelectTool tool = kTools[k];
     if (k % 3 != 0) ImGui::SameLine(8.0f + 90.0f * float(k % 3));
-    if (ImGui::RadioButton(select_tool_label(tool), t.tool == tool)) {
+    const bool chosen = ImGui::RadioButton(select_tool_label(tool), t.tool == tool);
+    remember(select_tool_label(tool));
+    if (chosen) {
       t.tool = tool;
       if (t.volume_tool()) st.place_volumes_if_needed();
     }
@@ -115,11 +147,11 @@ void draw_selection_tools(AppState& st) {
 
   if (ImGui::CollapsingHeader("Colour range")) colour_range(st);
 
-  if (ImGui::Button("Invert")) report_errors(st, [&] { st.select_invert(); });
+  if (button("Invert")) report_errors(st, [&] { st.select_invert(); });
   ImGui::SameLine();
-  if (ImGui::Button("Grow step")) report_errors(st, [&] { st.select_step(t.step_rings); });
+  if (button("Grow step")) report_errors(st, [&] { st.select_step(t.step_rings); });
   ImGui::SameLine();
-  if (ImGui::Button("Shrink step")) report_errors(st, [&] { st.select_step(-t.step_rings); });
+  if (button("Shrink step")) report_errors(st, [&] { st.select_step(-t.step_rings); });
   ImGui::SameLine();
   ImGui::SetNextItemWidth(60);
   ImGui::InputInt("##rings", &t.step_rings, 0, 0);
@@ -127,27 +159,37 @@ void draw_selection_tools(AppState& st) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("rings of graph neighbours per step");
 
   const SelectionView v = st.selection().view();
-  if (ImGui::Button("Hide")) report_errors(st, [&] { st.hide_selected(); });
+  if (button("Hide")) report_errors(st, [&] { st.hide_selected(); });
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("hidden Gaussians are not drawn and cannot be selected");
   ImGui::SameLine();
-  if (ImGui::Button("Lock")) report_errors(st, [&] { st.lock_selected(); });
+  if (button("Lock")) report_errors(st, [&] { st.lock_selected(); });
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("locked Gaussians are drawn but cannot be selected");
   ImGui::SameLine();
   ImGui::BeginDisabled(v.hidden_count == 0);
-  if (ImGui::Button("Unhide all")) report_errors(st, [&] { st.unhide_all(); });
+  if (button("Unhide all")) report_errors(st, [&] { st.unhide_all(); });
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::BeginDisabled(v.locked_count == 0);
-  if (ImGui::Button("Unlock all")) report_errors(st, [&] { st.unlock_all(); });
+  if (button("Unlock all")) report_errors(st, [&] { st.unlock_all(); });
   ImGui::EndDisabled();
   if (v.hidden_count || v.locked_count) ImGui::TextDisabled("%zu hidden, %zu locked", v.hidden_count, v.locked_count);
 
   ImGui::BeginDisabled(!v.mask);
-  if (ImGui::Button("Use as target masks")) report_errors(st, [&] { st.use_as_target_masks({}); });
+  if (button("Use as target masks")) report_errors(st, [&] { st.use_as_target_masks({}); });
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("writes every training view's object mask of the selection to RUN/target_masks and selects "
                       "by their votes: the target Remove takes");
+}
+
+std::optional<Rect> tool_bar_button(const std::string& label) {
+  const DrawnButtons& d = drawn();
+  if (d.frame < ImGui::GetFrameCount() - 1) return std::nullopt;  // not drawn lately
+  // The frame being drawn may not have reached the tool bar yet: the one before has it whole.
+  const std::map<std::string, Rect>& m = d.frame == ImGui::GetFrameCount() ? d.last : d.current;
+  const auto it = m.find(label);
+  if (it == m.end()) return std::nullopt;
+  return it->second;
 }
 
 }  // namespace goris::ui

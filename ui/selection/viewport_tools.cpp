@@ -64,6 +64,46 @@ std::vector<std::pair<glm::vec3, glm::vec3>> volume_lines(const VolumeRegion& v)
   return lines;
 }
 
+bool flow_takes_clicks(FlowStep s) {
+  return s == FlowStep::FirstClick || s == FlowStep::SecondClick || s == FlowStep::Review;
+}
+
+// The two-click flow on the snapped training view: its mask (the review), the clicks made in this view
+// and the point offered for the second click.
+void draw_flow_overlay(const AppState& st, const Rect& image) {
+  const TwoClickFlow& f = st.two_click;
+  const std::shared_ptr<const FlowResult>& r = f.result();
+  if (!r || !f.active() || f.step() == FlowStep::Done || !st.snapped || st.snapped_test) return;
+  const std::size_t v = st.snapped_index;
+  if (v >= r->masks.size()) return;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const Mask& m = r->masks[v];
+  const float sx = image.w / float(m.width), sy = image.h / float(m.height);
+  dl->PushClipRect(ImVec2(image.x, image.y), ImVec2(image.x + image.w, image.y + image.h), true);
+  if (f.step() == FlowStep::Review || f.step() == FlowStep::Removing)
+    for (int y = 0; y < m.height; ++y)  // one rectangle per run of mask pixels in a row
+      for (int x = 0; x < m.width;) {
+        if (!m(x, y)) {
+          ++x;
+          continue;
+        }
+        const int x0 = x;
+        while (x < m.width && m(x, y)) ++x;
+        dl->AddRectFilled(ImVec2(image.x + float(x0) * sx, image.y + float(y) * sy),
+                          ImVec2(image.x + float(x) * sx, image.y + float(y + 1) * sy), IM_COL32(255, 60, 200, 90));
+      }
+  auto marker = [&](int x, int y, ImU32 c) {
+    const ImVec2 p(image.x + (float(x) + 0.5f) * sx, image.y + (float(y) + 0.5f) * sy);
+    dl->AddCircle(p, 7.0f, IM_COL32(0, 0, 0, 220), 16, 3.0f);
+    dl->AddCircle(p, 7.0f, c, 16, 1.5f);
+  };
+  for (const FlowClick& c : f.clicks())
+    if (c.view == v) marker(c.x, c.y, IM_COL32(255, 255, 255, 255));
+  if (f.step() == FlowStep::SecondClick && r->offered && r->offered->view == v)
+    marker(r->offered->x, r->offered->y, IM_COL32(255, 200, 40, 255));
+  dl->PopClipRect();
+}
+
 }  // namespace
 
 std::vector<std::pair<ViewportTools::Handle, glm::vec2>> ViewportTools::handles(const AppState& st,
@@ -147,6 +187,20 @@ bool ViewportTools::handle_mouse(AppState& st, const Rect& image) {
   const ImGuiIO& io = ImGui::GetIO();
   const SelectTool tool = st.tools.tool;
   const glm::vec2 mouse(io.MousePos.x - image.x, io.MousePos.y - image.y);
+  if (tool == SelectTool::Click && flow_takes_clicks(st.two_click.step())) {
+    // The two-click flow takes a plain click (a drag still orbits).
+    if (ImGui::IsItemDeactivated() && ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+        io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] < 9.0f && !io.KeyAlt) {
+      const ImVec2 p = io.MouseClickedPos[ImGuiMouseButton_Left];
+      try {
+        st.two_click.click(st, p.x - image.x, p.y - image.y, glm::vec2(image.w, image.h));
+      } catch (const Error& e) {
+        st.message(e.what(), true);
+      }
+      return true;
+    }
+    return false;
+  }
   if (shape_tool(tool) && (drawing_ || !io.KeyAlt)) {
     if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
       drawing_ = true;
@@ -194,6 +248,7 @@ void ViewportTools::draw_overlay(AppState& st, const Rect& image) const {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const glm::vec2 o(image.x, image.y);
   const SelectTool tool = st.tools.tool;
+  draw_flow_overlay(st, image);
   if (drawing_ && !points_.empty()) {
     if (tool == SelectTool::Rect) {
       dl->AddRect(im(o + glm::min(points_.front(), points_.back())), im(o + glm::max(points_.front(), points_.back())),

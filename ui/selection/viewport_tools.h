@@ -20,10 +20,11 @@ class ViewportTools {
   // The shape being drawn, the brush cursor, the volume and its handles.
   void draw_overlay(AppState& st, const Rect& image) const;
 
- private:
   enum class Handle { None, Centre, Radius, AxisX, AxisY, AxisZ };
-  // Window positions of the volume's handles (nullopt: behind the camera).
+  // Window positions of the volume's handles, those in front of the camera (scripts drag them too).
   std::vector<std::pair<Handle, glm::vec2>> handles(const AppState& st, const Rect& image) const;
+
+ private:
   void drag_handle(AppState& st, const Rect& image, glm::vec2 delta);
   void finish_shape(AppState& st, const Rect& image);
 

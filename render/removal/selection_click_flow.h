@@ -1,0 +1,45 @@
+#pragma once
+// `goris select --click` by region (its default) as steps, so the CLI and the editor's two-click flow run
+// the same code: each click's picked Gaussian and region of its training view (selection_click_region.h),
+// then the regions lifted to the Gaussians by rendered weight, closed, and with two clicks or more voted
+// once more by every training view's coverage mask and closed again.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/io/dataset.h"
+#include "core/io/image.h"
+#include "core/removal/selection_labels.h"
+#include "core/removal/selection_points.h"
+#include "render/raster/raster_types.h"
+#include "render/removal/selection_click_region.h"
+#include "render/removal/selection_pick.h"
+
+namespace goris {
+
+class GaussianModel;
+
+struct ClickOutcome {
+  PickResult pick;     // the Gaussian the pixel shows
+  ClickRegion region;  // the click's region of its view
+};
+
+// The click at pixel (x, y) of `view` (at the model's training resolution; `photo` is the view's photo at
+// the camera's size, unused without `region`: the pick alone). Throws goris::Error for a pixel outside the
+// view or one that shows background.
+ClickOutcome click_in_view(const GaussianModel& model, const View& view, const Image& photo, int x, int y,
+                           const RasterSettings& raster, bool region = true);
+
+struct ClickSelection {
+  SelectionResult result;              // the selection (result.summary.seeds == 0: nothing found)
+  std::size_t from_clicked_views = 0;  // selected from the clicked views alone, before every view's vote
+  bool revoted = false;                // every view's vote was taken (two regions or more, and it kept some)
+};
+
+// The clicked views' regions lifted (select_from_click_regions) and closed; with two regions or more,
+// voted by every view in `views` (revote_with_view_masks) and closed again, unless that vote keeps nothing.
+ClickSelection select_by_click_regions(const GaussianModel& model, const SelectionPoints& pts,
+                                       const std::vector<ClickView>& regions, const std::vector<View>& views,
+                                       const RasterSettings& raster, const CloseSettings& close = {});
+
+}  // namespace goris
