@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/train/config_migration.h"
 #include "core/util/error.h"
 #include "core/util/number_text.h"
 
@@ -263,6 +264,7 @@ int TrainConfig::shading_phase_iteration(int full) const {
 
 void to_json(nlohmann::json& j, const TrainConfig& c) {
   j = nlohmann::json::object();
+  j["config_version"] = kConfigVersion;
   visit_fields(c, [&](const char* name, const auto& v) {
     if constexpr (std::is_same_v<std::decay_t<decltype(v)>, glm::vec3>)
       j[name] = vec_json(v);
@@ -311,32 +313,13 @@ void read_field(const nlohmann::json& x, T& v) {
   }
 }
 
-// Settings that earlier versions had and this one dropped because they measured no better than without
-// (docs/design/deviations.md, Removed settings). A run folder or checkpoint that holds one at the value it
-// was off at still loads; any other value is refused, since that run was trained with a behaviour this
-// version no longer has. Settings that only acted through another one (`off` null) load at any value.
-struct RetiredKey {
-  const char* name;
-  nlohmann::json off;  // null: any value
-};
-const RetiredKey* retired_key(const std::string& name) {
-  static const RetiredKey kRetired[] = {
-      {"intrinsic_net_residual", false},   {"intrinsic_ray_offset_normal", false},
-      {"intrinsic_region_rough", 0.0},     {"intrinsic_roughness_rough", 0.0},
-      {"intrinsic_roughness_follows_region", 0.0}, {"densify_stop", "fixed"},
-      {"densify_holdout_every", nullptr},          {"densify_stop_check_interval", nullptr},
-      {"densify_stop_window", nullptr},            {"densify_stop_min_gain", nullptr},
-      {"densify_stop_min_steps", nullptr}};
-  for (const RetiredKey& k : kRetired)
-    if (name == k.name) return &k;
-  return nullptr;
-}
-
 }  // namespace
 
-void from_json(const nlohmann::json& j, TrainConfig& c) {
-  if (!j.is_object()) throw Error("training configuration: expected a JSON object");
-  std::set<std::string> known;
+void from_json(const nlohmann::json& file, TrainConfig& c) {
+  if (!file.is_object()) throw Error("training configuration: expected a JSON object");
+  nlohmann::json j = file;
+  migrate_config_json(j);
+  std::set<std::string> known = {"config_version"};
   visit_fields(c, [&](const char* name, auto& v) {
     known.insert(name);
     if (!j.contains(name)) return;
@@ -354,15 +337,8 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
       throw Error(std::string("training configuration: key '") + name + "' has the wrong type (" + e.what() + ")");
     }
   });
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    if (known.count(it.key())) continue;
-    const RetiredKey* retired = retired_key(it.key());
-    if (!retired) throw Error("training configuration: unknown key '" + it.key() + "'");
-    if (!retired->off.is_null() && it.value() != retired->off)
-      throw Error("training configuration: '" + it.key() + "' = " + it.value().dump() +
-                  " is a setting this version no longer has (it measured no better than " + retired->off.dump() +
-                  "; docs/design/deviations.md, Removed settings): the run needs the version that trained it");
-  }
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) throw Error("training configuration: unknown key '" + it.key() + "'");
 }
 
 void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config, const std::string& label) {
@@ -371,9 +347,10 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
     const size_t eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) throw Error(label + " " + kv + ": expected KEY=VALUE");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    if (!j.contains(key) && retired_key(key))
-      throw Error(label + " " + kv + ": '" + key + "' was removed: it measured no better than without "
-                  "(docs/design/deviations.md, Removed settings)");
+    if (key == "config_version")
+      throw Error(label + " " + kv + ": 'config_version' is the version of config.json's layout, not a setting");
+    if (const ConfigMigration* dropped = dropped_config_key(key); dropped && !j.contains(key))
+      throw Error(label + " " + kv + ": '" + key + "' was removed: " + dropped->reason);
     if (!j.contains(key)) throw Error(label + " " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
     nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
     j[key] = v.is_discarded() ? nlohmann::json(value) : v;

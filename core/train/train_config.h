@@ -257,8 +257,11 @@ struct TrainConfig {
   void validate(const std::string& what) const;
 };
 
+// config.json: every setting, and "config_version" (core/train/config_migration.h).
 void to_json(nlohmann::json& j, const TrainConfig& c);
-// Missing keys keep their defaults; unknown keys are errors (typos must not pass silently).
+// Reads a config.json object of this or an older version (migrated first: renamed keys, dropped settings,
+// keys older files lack; config_migration.h). Missing keys keep their defaults; unknown keys are errors
+// (typos must not pass silently).
 void from_json(const nlohmann::json& j, TrainConfig& c);
 // `--set KEY=VALUE` overrides of config.json keys (VALUE as JSON: number, true/false, "string" or [1,2,3],
 // else a plain string); goris::Error naming the setting for an unknown or removed key or a value that does
