@@ -446,29 +446,6 @@ TEST(TrainConfig, RemovedSettingsLoadWhenOffAndAreRefusedWhenOn) {
   const std::string typo = message([&] { apply_config_overrides({"intrinsic_ray_offset_nromal=true"}, c); });
   EXPECT_NE(typo.find("unknown setting"), std::string::npos) << typo;
 }
-// `goris train --preset planar-glossy`: the measured stage-1 setting, applied like --set (later --set lines
-// win), and an unknown name is an error that lists the known ones.
-TEST(TrainConfig, PlanarGlossyPresetSetsTheMeasuredSetting) {
-  TrainConfig c;
-  c.mode = "intrinsic";
-  apply_config_overrides(config_preset("planar-glossy"), c);
-  EXPECT_FALSE(c.intrinsic.material_losses_in_warmup);
-  EXPECT_FLOAT_EQ(c.alpha_weight, 0.3f);
-  EXPECT_TRUE(c.intrinsic.glossy_plane);
-  EXPECT_TRUE(c.intrinsic.glossy_plane_prune_sinkers);
-  EXPECT_TRUE(c.intrinsic.glossy_plane_align);
-  EXPECT_FLOAT_EQ(c.intrinsic.trace_glossy_transparent, 0.5f);
-  EXPECT_FLOAT_EQ(c.intrinsic.env_distance, 1.4f);
-  EXPECT_NO_THROW(c.validate("preset"));
-  apply_config_overrides({"intrinsic_env_distance=1.2"}, c);
-  EXPECT_FLOAT_EQ(c.intrinsic.env_distance, 1.2f);
-  try {
-    config_preset("shiny");
-    FAIL() << "an unknown preset was accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("planar-glossy"), std::string::npos) << e.what();
-  }
-}
 
 TEST(PlyExport, BakedThreeDFilterRendersLikeTheFilteredModel) {
   // Viewers without Mip-Splatting's 3D filter must see what the engine renders with it.
