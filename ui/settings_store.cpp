@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/train/train_config.h"
+#include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "render/maps/channels.h"
 
@@ -130,8 +130,10 @@ StudioSettings load_settings(const fs::path& path) {
   check_member(s.compare_mode, {"off", "side_by_side", "slider"}, "compare_mode", path);
   check_member(s.train_device, {"auto", "cpu", "cuda"}, "train_device", path);
   check_member(s.train_mode, {"radiance", "intrinsic", "auto"}, "train_mode", path);
+  // A preset's name must be one of the presets folder's; a preset file (a path) is read when a run starts.
   const std::vector<std::string> presets = config_preset_names();
-  if (!s.train_preset.empty() && std::find(presets.begin(), presets.end(), s.train_preset) == presets.end())
+  if (!s.train_preset.empty() && s.train_preset.find('/') == std::string::npos && !s.train_preset.ends_with(".json") &&
+      std::find(presets.begin(), presets.end(), s.train_preset) == presets.end())
     throw Error(path.string(), "'train_preset': unknown preset '" + s.train_preset + "'");
   if (s.recent_paths.size() > StudioSettings::kMaxRecent) s.recent_paths.resize(StudioSettings::kMaxRecent);
   return s;

@@ -17,7 +17,7 @@ struct StudioSettings {
   std::string compare_mode = "off";  // off | side_by_side | slider
   // Training options of the panel (a new run; a resumed run keeps its own).
   std::string train_mode = "radiance";  // radiance | intrinsic | auto (as `goris train --mode`)
-  std::string train_preset;             // "" or a config_preset() name (as `goris train --preset`)
+  std::string train_preset;             // "" or a preset's name or file (as `goris train --preset`)
   int train_iterations = 3000;
   int train_resolution = 0;       // 0 = the data set's size
   int train_init_points = 20000;  // random initial points when the data has no SfM points

@@ -1,27 +1,18 @@
 #include "ui/shader_paths.h"
 
-#include <cstdlib>
-#include <system_error>
-
 #include "core/util/error.h"
+#include "core/util/resource_paths.h"
 
 namespace goris::ui {
 
 namespace fs = std::filesystem;
 
 std::vector<fs::path> shader_dir_candidates() {
-  std::vector<fs::path> dirs;
-  if (const char* env = std::getenv("GORIS_SHADER_DIR"); env && *env) dirs.emplace_back(env);
 #ifdef GORIS_SHADER_DIR
-  dirs.emplace_back(GORIS_SHADER_DIR);
+  return resource_dir_candidates("GORIS_SHADER_DIR", GORIS_SHADER_DIR, "shaders");
+#else
+  return resource_dir_candidates("GORIS_SHADER_DIR", nullptr, "shaders");
 #endif
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    dirs.push_back(exe.parent_path() / "shaders");
-    dirs.push_back(exe.parent_path().parent_path() / "share" / "goris-studio" / "shaders");
-  }
-  return dirs;
 }
 
 fs::path find_shader_dir(const char* probe) {

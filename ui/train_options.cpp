@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <ctime>
 
+#include "core/train/config_presets.h"
 #include "core/util/error.h"
 
 namespace goris::ui {
@@ -30,7 +31,7 @@ TrainConfig new_run_config(const StudioSettings& s, const std::vector<std::pair<
   c.random_init_points = s.train_init_points;
   c.device = s.train_device;
   c.background = s.train_white_background ? glm::vec3(1.0f) : glm::vec3(0.0f);
-  if (!s.train_preset.empty()) apply_config_overrides(config_preset(s.train_preset), c);  // as --preset: before
+  if (!s.train_preset.empty()) apply_config_preset(load_config_preset(s.train_preset), c);  // as --preset: before
   for (const auto& [k, v] : overrides) apply_config_override(c, k, v);
   return c;
 }

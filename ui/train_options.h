@@ -18,7 +18,8 @@ namespace goris::ui {
 void apply_config_override(TrainConfig& config, const std::string& key, const std::string& value);
 
 // The panel's options (mode, iterations, resolution, initial points, device, background), its preset's
-// settings (config_preset, as `goris train --preset`), then `overrides` in order.
+// settings (a preset file, core/train/config_presets.h, as `goris train --preset`), then `overrides` in order.
+// Throws goris::Error naming the preset's file when it cannot be read.
 TrainConfig new_run_config(const StudioSettings& settings,
                            const std::vector<std::pair<std::string, std::string>>& overrides);
 

@@ -60,7 +60,8 @@ std::string defaults_fingerprint() {
   nlohmann::json j;
   to_json(j, goris::TrainConfig{});
   j.erase("data");
-  j.erase("data_views");  // a record of the data set, not a training setting
+  j.erase("data_views");      // a record of the data set, not a training setting
+  j.erase("config_version");  // the file's layout, not a setting
   return std::to_string(goris::fnv1a(j.dump()));
 }
 

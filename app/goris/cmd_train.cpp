@@ -23,6 +23,7 @@
 #include "core/io/file_bytes.h"
 #include "core/io/output_path.h"
 #include "core/train/checkpoint.h"
+#include "core/train/config_presets.h"
 #include "core/train/run_data.h"
 #include "core/train/run_folder.h"
 #include "core/train/trainer.h"
@@ -45,7 +46,7 @@ struct Options {
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> sets;  // KEY=VALUE overrides of config.json keys
-  std::string preset;             // a named group of overrides, applied before `sets`
+  std::string preset;             // a preset's name or file (core/train/config_presets.h), applied before `sets`
   bool resume = false, restart = false;
 };
 
@@ -71,7 +72,7 @@ void apply_settings(const Options& o, TrainConfig& config) {
       throw Error(init.string(), "--init: " + problem);  // missing, a folder, a FIFO (never opened), ...
     config.init_model = init.string();
   }
-  if (!o.preset.empty()) apply_config_overrides(config_preset(o.preset), config);
+  if (!o.preset.empty()) apply_config_preset(load_config_preset(o.preset), config);
   apply_config_overrides(o.sets, config);
 }
 
@@ -274,9 +275,11 @@ void setup_train(CLI::App& root) {
                 "instead of the SfM or random points");
   c->add_option("--checkpoint-every", o->checkpoint_every, "Checkpoint interval in iterations (2000; 0 = end only)")
       ->check(cli::whole(0, cli::kIntMax));
+  std::string presets;
+  for (const std::string& n : config_preset_names()) presets += (presets.empty() ? "" : ", ") + n;
   c->add_option("--preset", o->preset,
-                "Named settings applied before --set: planar-glossy (stage 1 for one planar glossy surface with "
-                "glossy masks, see README)");
+                "Settings applied before --set: a preset's name (" + (presets.empty() ? "none found" : presets) +
+                "; `goris config --presets` describes them) or the path of a preset file (resources/presets/*.json)");
   c->add_option("--set", o->sets, "Override any training setting: KEY=VALUE with a config.json key (repeatable)");
   c->callback([o] { run_train(*o); });
 }

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/file_bytes.h"
+#include "core/train/config_migration.h"
 #include "core/util/error.h"
 #include "core/util/fnv1a.h"
 
@@ -159,7 +160,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
     r.fail("has format version " + std::to_string(version) + " (this build reads versions 1 to " + std::to_string(kVersion) + ")");
   Checkpoint ck;
   try {
-    from_json(nlohmann::json::parse(r.str()), ck.config);
+    nlohmann::json j = nlohmann::json::parse(r.str());
+    print_config_migration_notes(path.string(), migrate_config_json(j));
+    from_json(j, ck.config);
   } catch (const std::exception& e) {
     r.fail(std::string("configuration is invalid: ") + e.what());
   }

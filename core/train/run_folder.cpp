@@ -9,6 +9,7 @@
 #include "core/io/ply.h"
 #include "core/io/splat_formats.h"
 #include "core/train/checkpoint.h"
+#include "core/train/config_migration.h"
 #include "core/util/error.h"
 
 namespace goris {
@@ -26,7 +27,9 @@ TrainConfig read_run_config(const std::filesystem::path& run_dir) {
   if (!f) throw Error(path.string(), "cannot open (is " + run_dir.string() + " a training run folder?)");
   TrainConfig c;
   try {
-    from_json(nlohmann::json::parse(f), c);
+    nlohmann::json j = nlohmann::json::parse(f);
+    print_config_migration_notes(path.string(), migrate_config_json(j));
+    from_json(j, c);
   } catch (const std::exception& e) {
     throw Error(path.string(), e.what());
   }

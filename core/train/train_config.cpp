@@ -1,6 +1,7 @@
 #include "core/train/train_config.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -8,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/train/config_migration.h"
 #include "core/util/error.h"
 #include "core/util/number_text.h"
 
@@ -15,25 +17,49 @@ namespace goris {
 
 namespace {
 
-// One list of (name, member) pairs serves both directions, so writing and reading cannot drift apart.
+// The one-line documentation of a user-facing setting (ConfigKeyInfo) and the heading it is listed under;
+// empty for the others.
+struct Doc {
+  const char* section = "";
+  const char* text = "";
+};
+
+// One list of (name, member, documentation) serves writing, reading and the reference page, so that they
+// cannot drift apart. The user-facing settings carry their documentation here, beside their key.
 template <class Config, class F>
-void visit_fields(Config& c, F&& f) {
-  f("mode", c.mode);
-  f("iterations", c.iterations);
-  f("seed", c.seed);
-  f("device", c.device);
+void visit_fields(Config& c, F&& visit) {
+  const auto f = [&](const char* name, auto& member, Doc doc = {}) { visit(name, member, doc); };
+  f("mode", c.mode,
+    {"Run", "What to train: `radiance` (SH colour), `intrinsic` (stage 1: materials, traced reflections and "
+            "shading after a radiance warm-up) or `auto` (intrinsic only for a glossy scene). Also `--mode`."});
+  f("iterations", c.iterations,
+    {"Run", "Training iterations; the schedule points of the full 30000-iteration schedule scale with it. Also "
+            "`--iters`."});
+  f("seed", c.seed,
+    {"Run", "Random seed of the initial points, the view order and the splits. Also `--seed`."});
+  f("device", c.device,
+    {"Run", "`auto`, `cpu` or `cuda`. Also `--device`."});
   f("data", c.data);
   f("data_views", c.data_views);
-  f("downscale", c.downscale);
-  f("resolution", c.resolution);
-  f("background", c.background);
-  f("use_glossy_masks", c.use_glossy_masks);
+  f("downscale", c.downscale,
+    {"Data", "Divide the image size by this factor (>= 1). Also `--downscale`."});
+  f("resolution", c.resolution,
+    {"Data", "Train at this image width in pixels, the height keeping the aspect (0 = use `downscale`). Also "
+             "`--resolution`."});
+  f("background", c.background,
+    {"Data", "Colour [r, g, b] that RGBA images are composited on; also the renders' background."});
+  f("use_glossy_masks", c.use_glossy_masks,
+    {"Data", "Use the data set's glossy masks; without them `--mode auto` detects glossy regions from the photos."});
   f("use_object_masks", c.use_object_masks);
-  f("max_train_views", c.max_train_views);
+  f("max_train_views", c.max_train_views,
+    {"Data", "Train on at most this many views, spread evenly over the data set (0 = all)."});
   f("glossy_mask_dir", c.glossy_mask_dir);
   f("auto_detect_glossy", c.auto_detect_glossy);
-  f("random_init_points", c.random_init_points);
-  f("init_model", c.init_model);
+  f("random_init_points", c.random_init_points,
+    {"Initialisation", "Random initial points when the data set has no SfM points. Also `--init-points`."});
+  f("init_model", c.init_model,
+    {"Initialisation", "Model file to start from (3DGS PLY, compressed PLY, SPZ, .splat, GLB) instead of SfM or "
+                       "random points (empty = none). Also `--init`."});
   f("random_init_box_ratio", c.random_init_box_ratio);
   f("lr_position_init", c.lr.position_init);
   f("lr_position_final", c.lr.position_final);
@@ -46,37 +72,57 @@ void visit_fields(Config& c, F&& f) {
   f("lr_materials", c.lr.materials);
   f("lr_region", c.lr.region);
   f("lr_label", c.lr.label);
-  f("lambda_ssim", c.lambda_ssim);
-  f("alpha_weight", c.alpha_weight);
-  f("depth_normal_weight", c.depth_normal_weight);
+  f("lambda_ssim", c.lambda_ssim,
+    {"Losses", "Weight l of the colour loss (1 - l) L1 + l (1 - SSIM)."});
+  f("alpha_weight", c.alpha_weight,
+    {"Losses", "L1 between the rendered alpha and the images' alpha channel (0 = off)."});
+  f("depth_normal_weight", c.depth_normal_weight,
+    {"Losses", "RaDe-GS depth-normal consistency, from iteration `depth_normal_from` (0 = off)."});
   f("depth_normal_from", c.depth_normal_from);
   f("depth_normal_median_ratio", c.depth_normal_median_ratio);
-  f("depth_distortion_weight", c.depth_distortion_weight);
+  f("depth_distortion_weight", c.depth_distortion_weight,
+    {"Losses", "2DGS depth distortion (0 = off)."});
   f("depth_distortion_from", c.depth_distortion_from);
   f("depth_distortion_until", c.depth_distortion_until);
   f("depth_distortion_glossy", c.depth_distortion_glossy);
   f("sh_degree_interval", c.sh_degree_interval);
-  f("max_sh_degree", c.max_sh_degree);
-  f("densify_from_iter", c.densify.from_iter);
-  f("densify_until_iter", c.densify.until_iter);
-  f("densify_interval", c.densify.interval);
-  f("densify_until_fraction", c.densify_until_fraction);
-  f("densify_grad_threshold", c.densify.grad_threshold);
+  f("max_sh_degree", c.max_sh_degree,
+    {"Losses", "Highest spherical-harmonics degree of the colour, 0 to 3."});
+  f("densify_from_iter", c.densify.from_iter,
+    {"Densification", "First densification (clone, split, prune) at this iteration."});
+  f("densify_until_iter", c.densify.until_iter,
+    {"Densification", "No densification after this iteration (of the full schedule; see `densify_until_fraction`)."});
+  f("densify_interval", c.densify.interval,
+    {"Densification", "Densify every this many iterations."});
+  f("densify_until_fraction", c.densify_until_fraction,
+    {"Densification", "Densification also stops at this fraction of the run, so that a short run ends with pure "
+                      "optimisation."});
+  f("densify_grad_threshold", c.densify.grad_threshold,
+    {"Densification", "Clone or split Gaussians whose view-averaged screen-space gradient exceeds this."});
   f("percent_dense", c.densify.percent_dense);
   f("split_count", c.densify.split_count);
-  f("prune_min_opacity", c.densify.min_opacity);
-  f("opacity_reset_interval", c.densify.opacity_reset_interval);
+  f("prune_min_opacity", c.densify.min_opacity,
+    {"Densification", "Prune Gaussians less opaque than this."});
+  f("opacity_reset_interval", c.densify.opacity_reset_interval,
+    {"Densification", "Reset opacities every this many iterations of a full densification window."});
   f("reset_opacity", c.densify.reset_opacity);
   f("prune_max_screen_radius", c.densify.max_screen_radius);
   f("prune_max_world_scale", c.densify.max_world_scale);
-  f("filter_3d", c.filter_3d);
+  f("filter_3d", c.filter_3d,
+    {"Anti-aliasing", "Mip-Splatting 3D filter."});
   f("filter_3d_interval", c.filter_3d_interval);
-  f("filter_2d", c.filter_2d);
-  f("intrinsic_warmup", c.intrinsic.warmup);
+  f("filter_2d", c.filter_2d,
+    {"Anti-aliasing", "Mip-Splatting 2D filter (off: the 3DGS 0.3-pixel dilation)."});
+  f("intrinsic_warmup", c.intrinsic.warmup,
+    {"Intrinsic mode", "Radiance-only iterations before shading starts (of the full schedule; a short run keeps "
+                       "`intrinsic_warmup_min_fraction` of itself)."});
   f("intrinsic_warmup_min_fraction", c.intrinsic.warmup_min_fraction);
-  f("intrinsic_env_resolution", c.intrinsic.env_resolution);
+  f("intrinsic_env_resolution", c.intrinsic.env_resolution,
+    {"Intrinsic mode", "Face size of the learned environment cube map (a power of two)."});
   f("intrinsic_env_initial", c.intrinsic.env_initial);
-  f("intrinsic_env_distance", c.intrinsic.env_distance);
+  f("intrinsic_env_distance", c.intrinsic.env_distance,
+    {"Intrinsic mode", "The environment on a sphere of this radius x the cameras' mean distance to their focus (0 "
+                       "= at infinity, for outdoor captures)."});
   f("intrinsic_env_center", c.intrinsic.env_center);
   f("intrinsic_env_radius", c.intrinsic.env_radius);
   f("intrinsic_init_roughness", c.intrinsic.init_roughness);
@@ -85,27 +131,38 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_lr_env_final", c.intrinsic.lr_env_final);
   f("intrinsic_lr_net", c.intrinsic.lr_net);
   f("intrinsic_net_ease_until", c.intrinsic.net_ease_until);
-  f("intrinsic_screen_space_filter", c.intrinsic.screen_space_filter);
+  f("intrinsic_screen_space_filter", c.intrinsic.screen_space_filter,
+    {"Intrinsic mode", "Reflections and visibility through the screen-space glossy filter."});
   f("intrinsic_net_hidden_layers", c.intrinsic.net_hidden_layers);
   f("intrinsic_ray_offset", c.intrinsic.ray_offset);
   f("intrinsic_trace_glossy_transparent", c.intrinsic.trace_glossy_transparent);
   f("intrinsic_divide_opaque", c.intrinsic.divide_opaque);
-  f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world);
+  f("intrinsic_prune_mirror_world", c.intrinsic.prune_mirror_world,
+    {"Intrinsic mode", "Remove the Gaussians seen only behind glossy surfaces when shading starts; the value is "
+                       "the depth tolerance (0 = off)."});
   f("intrinsic_prune_mirror_world_repeat", c.intrinsic.prune_mirror_world_repeat);
   f("intrinsic_glossy_plane", c.intrinsic.glossy_plane);
   f("intrinsic_glossy_plane_prune_sinkers", c.intrinsic.glossy_plane_prune_sinkers);
   f("intrinsic_glossy_plane_align", c.intrinsic.glossy_plane_align);
-  f("intrinsic_coarse_tracing", c.intrinsic.coarse_tracing);
+  f("intrinsic_coarse_tracing", c.intrinsic.coarse_tracing,
+    {"Intrinsic mode", "One reflection ray per pixel block where the glossy filter blurs anyway (faster)."});
   f("intrinsic_coarse_max_level", c.intrinsic.coarse_max_level);
-  f("intrinsic_normal_prior", c.intrinsic.normal_prior);
+  f("intrinsic_normal_prior", c.intrinsic.normal_prior,
+    {"Intrinsic mode", "Weight of the normal prior, decaying to `intrinsic_normal_prior_final`."});
   f("intrinsic_normal_prior_final", c.intrinsic.normal_prior_final);
   f("intrinsic_normal_prior_until", c.intrinsic.normal_prior_until);
   f("intrinsic_material_losses_in_warmup", c.intrinsic.material_losses_in_warmup);
-  f("intrinsic_emit", c.intrinsic.emit);
-  f("intrinsic_smoothness", c.intrinsic.smoothness);
-  f("intrinsic_region", c.intrinsic.region);
-  f("intrinsic_label", c.intrinsic.label);
-  f("intrinsic_normals", c.intrinsic.normals);
+  f("intrinsic_emit", c.intrinsic.emit,
+    {"Intrinsic mode", "Which Gaussians emit into traced rays: `region` (the learned region weight), `mask` (from "
+                       "the glossy masks) or `max`."});
+  f("intrinsic_smoothness", c.intrinsic.smoothness,
+    {"Intrinsic mode", "Edge-aware smoothness of F0, roughness and normal on the glossy mask."});
+  f("intrinsic_region", c.intrinsic.region,
+    {"Intrinsic mode", "Weight of the region loss, the learned region weight against the glossy masks."});
+  f("intrinsic_label", c.intrinsic.label,
+    {"Intrinsic mode", "Weight of the object-label loss against the object masks."});
+  f("intrinsic_normals", c.intrinsic.normals,
+    {"Intrinsic mode", "Folder of normal-prior maps (empty = none). Also `--normals`."});
   f("intrinsic_auto_mask_fraction", c.intrinsic.auto_mask_fraction);
   f("intrinsic_detect_neighbours", c.intrinsic.detect_neighbours);
   f("intrinsic_detect_threshold", c.intrinsic.detect_threshold);
@@ -120,12 +177,17 @@ void visit_fields(Config& c, F&& f) {
   f("intrinsic_detect_plane_tolerance", c.intrinsic.detect_plane_tolerance);
   f("inpaint_appearance_weight", c.inpaint_appearance_weight);
   f("inpaint_material_weight", c.inpaint_material_weight);
-  f("nan_policy", c.nan_policy);
+  f("nan_policy", c.nan_policy,
+    {"Bookkeeping", "On a non-finite loss or gradient: `recover` (skip the step, lower the learning rates) or "
+                    "`stop`."});
   f("nan_lr_factor", c.nan_lr_factor);
   f("nan_max_skips", c.nan_max_skips);
   f("log_interval", c.log_interval);
-  f("checkpoint_interval", c.checkpoint_interval);
-  f("keep_checkpoints", c.keep_checkpoints);
+  f("checkpoint_interval", c.checkpoint_interval,
+    {"Bookkeeping", "Checkpoint every this many iterations (0 = only at the end or when stopped). Also "
+                    "`--checkpoint-every`."});
+  f("keep_checkpoints", c.keep_checkpoints,
+    {"Bookkeeping", "Older checkpoint files beyond this many are deleted."});
 }
 
 nlohmann::json vec_json(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
@@ -263,7 +325,8 @@ int TrainConfig::shading_phase_iteration(int full) const {
 
 void to_json(nlohmann::json& j, const TrainConfig& c) {
   j = nlohmann::json::object();
-  visit_fields(c, [&](const char* name, const auto& v) {
+  j["config_version"] = kConfigVersion;
+  visit_fields(c, [&](const char* name, const auto& v, Doc) {
     if constexpr (std::is_same_v<std::decay_t<decltype(v)>, glm::vec3>)
       j[name] = vec_json(v);
     else
@@ -311,33 +374,14 @@ void read_field(const nlohmann::json& x, T& v) {
   }
 }
 
-// Settings that earlier versions had and this one dropped because they measured no better than without
-// (docs/design/deviations.md, Removed settings). A run folder or checkpoint that holds one at the value it
-// was off at still loads; any other value is refused, since that run was trained with a behaviour this
-// version no longer has. Settings that only acted through another one (`off` null) load at any value.
-struct RetiredKey {
-  const char* name;
-  nlohmann::json off;  // null: any value
-};
-const RetiredKey* retired_key(const std::string& name) {
-  static const RetiredKey kRetired[] = {
-      {"intrinsic_net_residual", false},   {"intrinsic_ray_offset_normal", false},
-      {"intrinsic_region_rough", 0.0},     {"intrinsic_roughness_rough", 0.0},
-      {"intrinsic_roughness_follows_region", 0.0}, {"densify_stop", "fixed"},
-      {"densify_holdout_every", nullptr},          {"densify_stop_check_interval", nullptr},
-      {"densify_stop_window", nullptr},            {"densify_stop_min_gain", nullptr},
-      {"densify_stop_min_steps", nullptr}};
-  for (const RetiredKey& k : kRetired)
-    if (name == k.name) return &k;
-  return nullptr;
-}
-
 }  // namespace
 
-void from_json(const nlohmann::json& j, TrainConfig& c) {
-  if (!j.is_object()) throw Error("training configuration: expected a JSON object");
-  std::set<std::string> known;
-  visit_fields(c, [&](const char* name, auto& v) {
+void from_json(const nlohmann::json& file, TrainConfig& c) {
+  if (!file.is_object()) throw Error("training configuration: expected a JSON object");
+  nlohmann::json j = file;
+  migrate_config_json(j);
+  std::set<std::string> known = {"config_version"};
+  visit_fields(c, [&](const char* name, auto& v, Doc) {
     known.insert(name);
     if (!j.contains(name)) return;
     const nlohmann::json& x = j.at(name);
@@ -354,15 +398,8 @@ void from_json(const nlohmann::json& j, TrainConfig& c) {
       throw Error(std::string("training configuration: key '") + name + "' has the wrong type (" + e.what() + ")");
     }
   });
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    if (known.count(it.key())) continue;
-    const RetiredKey* retired = retired_key(it.key());
-    if (!retired) throw Error("training configuration: unknown key '" + it.key() + "'");
-    if (!retired->off.is_null() && it.value() != retired->off)
-      throw Error("training configuration: '" + it.key() + "' = " + it.value().dump() +
-                  " is a setting this version no longer has (it measured no better than " + retired->off.dump() +
-                  "; docs/design/deviations.md, Removed settings): the run needs the version that trained it");
-  }
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) throw Error("training configuration: unknown key '" + it.key() + "'");
 }
 
 void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config, const std::string& label) {
@@ -371,9 +408,10 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
     const size_t eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) throw Error(label + " " + kv + ": expected KEY=VALUE");
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    if (!j.contains(key) && retired_key(key))
-      throw Error(label + " " + kv + ": '" + key + "' was removed: it measured no better than without "
-                  "(docs/design/deviations.md, Removed settings)");
+    if (key == "config_version")
+      throw Error(label + " " + kv + ": 'config_version' is the version of config.json's layout, not a setting");
+    if (const ConfigMigration* dropped = dropped_config_key(key); dropped && !j.contains(key))
+      throw Error(label + " " + kv + ": '" + key + "' was removed: " + dropped->reason);
     if (!j.contains(key)) throw Error(label + " " + kv + ": unknown setting '" + key + "' (see config.json of a run)");
     nlohmann::json v = nlohmann::json::parse(value, nullptr, false);
     j[key] = v.is_discarded() ? nlohmann::json(value) : v;
@@ -386,34 +424,69 @@ void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& c
 }
 
 namespace {
-// Every preset: its name and its `--set` lines (the name's meaning: train_config.h, config_preset).
-struct Preset {
-  const char* name;
-  std::vector<std::string> sets;
-};
-const std::vector<Preset>& presets() {
-  static const std::vector<Preset> kPresets = {
-      {"planar-glossy",
-       {"intrinsic_material_losses_in_warmup=false", "alpha_weight=0.3", "intrinsic_glossy_plane=true",
-        "intrinsic_glossy_plane_prune_sinkers=true", "intrinsic_trace_glossy_transparent=0.5",
-        "intrinsic_glossy_plane_align=true", "intrinsic_env_distance=1.4"}}};
-  return kPresets;
+
+std::string real_text(float v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general);
+  return std::string(buf, r.ptr);
 }
+
+template <class T>
+ConfigKeyInfo key_info(const char* name, const T& v, Doc doc) {
+  ConfigKeyInfo k{name, "", "", doc.section, doc.text};
+  if constexpr (std::is_same_v<T, bool>) {
+    k.type = "true/false", k.default_value = v ? "true" : "false";
+  } else if constexpr (std::is_integral_v<T>) {
+    k.type = "whole number", k.default_value = std::to_string(v);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    k.type = "number", k.default_value = real_text(v);
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    k.type = "text", k.default_value = v.empty() ? "\"\"" : v;
+  } else {
+    static_assert(std::is_same_v<T, glm::vec3>);
+    k.type = "3 numbers", k.default_value = "[" + real_text(v.x) + ", " + real_text(v.y) + ", " + real_text(v.z) + "]";
+  }
+  return k;
+}
+
 }  // namespace
 
-std::vector<std::string> config_preset(const std::string& name) {
-  std::string known;
-  for (const Preset& p : presets()) {
-    if (name == p.name) return p.sets;
-    known += (known.empty() ? "" : ", ") + std::string(p.name);
-  }
-  throw Error("--preset " + name + ": unknown preset (known: " + known + ")");
+std::vector<ConfigKeyInfo> config_keys() {
+  std::vector<ConfigKeyInfo> keys;
+  const TrainConfig defaults;
+  visit_fields(defaults, [&](const char* name, const auto& v, Doc doc) {
+    keys.push_back(key_info(name, v, doc));
+  });
+  return keys;
 }
 
-std::vector<std::string> config_preset_names() {
-  std::vector<std::string> names;
-  for (const Preset& p : presets()) names.emplace_back(p.name);
-  return names;
+std::string train_options_reference() {
+  const std::vector<ConfigKeyInfo> keys = config_keys();
+  std::vector<std::string> sections;
+  for (const ConfigKeyInfo& k : keys)
+    if (!k.section.empty() && std::find(sections.begin(), sections.end(), k.section) == sections.end())
+      sections.push_back(k.section);
+  size_t user = 0;
+  for (const ConfigKeyInfo& k : keys) user += !k.doc.empty();
+  std::string md =
+      "# Training options\n\n"
+      "<!-- Generated by `goris config --reference > docs/reference/train-options.md` from the documentation "
+      "beside each setting in core/train/train_config.cpp (visit_fields); edit it there. -->\n\n"
+      "The " + std::to_string(user) + " settings of a training run a user is expected to touch, by their "
+      "`config.json` key. Each is given as `goris train --set KEY=VALUE`, in a preset file "
+      "(`resources/presets/`, `goris train --preset`) or in the editor with `set KEY VALUE`. A run's "
+      "`config.json` holds all " + std::to_string(keys.size()) + " settings; `goris config --all` lists them "
+      "with their defaults.\n";
+  for (const std::string& s : sections) {
+    md += "\n## " + s + "\n\n| key | default | type | meaning |\n|---|---|---|---|\n";
+    for (const ConfigKeyInfo& k : keys) {
+      if (k.section != s) continue;
+      std::string doc = k.doc;
+      for (size_t at = doc.find('|'); at != std::string::npos; at = doc.find('|', at + 2)) doc.replace(at, 1, "\\|");
+      md += "| `" + k.key + "` | `" + k.default_value + "` | " + k.type + " | " + doc + " |\n";
+    }
+  }
+  return md;
 }
 
 }  // namespace goris

@@ -257,22 +257,30 @@ struct TrainConfig {
   void validate(const std::string& what) const;
 };
 
+// config.json: every setting, and "config_version" (core/train/config_migration.h).
 void to_json(nlohmann::json& j, const TrainConfig& c);
-// Missing keys keep their defaults; unknown keys are errors (typos must not pass silently).
+// Reads a config.json object of this or an older version (migrated first: renamed keys, dropped settings,
+// keys older files lack; config_migration.h). Missing keys keep their defaults; unknown keys are errors
+// (typos must not pass silently).
 void from_json(const nlohmann::json& j, TrainConfig& c);
 // `--set KEY=VALUE` overrides of config.json keys (VALUE as JSON: number, true/false, "string" or [1,2,3],
 // else a plain string); goris::Error naming the setting for an unknown or removed key or a value that does
-// not parse. `label` heads the messages: the CLI's "--set", the editor's "set".
+// not parse. `label` heads the messages: the CLI's "--set", the editor's "set", a preset's file.
 void apply_config_overrides(const std::vector<std::string>& sets, TrainConfig& config,
                             const std::string& label = "--set");
 
-// Named groups of `--set` overrides (`goris train --preset NAME`, applied before --set). "planar-glossy":
-// the stage-1 setting for one planar glossy surface with glossy masks (an opaque table held to its plane
-// with exact normals, reflection rays that skip it, the environment's sphere beyond the light;
-// docs/design/deviations.md, The glossy surface held to its plane, with its evidence). Throws goris::Error
-// listing the names for an unknown one.
-std::vector<std::string> config_preset(const std::string& name);
-// The names config_preset() knows (for choosers and messages).
-std::vector<std::string> config_preset_names();
+// One config.json key as `goris config` and docs/reference/train-options.md show it.
+struct ConfigKeyInfo {
+  std::string key;
+  std::string type;           // "true/false", "whole number", "number", "text" or "[r, g, b]"
+  std::string default_value;  // as a person writes it: 0.0002, radiance, "" (empty text), [0, 0, 0]
+  // User-facing settings (the few a user is expected to touch): the heading they are listed under and one
+  // line of documentation. Empty for the rest, which config.json and --set accept all the same.
+  std::string section, doc;
+};
+// Every config.json key, in config.json's definition order.
+std::vector<ConfigKeyInfo> config_keys();
+// docs/reference/train-options.md: the user-facing settings by section, with their defaults (Markdown).
+std::string train_options_reference();
 
 }  // namespace goris

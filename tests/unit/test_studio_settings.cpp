@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 #include "ui/settings_store.h"
@@ -194,7 +195,7 @@ TEST(StudioSettings, PresetOfANewRun) {
   // The same run as the panel's fields with `goris train --preset planar-glossy`.
   TrainConfig by_cli = new_run_config(StudioSettings{}, {});
   by_cli.mode = "intrinsic";
-  apply_config_overrides(config_preset("planar-glossy"), by_cli);
+  apply_config_preset(load_config_preset("planar-glossy"), by_cli);
   EXPECT_EQ(nlohmann::json(new_run_config(s, {})).dump(), nlohmann::json(by_cli).dump());
   const fs::path dir = test::scratch_dir("studio_settings_preset");
   save_settings(dir / "settings.json", s);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/train/config_presets.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
 #include "ui/train_options.h"
@@ -74,21 +75,36 @@ void TrainingPanel::draw(AppState& st) {
           "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
           "auto: intrinsic when the data set has glossy masks");
     overridden("mode");
-    // Presets: named groups of settings (as `goris train --preset`), applied before a script's `set` lines.
-    const std::vector<std::string> presets = config_preset_names();
+    // Presets: the files of resources/presets (as `goris train --preset`), applied before a script's `set`
+    // lines. The folder is listed again, and the tooltip's file read again, whenever the chooser opens.
+    static std::vector<std::string> presets = config_preset_names();
+    static std::string tip_of, tip;
     ImGui::SetNextItemWidth(120);
     if (ImGui::BeginCombo("preset", set.train_preset.empty() ? "none" : set.train_preset.c_str())) {
+      if (ImGui::IsWindowAppearing()) presets = config_preset_names(), tip_of = "\n";
       if (ImGui::Selectable("none", set.train_preset.empty())) set.train_preset.clear();
       for (const std::string& p : presets)
         if (ImGui::Selectable(p.c_str(), set.train_preset == p)) set.train_preset = p;
       ImGui::EndCombo();
     }
     if (ImGui::IsItemHovered()) {
-      std::string lines = "settings applied on top of the fields above (goris train --preset):";
-      for (const std::string& kv : set.train_preset.empty() ? std::vector<std::string>{} : config_preset(set.train_preset))
-        lines += "\n  " + kv;
-      if (set.train_preset.empty()) lines += "\n  none; planar-glossy: one planar glossy surface with glossy masks (intrinsic)";
-      ImGui::SetTooltip("%s", lines.c_str());
+      if (tip_of != set.train_preset) {
+        tip_of = set.train_preset;
+        tip = "settings applied on top of the fields above (goris train --preset):";
+        if (set.train_preset.empty()) {
+          tip += "\n  none";
+          for (const std::string& p : presets) tip += "; " + p;
+        } else {
+          try {
+            const ConfigPreset preset = load_config_preset(set.train_preset);
+            tip += "\n" + preset.description + "\n" + preset.file.string();
+            for (const std::string& kv : preset.settings) tip += "\n  " + kv;
+          } catch (const std::exception& e) {
+            tip += "\n" + std::string(e.what());
+          }
+        }
+      }
+      ImGui::SetTooltip("%s", tip.c_str());
     }
     int resolution = eff.resolution, points = eff.random_init_points;
     ImGui::SetNextItemWidth(120);
