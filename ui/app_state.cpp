@@ -135,10 +135,7 @@ void AppState::show_model(std::shared_ptr<const ModelSnapshot> m) {
   selection_.bind(model_, run, source, !training_active() && !cleaned_scene);
 }
 
-bool AppState::training_active() const {
-  const SessionState s = session_.state();
-  return s == SessionState::Running || s == SessionState::Paused || s == SessionState::Stopping;
-}
+bool AppState::training_active() const { return session_.active(); }
 
 fs::path AppState::current_run() const {
   if (model_from_session_) return session_.run_dir();
@@ -170,9 +167,9 @@ void AppState::find_removal_masks() {
 void AppState::poll() {
   if (pending_open_.valid() && pending_open_.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
     finish_open();
-  const SessionState s = session_.state();
+  const JobState s = session_.state();
   if (s != last_session_state_) {
-    if (s == SessionState::Done || s == SessionState::Error) message(session_.status(), s == SessionState::Error);
+    if (s == JobState::Done || s == JobState::Error) message(session_.status(), s == JobState::Error);
     last_session_state_ = s;
   }
   const std::uint64_t v = session_.snapshot_version();
@@ -183,16 +180,16 @@ void AppState::poll() {
   }
   for (const auto& [text, error] : selection_.take_messages()) message(text, error);
   two_click.sync(*this);
-  const RemovalState rs = removal_.state();
+  const JobState rs = removal_.state();
   if (rs != last_removal_state_) {
-    if (rs == RemovalState::Done || rs == RemovalState::Cancelled || rs == RemovalState::Error)
-      message("removal " + std::string(removal_state_name(rs)) + ": " + removal_.status(), rs == RemovalState::Error);
+    if (rs == JobState::Done || rs == JobState::Cancelled || rs == JobState::Error)
+      message("removal " + std::string(job_state_name(rs)) + ": " + removal_.status(), rs == JobState::Error);
     last_removal_state_ = rs;
   }
   if (removal_.runs_ended() != removal_runs_seen_) {
     removal_runs_seen_ = removal_.runs_ended();
     find_removal_masks();
-    if (removal_.state() == RemovalState::Done && !removal_result_.empty() && removal_result_ != current_run() &&
+    if (removal_.state() == JobState::Done && !removal_result_.empty() && removal_result_ != current_run() &&
         !training_active() && !opening()) {
       // The result replaces the scene with the target in the viewports; before / after toggles back.
       keep_view_on_open_ = true;
@@ -215,8 +212,8 @@ void AppState::poll() {
   }
   if (exporter_.runs_ended() != export_runs_seen_) {
     export_runs_seen_ = exporter_.runs_ended();
-    const ExportState es = exporter_.state();
-    message(std::string("export ") + export_state_name(es) + ": " + exporter_.status(), es == ExportState::Error);
+    const JobState es = exporter_.state();
+    message(std::string("export ") + job_state_name(es) + ": " + exporter_.status(), es == JobState::Error);
   }
 }
 

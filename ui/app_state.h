@@ -231,12 +231,12 @@ class AppState {
   std::filesystem::path opening_path_;
   std::string open_error_;
   TrainerSession session_;
-  SessionState last_session_state_ = SessionState::Idle;  // to report how a run ended, once
+  JobState last_session_state_ = JobState::Idle;  // to report how a run ended, once
   std::uint64_t session_version_seen_ = 0;                // snapshots up to this one belong to an earlier document
   std::shared_ptr<const ModelSnapshot> model_;
   std::uint64_t model_version_ = 0;
   bool model_from_session_ = false;              // the shown model is the training session's
-  RemovalState last_removal_state_ = RemovalState::Idle;
+  JobState last_removal_state_ = JobState::Idle;
   std::vector<std::pair<std::string, std::string>> overrides_;
   // Declared after the trainer: destroyed first (their workers may still read the shown model).
   SelectionSession selection_;

@@ -40,18 +40,12 @@ bool is_capture_input(const std::filesystem::path& path);
 // number added while that exists).
 std::filesystem::path default_capture_output(const std::filesystem::path& input);
 
-class CaptureJob {
+class CaptureJob : public JobReadout {
  public:
+  CaptureJob() : JobReadout(job_) {}
   // Starts run_capture(options). Throws goris::Error while an import runs.
   void start(const capture::CaptureOptions& options);
   void cancel();
-
-  JobState state() const { return job_.state(); }
-  bool active() const { return job_.active(); }
-  std::string status() const { return job_.status(); }
-  double elapsed_s() const { return job_.elapsed_s(); }
-  std::uint64_t runs_ended() const { return job_.runs_ended(); }
-  JobState wait(std::chrono::milliseconds timeout = std::chrono::hours(24)) const { return job_.wait(timeout); }
 
   CaptureJobProgress progress() const;
   capture::CaptureOptions options() const;               // of the last start

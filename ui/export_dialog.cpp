@@ -155,7 +155,7 @@ void ExportDialog::draw_buttons(AppState& st, bool active) {
     ImGui::SameLine();
     if (ImGui::Button("Close", ImVec2(100, 0))) st.show_export_dialog = false;
   } else {
-    ImGui::BeginDisabled(job.state() == ExportState::Cancelling);
+    ImGui::BeginDisabled(job.state() == JobState::Cancelling);
     if (ImGui::Button("Cancel", ImVec2(100, 0))) job.cancel();
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered())
@@ -172,7 +172,7 @@ void ExportDialog::draw_buttons(AppState& st, bool active) {
 
 void ExportDialog::draw_progress(AppState& st) {
   const ExportJob& job = st.exporter();
-  if (job.state() == ExportState::Idle) return;
+  if (job.state() == JobState::Idle) return;
   const ExportProgress p = job.progress();
   ImGui::Separator();
   char overlay[64];
@@ -181,10 +181,10 @@ void ExportDialog::draw_progress(AppState& st) {
   ImGui::SameLine();
   const double elapsed = job.elapsed_s(), f = p.fraction();
   if (job.active() && f > 0.02)  // the ETA from the parts' expected costs, once some of it is measured
-    ImGui::Text("%s, %s, ETA %s", export_state_name(job.state()), duration_text(elapsed).c_str(),
+    ImGui::Text("%s, %s, ETA %s", job_state_name(job.state()), duration_text(elapsed).c_str(),
                 duration_text(elapsed * (1.0 - f) / f).c_str());
   else
-    ImGui::Text("%s, %s", export_state_name(job.state()), duration_text(elapsed).c_str());
+    ImGui::Text("%s, %s", job_state_name(job.state()), duration_text(elapsed).c_str());
   for (int k = 0; k < kExportPartCount; ++k) {
     const ExportPartStatus& s = p.parts[size_t(k)];
     if (!s.wanted) continue;
@@ -210,13 +210,13 @@ void ExportDialog::draw_progress(AppState& st) {
 
 void ExportDialog::draw_outcome(AppState& st) {
   const ExportJob& job = st.exporter();
-  const ExportState s = job.state();
-  if (s == ExportState::Idle || job.active()) return;
+  const JobState s = job.state();
+  if (s == JobState::Idle || job.active()) return;
   ImGui::Separator();
-  if (s == ExportState::Done) {
+  if (s == JobState::Done) {
     ImGui::TextColored(kDoneColour, "Done in %s:", duration_text(job.elapsed_s()).c_str());
     ImGui::TextWrapped("%s", job.result().summary.c_str());
-  } else if (s == ExportState::Cancelled) {
+  } else if (s == JobState::Cancelled) {
     ImGui::TextWrapped("Cancelled: %s", job.status().c_str());
   } else {
     ImGui::TextColored(kErrorColour, "Export failed:");

@@ -7,7 +7,6 @@
 #include "core/compute/device.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
-#include "ui/background_priority.h"
 
 namespace goris::ui {
 
@@ -54,24 +53,6 @@ void check_export_request(const ExportRequest& r) {
                                                               " file would replace another export: rename the baked PLY");
   if (!r.renders.empty() && r.frames < 0)
     throw Error(r.renders.string(), "the frame count must be >= 0 (" + std::to_string(r.frames) + " given)");
-}
-
-const char* export_state_name(ExportState s) {
-  switch (s) {
-    case ExportState::Idle:
-      return "idle";
-    case ExportState::Running:
-      return "running";
-    case ExportState::Cancelling:
-      return "cancelling";
-    case ExportState::Done:
-      return "done";
-    case ExportState::Cancelled:
-      return "cancelled";
-    case ExportState::Error:
-      return "error";
-  }
-  return "?";
 }
 
 const char* export_part_name(ExportPart p) {
@@ -123,161 +104,92 @@ double ExportProgress::fraction() const {
   return total > 0 ? done / total : 0.0;
 }
 
-ExportJob::~ExportJob() {
-  cancel();
-  if (worker_.joinable()) worker_.join();
-}
-
 void ExportJob::start(const ExportRequest& request) {
-  {
-    std::lock_guard lk(mutex_);
-    if (state_ == ExportState::Running || state_ == ExportState::Cancelling)
-      throw Error(std::string("export: an export is ") + export_state_name(state_) +
-                  ": wait for it or cancel it first");
-  }
+  if (const JobState s = job_.state(); job_active(s))
+    throw Error(std::string("export: an export is ") + job_state_name(s) + ": wait for it or cancel it first");
   check_export_request(request);
-  if (worker_.joinable()) worker_.join();  // it has ended: joining does not wait
-  std::lock_guard lk(mutex_);
-  state_ = ExportState::Running;
-  status_ = "starting";
-  request_ = request;
-  request_.run_dir = fs::absolute(request.run_dir);
-  for (fs::path* p : {&request_.ply, &request_.baked, &request_.renders})
+  ExportRequest rq = request;
+  rq.run_dir = fs::absolute(request.run_dir);
+  for (fs::path* p : {&rq.ply, &rq.baked, &rq.renders})
     if (!p->empty()) *p = fs::absolute(*p).lexically_normal();
-  progress_ = ExportProgress();
+  ExportProgress progress;
   // Rough counts until the run is loaded (then the real ones).
-  progress_.baked_iterations = request_.baked_iterations;
-  progress_.teacher_views = 100;
-  progress_.frames = request_.frames > 0                         ? request_.frames
-                     : request_.render_path == RenderPath::Orbit ? kDefaultOrbitFrames
-                                                                 : 20;
-  const fs::path* paths[] = {&request_.run_dir, &request_.ply, &request_.baked, &request_.renders};
+  progress.baked_iterations = rq.baked_iterations;
+  progress.teacher_views = 100;
+  progress.frames = rq.frames > 0                         ? rq.frames
+                    : rq.render_path == RenderPath::Orbit ? kDefaultOrbitFrames
+                                                          : 20;
+  const fs::path* paths[] = {&rq.run_dir, &rq.ply, &rq.baked, &rq.renders};
   for (int k = 0; k < kExportPartCount; ++k) {
-    progress_.parts[size_t(k)].wanted = !paths[k]->empty();
-    progress_.parts[size_t(k)].path = *paths[k];
+    progress.parts[size_t(k)].wanted = !paths[k]->empty();
+    progress.parts[size_t(k)].path = *paths[k];
   }
-  result_ = ExportResult();
+  request_.set(rq);
+  progress_.set(std::move(progress));
+  result_.set(ExportResult());
   distilling_ = false;
-  cancel_ = false;
   stop_distill_ = false;
-  started_ = part_started_ = std::chrono::steady_clock::now();
-  worker_ = std::thread([this, rq = request_] { work(rq); });
+  job_.start([this, rq](const std::atomic<bool>&) { return work(rq); });
 }
 
 void ExportJob::cancel() {
-  std::lock_guard lk(mutex_);
-  if (state_ != ExportState::Running) return;
-  cancel_ = true;
+  if (job_.state() != JobState::Running) return;
+  job_.cancel("cancelling: stops at the next progress check");
   stop_distill_ = true;  // the distillation's loop returns at once, and its next report ends the export
-  state_ = ExportState::Cancelling;
-  status_ = "cancelling: stops at the next progress check";
-  changed_.notify_all();
 }
 
 void ExportJob::finish_early() {
-  std::lock_guard lk(mutex_);
-  if (state_ == ExportState::Running && distilling_) stop_distill_ = true;
+  if (job_.state() == JobState::Running && distilling_) stop_distill_ = true;
 }
 
-bool ExportJob::distilling() const {
-  std::lock_guard lk(mutex_);
-  return distilling_ && !stop_distill_;
-}
-
-ExportState ExportJob::state() const {
-  std::lock_guard lk(mutex_);
-  return state_;
-}
-bool ExportJob::active() const {
-  const ExportState s = state();
-  return s == ExportState::Running || s == ExportState::Cancelling;
-}
-std::string ExportJob::status() const {
-  std::lock_guard lk(mutex_);
-  return status_;
-}
-ExportProgress ExportJob::progress() const {
-  std::lock_guard lk(mutex_);
-  return progress_;
-}
-double ExportJob::elapsed_s() const {
-  std::lock_guard lk(mutex_);
-  if (state_ == ExportState::Idle) return 0.0;
-  const auto end =
-      state_ == ExportState::Running || state_ == ExportState::Cancelling ? std::chrono::steady_clock::now() : ended_;
-  return std::chrono::duration<double>(end - started_).count();
-}
-ExportResult ExportJob::result() const {
-  std::lock_guard lk(mutex_);
-  return result_;
-}
-ExportRequest ExportJob::request() const {
-  std::lock_guard lk(mutex_);
-  return request_;
-}
-std::uint64_t ExportJob::runs_ended() const {
-  std::lock_guard lk(mutex_);
-  return runs_ended_;
-}
-
-ExportState ExportJob::wait(std::chrono::milliseconds timeout) const {
-  std::unique_lock lk(mutex_);
-  changed_.wait_for(lk, timeout, [&] { return state_ != ExportState::Running && state_ != ExportState::Cancelling; });
-  return state_;
-}
-
-void ExportJob::finish(ExportState s, const std::string& status) {
-  std::lock_guard lk(mutex_);
-  state_ = s;
-  status_ = status;
-  distilling_ = false;
-  ended_ = std::chrono::steady_clock::now();
-  ++runs_ended_;
-  changed_.notify_all();
-}
+bool ExportJob::distilling() const { return job_.state() == JobState::Running && distilling_ && !stop_distill_; }
 
 void ExportJob::check_cancel() const {
-  if (cancel_) throw ExportCancelled{};
+  if (job_.state() == JobState::Cancelling) throw ExportCancelled{};
 }
 
 void ExportJob::begin_part(ExportPart p) {
   check_cancel();
-  std::lock_guard lk(mutex_);
-  ExportPartStatus& s = progress_.parts[size_t(p)];
-  s.started = true;
-  progress_.current = int(p);
   part_started_ = std::chrono::steady_clock::now();
-  if (state_ == ExportState::Running) status_ = std::string(export_part_name(p)) + ": " + s.path.string();
+  const fs::path path = progress_.with([&](ExportProgress& progress) {
+    ExportPartStatus& s = progress.parts[size_t(p)];
+    s.started = true;
+    progress.current = int(p);
+    return s.path;
+  });
+  job_.set_status(std::string(export_part_name(p)) + ": " + path.string());
 }
 
 void ExportJob::update_part(ExportPart p, double fraction, const std::string& detail) {
-  {
-    std::lock_guard lk(mutex_);
-    ExportPartStatus& s = progress_.parts[size_t(p)];
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_started_).count();
+  progress_.with([&](ExportProgress& progress) {
+    ExportPartStatus& s = progress.parts[size_t(p)];
     s.fraction = std::clamp(fraction, 0.0, 1.0);
     s.detail = detail;
-    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_started_).count();
-    if (state_ == ExportState::Running) status_ = std::string(export_part_name(p)) + ": " + detail;
-  }
+    s.seconds = seconds;
+  });
+  job_.set_status(std::string(export_part_name(p)) + ": " + detail);
   check_cancel();
 }
 
 void ExportJob::end_part(ExportPart p, const std::string& detail) {
-  std::lock_guard lk(mutex_);
-  ExportPartStatus& s = progress_.parts[size_t(p)];
-  s.fraction = 1.0;
-  s.complete = true;
-  s.detail = detail;
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_started_).count();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - part_started_).count();
+  progress_.with([&](ExportProgress& progress) {
+    ExportPartStatus& s = progress.parts[size_t(p)];
+    s.fraction = 1.0;
+    s.complete = true;
+    s.detail = detail;
+    s.seconds = seconds;
+  });
 }
 
-void ExportJob::work(ExportRequest rq) {
-  const BackgroundPriority background;  // the GUI thread goes first
+std::string ExportJob::work(const ExportRequest& rq) {
   ExportPart part = ExportPart::Load;
   auto add_written = [this](const fs::path& p, const std::string& line) {
-    std::lock_guard lk(mutex_);
-    result_.written.push_back(p);
-    result_.summary += (result_.summary.empty() ? "" : "\n") + line;
+    result_.with([&](ExportResult& r) {
+      r.written.push_back(p);
+      r.summary += (r.summary.empty() ? "" : "\n") + line;
+    });
   };
   try {
     // Every output path first, so that a typo fails now and not after a distillation. The dialog proposes
@@ -311,10 +223,11 @@ void ExportJob::work(ExportRequest rq) {
       // is (no training, only the held-out views).
       const size_t n = rq.renders.empty() ? 0 : ex.path_cameras(rq.render_path, rq.frames).size();
       const size_t holdout = ex.dataset().test.empty() ? 16 : ex.dataset().test.size();
-      std::lock_guard lk(mutex_);
-      progress_.frames = int(n);
-      if (!ex.intrinsic()) progress_.baked_iterations = 0;
-      progress_.teacher_views = int(holdout + (ex.intrinsic() ? 2 * ex.dataset().train.size() : 0));
+      progress_.with([&](ExportProgress& progress) {
+        progress.frames = int(n);
+        if (!ex.intrinsic()) progress.baked_iterations = 0;
+        progress.teacher_views = int(holdout + (ex.intrinsic() ? 2 * ex.dataset().train.size() : 0));
+      });
     }
 
     if (!rq.ply.empty()) {
@@ -338,29 +251,21 @@ void ExportJob::work(ExportRequest rq) {
           rq.baked, s,
           [&](const DistillProgress& p) {
             const double f = p.total > 0 ? double(p.done) / double(p.total) : 1.0;
-            double share = 0;
-            {
-              std::lock_guard lk(mutex_);
-              if (p.phase == "targets") progress_.teacher_views = p.total;
-              share = progress_.baked_render_share();
-            }
+            const double share = progress_.with([&](ExportProgress& progress) {
+              if (p.phase == "targets") progress.teacher_views = p.total;
+              return progress.baked_render_share();
+            });
             if (p.phase == "targets") {
               update_part(part, share * f,
                           "rendering the run's views " + std::to_string(p.done) + "/" + std::to_string(p.total));
             } else if (p.phase == "distilling") {
-              {
-                std::lock_guard lk(mutex_);
-                distilling_ = p.done < p.total;
-              }
+              distilling_ = p.done < p.total;
               update_part(part, share + (1 - share) * 0.98 * f,
                           "distilling " + std::to_string(p.done) + "/" + std::to_string(p.total) + ": PSNR " +
                               fixed(p.psnr, 2) + " dB, " + fixed(p.it_per_s, 1) + " it/s, ETA " +
                               duration_text(p.eta_s));
             } else {
-              {
-                std::lock_guard lk(mutex_);
-                distilling_ = false;
-              }
+              distilling_ = false;
               update_part(part, 0.99, "fidelity measured on the held-out views; writing");
             }
           },
@@ -384,8 +289,7 @@ void ExportJob::work(ExportRequest rq) {
         BakedReport light = r;
         light.distill.ply = GaussianPly();
         light.distill.holdout_images.clear();
-        std::lock_guard lk(mutex_);
-        result_.baked = std::move(light);
+        result_.with([&](ExportResult& res) { res.baked = std::move(light); });
       }
       add_written(r.ply, "baked PLY: " + r.ply.string() + " (" + detail + ")");
       add_written(r.json, "baked PLY report: " + r.json.string());
@@ -405,17 +309,14 @@ void ExportJob::work(ExportRequest rq) {
                                  " frames at " + std::to_string(r.width) + "x" + std::to_string(r.height) + ", " +
                                  fixed(r.ms_per_frame, 0) + " ms each";
       end_part(part, detail);
-      {
-        std::lock_guard lk(mutex_);
-        result_.renders = r;
-      }
+      result_.with([&](ExportResult& res) { res.renders = r; });
       add_written(r.dir, "renders: " + r.dir.string() + " (" + detail + ", contact_sheet.png, cameras.json)");
     }
 
     std::string paths;
     for (const fs::path& p : result().written)
       if (p.extension() != ".json") paths += (paths.empty() ? "" : ", ") + p.string();
-    finish(ExportState::Done, "exported " + paths);
+    return "exported " + paths;
   } catch (const ExportCancelled&) {
     std::string kept;
     for (const fs::path& p : result().written) kept += (kept.empty() ? "" : ", ") + p.filename().string();
@@ -423,9 +324,9 @@ void ExportJob::work(ExportRequest rq) {
     if (part == ExportPart::Renders)
       line += " (the frames written so far are complete files; no contact sheet or cameras.json)";
     line += kept.empty() ? "; nothing was written" : "; kept " + kept;
-    finish(ExportState::Cancelled, line);
+    throw JobCancelled(line);
   } catch (const std::exception& e) {
-    finish(ExportState::Error, std::string(export_part_name(part)) + ": " + e.what());
+    throw Error(std::string(export_part_name(part)) + ": " + e.what());
   }
 }
 

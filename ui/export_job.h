@@ -1,11 +1,8 @@
 #pragma once
-// The exports of a run folder (`goris export`: render/export/run_export.h) on a worker thread for the
-// editor's Export dialog and the scripted mode's `export` actions: the intrinsic PLY, the baked (distilled,
-// SH-only) PLY (and the same model as SPZ, compressed PLY, .splat, GLB) and rendered frames, in that order, each through the same library call as the CLI. States:
-//
-//   Idle --start--> Running --(every part written)--> Done
-//   Running --cancel--> Cancelling --(the next progress check)--> Cancelled      any failure --> Error
-//   Done / Cancelled / Error --start--> Running
+// The exports of a run folder (`goris export`: render/export/run_export.h) on a background job
+// (ui/background_job.h) for the editor's Export dialog and the scripted mode's `export` actions: the
+// intrinsic PLY, the baked (distilled, SH-only) PLY (and the same model as SPZ, compressed PLY, .splat, GLB)
+// and rendered frames, in that order, each through the same library call as the CLI.
 //
 // Every output path is checked before any work starts (an unwritable path fails in a second, not after a
 // distillation). Files go through a temporary file renamed into place, so a file is either the old one or
@@ -16,17 +13,15 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <filesystem>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/io/splat_formats.h"
 #include "render/export/run_export.h"
+#include "ui/background_job.h"
 
 namespace goris::ui {
 
@@ -52,9 +47,6 @@ std::filesystem::path baked_format_path(const std::filesystem::path& baked, Spla
 // Throws goris::Error for a request that cannot run: no run folder, nothing wanted, the two PLYs being one
 // file, a non-positive iteration count, a negative frame count or other formats without the baked PLY.
 void check_export_request(const ExportRequest& request);
-
-enum class ExportState { Idle, Running, Cancelling, Done, Cancelled, Error };
-const char* export_state_name(ExportState s);
 
 enum class ExportPart { Load, Ply, Baked, Renders };
 constexpr int kExportPartCount = 4;
@@ -91,54 +83,36 @@ struct ExportResult {
   std::string summary;  // one line per part
 };
 
-class ExportJob {
+class ExportJob : public JobReadout {
  public:
-  ExportJob() = default;
-  ~ExportJob();  // cancels and joins the worker
-  ExportJob(const ExportJob&) = delete;
-  ExportJob& operator=(const ExportJob&) = delete;
-
+  ExportJob() : JobReadout(job_) {}
   // Checks the request (check_export_request) and starts the worker. Throws goris::Error while one runs.
   void start(const ExportRequest& request);
   void cancel();            // Running -> Cancelling; otherwise nothing
   void finish_early();      // ends the distillation now and writes what it has; otherwise nothing
   bool distilling() const;  // the distillation's training loop runs (finish_early has an effect)
 
-  ExportState state() const;
-  bool active() const;  // Running or Cancelling
-  // One line: what the worker does, how it ended, or why it failed ("baked PLY: FILE: problem").
-  std::string status() const;
-  ExportProgress progress() const;
-  double elapsed_s() const;          // since start (frozen once the export ended)
-  ExportResult result() const;       // what was written (complete once the export ended)
-  ExportRequest request() const;     // of the last start
-  std::uint64_t runs_ended() const;  // grows whenever an export ends, however it ended
-
-  // Blocks until no export is active or the timeout passes; returns the state. Tests and shutdown only.
-  ExportState wait(std::chrono::milliseconds timeout = std::chrono::hours(24)) const;
+  // status(): what the worker does, how it ended, or why it failed ("baked PLY: FILE: problem").
+  ExportProgress progress() const { return progress_.get(); }
+  ExportResult result() const { return result_.get(); }     // what was written (complete once the export ended)
+  ExportRequest request() const { return request_.get(); }  // of the last start
 
  private:
-  void work(ExportRequest request);
-  void finish(ExportState s, const std::string& status);
+  std::string work(const ExportRequest& request);
   // Worker side: marks part `p` as the current one / updates it; throws the cancellation when asked to stop.
   void begin_part(ExportPart p);
   void update_part(ExportPart p, double fraction, const std::string& detail);
   void end_part(ExportPart p, const std::string& detail);
   void check_cancel() const;
 
-  mutable std::mutex mutex_;
-  mutable std::condition_variable changed_;
-  ExportState state_ = ExportState::Idle;
-  std::string status_ = "idle";
-  ExportProgress progress_;
-  ExportResult result_;
-  ExportRequest request_;
-  std::chrono::steady_clock::time_point started_{}, ended_{}, part_started_{};
-  std::uint64_t runs_ended_ = 0;
-  bool distilling_ = false;
-  std::atomic<bool> cancel_{false};
+  Guarded<ExportProgress> progress_;
+  Guarded<ExportResult> result_;
+  Guarded<ExportRequest> request_;
+  std::chrono::steady_clock::time_point part_started_{};  // worker only
+  std::atomic<bool> distilling_{false};
   std::atomic<bool> stop_distill_{false};
-  std::thread worker_;
+  // Last: joined before the members its work uses go. The work ends a cancelled export itself (what it kept).
+  BackgroundJob job_{"export", BackgroundJob::StopRule::WorkDecides};
 };
 
 }  // namespace goris::ui

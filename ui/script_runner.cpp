@@ -67,12 +67,12 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
         phase_ = 1;
         return false;
       }
-      const SessionState s = st.session().state();
-      if (s == SessionState::Error) {
+      const JobState s = st.session().state();
+      if (s == JobState::Error) {
         fail(a, st.session().status());
         return false;
       }
-      if (s != SessionState::Done) return false;
+      if (s != JobState::Done) return false;
       if (phase_ == 1) {
         const TrainProgress p = st.session().progress();
         std::printf("trained to iteration %d: loss %.4f, PSNR %.2f dB, %zu Gaussians (%s)\n", p.iteration, p.loss,
@@ -262,8 +262,8 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
         phase_ = 1;
       }
       if (st.removal().active()) return false;
-      if (st.removal().state() != RemovalState::Cancelled)
-        fail(a, std::string("the removal ended ") + removal_state_name(st.removal().state()) + " before it stopped: " +
+      if (st.removal().state() != JobState::Cancelled)
+        fail(a, std::string("the removal ended ") + job_state_name(st.removal().state()) + " before it stopped: " +
                     st.removal().status());
       return true;
     }
@@ -304,30 +304,30 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
         phase_ = 1;
         return false;
       }
-      return wait_export(host, a, ExportState::Done);
+      return wait_export(host, a, JobState::Done);
     case Kind::ExportStart:
       if (!host.settled()) return false;
       start_export(st, a);
       return true;
     case Kind::ExportWait:
       if (phase_ == 0) {
-        if (st.exporter().state() == ExportState::Idle) throw Error("no export was started");
+        if (st.exporter().state() == JobState::Idle) throw Error("no export was started");
         phase_ = 1;
       }
-      return wait_export(host, a, ExportState::Done);
+      return wait_export(host, a, JobState::Done);
     case Kind::ExportCancel:
       if (phase_ == 0) {
         if (!st.exporter().active()) throw Error("no export is running");
         st.exporter().cancel();
         phase_ = 1;
       }
-      return wait_export(host, a, ExportState::Cancelled);
+      return wait_export(host, a, JobState::Cancelled);
     case Kind::ExpectExportError:
       if (phase_ == 0) {
-        if (st.exporter().state() == ExportState::Idle) throw Error("no export was started");
+        if (st.exporter().state() == JobState::Idle) throw Error("no export was started");
         phase_ = 1;
       }
-      if (!wait_export(host, a, ExportState::Error)) return false;
+      if (!wait_export(host, a, JobState::Error)) return false;
       if (st.exporter().status().find(a.text) == std::string::npos) {
         fail(a, "the export failed with '" + st.exporter().status() + "', which does not contain '" + a.text + "'");
         return false;
@@ -476,17 +476,17 @@ bool ScriptRunner::run_remove(ScriptHost& host, const ScriptAction& a, bool star
     if (start) {
       if (!host.settled()) return false;
       st.start_removal(a.count);
-    } else if (!st.removal().active() && st.removal().state() == RemovalState::Idle) {
+    } else if (!st.removal().active() && st.removal().state() == JobState::Idle) {
       throw Error("no removal was started");
     }
     phase_ = 1;
     return false;
   }
   if (phase_ == 1) {
-    const RemovalState s = st.removal().state();
-    if (s == RemovalState::Running || s == RemovalState::Cancelling) return false;
-    if (s != RemovalState::Done) {
-      fail(a, std::string(removal_state_name(s)) + ": " + st.removal().status());
+    const JobState s = st.removal().state();
+    if (s == JobState::Running || s == JobState::Cancelling) return false;
+    if (s != JobState::Done) {
+      fail(a, std::string(job_state_name(s)) + ": " + st.removal().status());
       return false;
     }
     std::printf("removal %s (%.1f s)\n", st.removal().status().c_str(), st.removal().elapsed_s());
@@ -519,17 +519,17 @@ void ScriptRunner::start_export(AppState& st, const ScriptAction& a) {
   st.start_export();
 }
 
-bool ScriptRunner::wait_export(ScriptHost& host, const ScriptAction& a, ExportState expect) {
+bool ScriptRunner::wait_export(ScriptHost& host, const ScriptAction& a, JobState expect) {
   AppState& st = host.state();
   if (phase_ == 1) {
     if (st.exporter().active()) return false;
-    const ExportState s = st.exporter().state();
+    const JobState s = st.exporter().state();
     if (s != expect) {
-      fail(a, std::string("the export ended ") + export_state_name(s) + " (expected " + export_state_name(expect) +
+      fail(a, std::string("the export ended ") + job_state_name(s) + " (expected " + job_state_name(expect) +
                   "): " + st.exporter().status());
       return false;
     }
-    if (s == ExportState::Done) {
+    if (s == JobState::Done) {
       std::printf("export: %s (%.1f s)\n", st.exporter().result().summary.c_str(), st.exporter().elapsed_s());
       std::fflush(stdout);
     }

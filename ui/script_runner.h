@@ -80,7 +80,7 @@ class ScriptRunner {
   static void start_export(AppState& st, const ScriptAction& a);
   // Waits until the running (or, with !started_here, the last) export has ended and the display settled;
   // `expect` is the state it must end in.
-  bool wait_export(ScriptHost& host, const ScriptAction& a, ExportState expect);
+  bool wait_export(ScriptHost& host, const ScriptAction& a, JobState expect);
   // The Open panel's import fields from the line, then its Import button.
   static void start_import(AppState& st, const ScriptAction& a);
   // Waits until the import has ended (and been taken in by the editor) and the display settled; `expect`

@@ -121,8 +121,8 @@ int StudioApp::run() {
 
 bool StudioApp::busy() const {
   if (script_ && script_->status() == ScriptRunner::Status::Running) return true;
-  const SessionState s = state_->session().state();
-  if (s == SessionState::Running || s == SessionState::Stopping) return true;
+  const JobState s = state_->session().state();
+  if (s == JobState::Running || s == JobState::Cancelling) return true;
   if (state_->opening() || !worker_->idle() || stable_frames_ < 3) return true;
   if (state_->removal().active() || state_->selection().busy() || state_->exporter().active() ||
       state_->importer().active())
@@ -156,8 +156,7 @@ void StudioApp::frame() {
   last_frame_time_ = now;
 
   // Frame times while the trainer runs, restarted with each training (the debug overlay shows them).
-  const SessionState ss = state_->session().state();
-  const bool training = ss == SessionState::Running || ss == SessionState::Paused || ss == SessionState::Stopping;
+  const bool training = state_->session().active();
   if (training && !training_seen_) training_frames_ = {};
   if (training && limiter_.frames() > 1) {
     FrameStats& f = training_frames_;
@@ -251,7 +250,7 @@ void StudioApp::request_render() {
                              selection != requested_selection_ || hidden != requested_hidden_;
   if (!camera_changed && !model_changed) return;
   const auto now = std::chrono::steady_clock::now();
-  if (!camera_changed && state_->session().state() == SessionState::Running) {
+  if (!camera_changed && state_->session().state() == JobState::Running) {
     // New snapshots while training: render at most a fifth of the time, the trainer needs the CPU more.
     const double gap = std::max(0.25, 5e-3 * (state_->frame ? state_->frame->render_ms : 0.0));
     if (std::chrono::duration<double>(now - last_request_time_).count() < gap) return;  // asked again next frame
@@ -423,8 +422,7 @@ void StudioApp::draw_viewports() {
 }
 
 bool StudioApp::settled() const {
-  const SessionState s = state_->session().state();
-  if (state_->opening() || s == SessionState::Running || s == SessionState::Paused || s == SessionState::Stopping)
+  if (state_->opening() || state_->session().active())
     return false;
   if (!worker_->idle()) return false;
   if (state_->selection().busy() || state_->removal().active() || !state_->removal_reported()) return false;

@@ -85,13 +85,13 @@ void StudioApp::draw_status() {
   ImGui::PopStyleVar();
   const TrainerSession& s = state_->session();
   if (state_->removal().active())
-    ImGui::Text("[removal %s]", removal_state_name(state_->removal().state()));
+    ImGui::Text("[removal %s]", job_state_name(state_->removal().state()));
   else if (state_->exporter().active())
-    ImGui::Text("[export %s]", export_state_name(state_->exporter().state()));
+    ImGui::Text("[export %s]", job_state_name(state_->exporter().state()));
   else if (state_->importer().active())
     ImGui::Text("[import %s]", job_state_name(state_->importer().state()));
   else
-    ImGui::Text("[%s]", state_name(s.state()));
+    ImGui::Text("[%s]", training_state_name(s.state()));
   ImGui::SameLine();
   if (state_->last_message_is_error())
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", state_->last_message().c_str());

@@ -10,127 +10,21 @@
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
-#include "ui/background_priority.h"
 
 namespace goris::ui {
 
 namespace fs = std::filesystem;
 
-const char* state_name(SessionState s) {
-  switch (s) {
-    case SessionState::Idle:
-      return "idle";
-    case SessionState::Running:
-      return "running";
-    case SessionState::Paused:
-      return "paused";
-    case SessionState::Stopping:
-      return "stopping";
-    case SessionState::Done:
-      return "done";
-    case SessionState::Error:
-      return "error";
-  }
-  return "?";
-}
+const char* training_state_name(JobState s) { return s == JobState::Cancelling ? "stopping" : job_state_name(s); }
 
-TrainerSession::TrainerSession(SessionOptions options) : options_(options) {}
-
-TrainerSession::~TrainerSession() {
-  stop();
-  if (worker_.joinable()) worker_.join();
-}
+TrainerSession::~TrainerSession() { stop(); }
 
 void TrainerSession::start(const TrainRequest& request) {
-  {
-    std::lock_guard lk(mutex_);
-    if (state_ != SessionState::Idle && state_ != SessionState::Done && state_ != SessionState::Error)
-      throw Error(std::string("training is ") + state_name(state_) + ": stop it before starting again");
-    if (request.iterations <= 0) throw Error("training: the iteration target must be positive");
-    if (request.run_dir.empty()) throw Error("training: no run folder given");
-  }
-  if (worker_.joinable()) worker_.join();  // it has finished (Done/Error): joining does not wait
-  std::lock_guard lk(mutex_);
-  state_ = SessionState::Running;
-  status_ = "starting";
-  pause_requested_ = false;
-  stop_flag_ = false;
-  worker_ = std::thread([this, request] { work(request); });
-}
-
-void TrainerSession::pause() {
-  std::lock_guard lk(mutex_);
-  if (state_ != SessionState::Running) return;
-  pause_requested_ = true;
-  state_ = SessionState::Paused;
-  changed_.notify_all();
-}
-
-void TrainerSession::resume() {
-  std::lock_guard lk(mutex_);
-  if (state_ != SessionState::Paused) return;
-  pause_requested_ = false;
-  state_ = SessionState::Running;
-  changed_.notify_all();
-}
-
-void TrainerSession::stop() {
-  std::lock_guard lk(mutex_);
-  if (state_ != SessionState::Running && state_ != SessionState::Paused) return;
-  stop_flag_ = true;
-  pause_requested_ = false;
-  state_ = SessionState::Stopping;
-  changed_.notify_all();
-}
-
-SessionState TrainerSession::state() const {
-  std::lock_guard lk(mutex_);
-  return state_;
-}
-std::string TrainerSession::status() const {
-  std::lock_guard lk(mutex_);
-  return status_;
-}
-TrainProgress TrainerSession::progress() const {
-  std::lock_guard lk(mutex_);
-  return progress_;
-}
-TrainingHistory TrainerSession::history() const {
-  std::lock_guard lk(mutex_);
-  return history_;
-}
-std::shared_ptr<const ModelSnapshot> TrainerSession::snapshot() const {
-  std::lock_guard lk(mutex_);
-  return snapshot_;
-}
-std::uint64_t TrainerSession::snapshot_version() const {
-  std::lock_guard lk(mutex_);
-  return snapshot_version_;
-}
-fs::path TrainerSession::run_dir() const {
-  std::lock_guard lk(mutex_);
-  return run_dir_;
-}
-
-SessionState TrainerSession::wait(std::chrono::milliseconds timeout) const {
-  std::unique_lock lk(mutex_);
-  changed_.wait_for(lk, timeout, [&] {
-    return state_ == SessionState::Idle || state_ == SessionState::Done || state_ == SessionState::Error;
-  });
-  return state_;
-}
-
-void TrainerSession::set_status(const std::string& s) {
-  std::lock_guard lk(mutex_);
-  status_ = s;
-}
-
-void TrainerSession::finish(SessionState s, const std::string& status) {
-  std::lock_guard lk(mutex_);
-  state_ = s;
-  status_ = status;
-  pause_requested_ = false;
-  changed_.notify_all();
+  if (const JobState s = job_.state(); job_active(s))
+    throw Error(std::string("training is ") + training_state_name(s) + ": stop it before starting again");
+  if (request.iterations <= 0) throw Error("training: the iteration target must be positive");
+  if (request.run_dir.empty()) throw Error("training: no run folder given");
+  job_.start([this, request](const std::atomic<bool>& stop) { return work(request, stop); });
 }
 
 void TrainerSession::publish_snapshot(int iteration) {
@@ -141,9 +35,10 @@ void TrainerSession::publish_snapshot(int iteration) {
                                                     std::move(renderer_state));
   last_snapshot_iteration_ = iteration;
   last_snapshot_time_ = std::chrono::steady_clock::now();
-  std::lock_guard lk(mutex_);
-  snapshot_ = std::move(snap);
-  ++snapshot_version_;
+  snapshot_.with([&](Published& p) {
+    p.model = std::move(snap);
+    ++p.version;
+  });
 }
 
 // A new run, or the latest checkpoint of the folder, set up as `goris train` does it
@@ -168,16 +63,14 @@ void TrainerSession::prepare_trainer(const TrainRequest& rq) {
     return;
   }
   trainer_.reset();
-  {
-    std::lock_guard lk(mutex_);
-    run_dir_ = run_dir;
-    history_.clear();
-  }
+  run_dir_ = run_dir;
+  shown_run_dir_.set(run_dir);
+  history_.with([](TrainingHistory& h) { h.clear(); });
   const fs::path data = rq.data.empty() ? fs::path() : fs::weakly_canonical(fs::absolute(rq.data));
   TrainConfig config = rq.config;
   std::optional<ResumePoint> resumed;
   if (latest_checkpoint(run_dir)) {
-    set_status("reading the latest checkpoint");
+    job_.set_status("reading the latest checkpoint");
     resumed = read_latest_checkpoint(run_dir);
     config = resumed->checkpoint.config;
     config.device = rq.config.device;  // where to train is this machine's choice, as `goris train --device`
@@ -194,9 +87,9 @@ void TrainerSession::prepare_trainer(const TrainRequest& rq) {
   config.iterations = rq.more ? done + rq.iterations : rq.iterations;
   if (resumed && done >= config.iterations)
     throw Error(run_dir.string(), "already trained for " + std::to_string(done) + " iterations; ask for more");
-  set_status("loading " + config.data);
+  job_.set_status("loading " + config.data);
   PreparedTraining prep = prepare_training(run_dir, config, std::move(resumed), [this](size_t i, size_t n) {
-    set_status("loading images " + std::to_string(i + 1) + "/" + std::to_string(n));
+    job_.set_status("loading images " + std::to_string(i + 1) + "/" + std::to_string(n));
   });
   renderer_ = std::move(prep.renderer);
   trainer_ = std::move(prep.trainer);
@@ -208,38 +101,29 @@ void TrainerSession::prepare_trainer(const TrainRequest& rq) {
 
 void TrainerSession::on_progress(const TrainProgress& p) {
   const auto now = std::chrono::steady_clock::now();
-  {
-    std::lock_guard lk(mutex_);
-    progress_ = p;
-    history_.add({p.iteration, float(p.loss), float(p.psnr), float(p.gaussians), float(p.it_per_s)});
-    if (state_ == SessionState::Running) status_ = "training";
-  }
+  progress_.set(p);
+  history_.with([&](TrainingHistory& h) {
+    h.add({p.iteration, float(p.loss), float(p.psnr), float(p.gaussians), float(p.it_per_s)});
+  });
   const bool due = p.iteration - last_snapshot_iteration_ >= options_.snapshot_every ||
                    std::chrono::duration<double>(now - last_snapshot_time_).count() >= options_.snapshot_interval_s;
   if (due && p.iteration != last_snapshot_iteration_) publish_snapshot(p.iteration);
-  std::unique_lock lk(mutex_);
-  if (pause_requested_ && !stop_flag_) {
-    status_ = "paused at iteration " + std::to_string(p.iteration);
-    changed_.wait(lk, [&] { return !pause_requested_ || stop_flag_.load(); });
-    if (state_ == SessionState::Running) status_ = "training";
-  }
+  job_.pause_point("paused at iteration " + std::to_string(p.iteration), "training");
 }
 
-void TrainerSession::work(TrainRequest rq) {
-  const BackgroundPriority background;  // the GUI thread goes first
+// Under the job's StopRule::WorkDecides: a stop ends the loop at the next iteration with a checkpoint, and
+// the run is Done.
+std::string TrainerSession::work(const TrainRequest& rq, const std::atomic<bool>& stop) {
   try {
     prepare_trainer(rq);
     write_run_config(run_dir_, trainer_->config());
-    {
-      std::lock_guard lk(mutex_);
-      progress_ = trainer_->progress(0);
-      status_ = "training";
-    }
+    progress_.set(trainer_->progress(0));
+    job_.set_status("training");
     publish_snapshot(trainer_->state().iteration);
 
     Trainer::RunOptions ro;
     ro.run_dir = run_dir_;
-    ro.stop = &stop_flag_;
+    ro.stop = &stop;
     ro.progress_every = 1;
     ro.on_progress = [this](const TrainProgress& p) { on_progress(p); };
     ro.before_step = [this](Trainer& t) {  // --mode auto's decision after the warm-up may switch the renderer
@@ -247,25 +131,23 @@ void TrainerSession::work(TrainRequest rq) {
         renderer_ = t.renderer();
         if (as_intrinsic(renderer_.get()))
           shading_ = std::make_shared<const ShadingSource>(ShadingSource{t.config(), t.extent()});
-        set_status(d->message());
+        job_.set_status(d->message());
       }
     };
     const Trainer::RunResult result = trainer_->run(ro);
     const TrainerState& st = trainer_->state();
     if (st.iteration != last_snapshot_iteration_) publish_snapshot(st.iteration);
-    if (result == Trainer::RunResult::Stopped) {
-      finish(SessionState::Done, "stopped at iteration " + std::to_string(st.iteration) + "; checkpoint " +
-                                     checkpoint_path(run_dir_, st.iteration).filename().string());
-      return;
-    }
+    if (result == Trainer::RunResult::Stopped)
+      return "stopped at iteration " + std::to_string(st.iteration) + "; checkpoint " +
+             checkpoint_path(run_dir_, st.iteration).filename().string();
     write_trained_run(run_dir_, *trainer_, *renderer_);
     char line[160];
     std::snprintf(line, sizeof line, "done: %d iterations, %zu Gaussians, PSNR %.2f dB", st.iteration, st.model.count(),
                   st.ema_psnr);
-    finish(SessionState::Done, line);
-  } catch (const std::exception& e) {
+    return line;
+  } catch (...) {
     trainer_.reset();  // a failed run is reloaded from its checkpoints by the next start
-    finish(SessionState::Error, e.what());
+    throw;
   }
 }
 

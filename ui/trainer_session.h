@@ -2,10 +2,11 @@
 // Stage-1 training on its own thread for the editor (docs/design/architecture.md, The editor), set up as
 // `goris train` does (render/train/training_setup.h: modes radiance / intrinsic / auto, normal priors,
 // make_renderer) with the same run folder (config.json, checkpoints/, log.csv, point_cloud.ply,
-// environment.png; an existing run is resumed from its latest checkpoint). A small state machine:
+// environment.png; an existing run is resumed from its latest checkpoint). It runs on a background job
+// (ui/background_job.h) whose stop is a finish, not a cancel:
 //
 //   Idle --start--> Running --pause--> Paused --resume--> Running
-//   Running/Paused --stop--> Stopping --(checkpoint written)--> Done
+//   Running/Paused --stop--> Cancelling ("stopping") --(checkpoint written)--> Done
 //   Running --(target iteration reached)--> Done          any failure --> Error
 //   Done/Error --start--> Running (continues the same run, e.g. with a larger iteration target)
 //
@@ -14,25 +15,22 @@
 // whichever comes first, and at the end); an intrinsic run's snapshots carry the renderer's own state
 // (environment map, roughness net) so the display shades with the current environment. Nothing here knows
 // about windows or OpenGL.
-#include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 
 #include "core/train/train_config.h"
 #include "core/train/trainer.h"
+#include "ui/background_job.h"
 #include "ui/model_snapshot.h"
 #include "ui/training_history.h"
 
 namespace goris::ui {
 
-enum class SessionState { Idle, Running, Paused, Stopping, Done, Error };
-const char* state_name(SessionState s);
+// The job's state as the training shows it: a cancel is a stop ("stopping").
+const char* training_state_name(JobState s);
 
 struct TrainRequest {
   std::filesystem::path data;     // the data set (must be the run's own when the run folder already holds one)
@@ -47,9 +45,9 @@ struct SessionOptions {
   double snapshot_interval_s = 0.2;  // ... or seconds, whichever comes first
 };
 
-class TrainerSession {
+class TrainerSession : public JobReadout {
  public:
-  explicit TrainerSession(SessionOptions options = {});
+  explicit TrainerSession(SessionOptions options = {}) : JobReadout(job_), options_(options) {}
   ~TrainerSession();  // stops (writing a checkpoint) and joins the worker
   TrainerSession(const TrainerSession&) = delete;
   TrainerSession& operator=(const TrainerSession&) = delete;
@@ -57,42 +55,33 @@ class TrainerSession {
   // Starts the worker. Allowed in Idle, Done and Error (throws goris::Error otherwise). A request for the
   // run folder already in memory continues that trainer; another folder is loaded (new or resumed).
   void start(const TrainRequest& request);
-  void pause();   // Running -> Paused (the iteration in flight completes first); otherwise nothing
-  void resume();  // Paused -> Running; otherwise nothing
-  void stop();    // Running/Paused -> Stopping -> Done, with a checkpoint; otherwise nothing
+  void pause() { job_.pause(); }    // Running -> Paused (the iteration in flight completes first); otherwise nothing
+  void resume() { job_.resume(); }  // Paused -> Running; otherwise nothing
+  // Running/Paused -> Cancelling (stopping) -> Done, with a checkpoint; otherwise nothing.
+  void stop() { job_.cancel(std::nullopt); }
+  // state(), status(), wait() (JobReadout): the worker's; training_state_name() names a stop "stopping".
 
-  SessionState state() const;
-  // One line for the status bar: what the worker does, why it failed, or how it ended.
-  std::string status() const;
-  TrainProgress progress() const;
-  TrainingHistory history() const;
-  std::shared_ptr<const ModelSnapshot> snapshot() const;
-  std::uint64_t snapshot_version() const;  // grows with every new snapshot
-  std::filesystem::path run_dir() const;
-
-  // Blocks until the worker is not running (Idle, Done or Error) or the timeout passes; returns the
-  // state. For tests and shutdown only: the GUI polls state() instead.
-  SessionState wait(std::chrono::milliseconds timeout = std::chrono::hours(24)) const;
+  TrainProgress progress() const { return progress_.get(); }
+  TrainingHistory history() const { return history_.get(); }
+  std::shared_ptr<const ModelSnapshot> snapshot() const { return snapshot_.get().model; }
+  std::uint64_t snapshot_version() const { return snapshot_.get().version; }  // grows with every new snapshot
+  std::filesystem::path run_dir() const { return shown_run_dir_.get(); }
 
  private:
-  void work(TrainRequest request);
+  struct Published {
+    std::shared_ptr<const ModelSnapshot> model;
+    std::uint64_t version = 0;
+  };
+  std::string work(const TrainRequest& request, const std::atomic<bool>& stop);
   void prepare_trainer(const TrainRequest& request);  // worker thread
   void on_progress(const TrainProgress& p);           // worker thread, between iterations
   void publish_snapshot(int iteration);
-  void set_status(const std::string& s);
-  void finish(SessionState s, const std::string& status);
 
   SessionOptions options_;
-  mutable std::mutex mutex_;
-  mutable std::condition_variable changed_;
-  SessionState state_ = SessionState::Idle;
-  std::string status_ = "idle";
-  TrainProgress progress_;
-  TrainingHistory history_;
-  std::shared_ptr<const ModelSnapshot> snapshot_;
-  std::uint64_t snapshot_version_ = 0;
-  bool pause_requested_ = false;
-  std::atomic<bool> stop_flag_{false};
+  Guarded<TrainProgress> progress_;
+  Guarded<TrainingHistory> history_;
+  Guarded<Published> snapshot_;
+  Guarded<std::filesystem::path> shown_run_dir_;  // run_dir_ for the GUI thread
 
   // Owned by the worker while it runs; by start() between runs.
   std::unique_ptr<Trainer> trainer_;
@@ -101,7 +90,7 @@ class TrainerSession {
   std::filesystem::path run_dir_;
   int last_snapshot_iteration_ = 0;
   std::chrono::steady_clock::time_point last_snapshot_time_;
-  std::thread worker_;
+  BackgroundJob job_{"training", BackgroundJob::StopRule::WorkDecides};  // last: joined before the members it uses go
 };
 
 }  // namespace goris::ui

@@ -114,7 +114,7 @@ bool ScriptRunner::run_two_click(ScriptHost& host, const ScriptAction& a) {
       return false;
     }
     if (a.what == "use" && f.step() != FlowStep::Done) {
-      fail(a, std::string("the removal ended ") + removal_state_name(st.removal().state()) + ": " +
+      fail(a, std::string("the removal ended ") + job_state_name(st.removal().state()) + ": " +
                   st.removal().status());
       return false;
     }
