@@ -298,79 +298,25 @@ bool ScriptRunner::run_action(ScriptHost& host, const ScriptAction& a) {
       st.export_from_removal = a.what == "removal";
       return true;
     case Kind::Export:
-      if (phase_ == 0) {
-        if (!host.settled()) return false;
-        start_export(st, a);
-        phase_ = 1;
-        return false;
-      }
-      return wait_export(host, a, JobState::Done);
+      return run_job_line(host, a, JobLine::Run, export_lines(st, a));
     case Kind::ExportStart:
-      if (!host.settled()) return false;
-      start_export(st, a);
-      return true;
+      return run_job_line(host, a, JobLine::Start, export_lines(st, a));
     case Kind::ExportWait:
-      if (phase_ == 0) {
-        if (st.exporter().state() == JobState::Idle) throw Error("no export was started");
-        phase_ = 1;
-      }
-      return wait_export(host, a, JobState::Done);
+      return run_job_line(host, a, JobLine::Wait, export_lines(st, a));
     case Kind::ExportCancel:
-      if (phase_ == 0) {
-        if (!st.exporter().active()) throw Error("no export is running");
-        st.exporter().cancel();
-        phase_ = 1;
-      }
-      return wait_export(host, a, JobState::Cancelled);
+      return run_job_line(host, a, JobLine::Cancel, export_lines(st, a));
     case Kind::ExpectExportError:
-      if (phase_ == 0) {
-        if (st.exporter().state() == JobState::Idle) throw Error("no export was started");
-        phase_ = 1;
-      }
-      if (!wait_export(host, a, JobState::Error)) return false;
-      if (st.exporter().status().find(a.text) == std::string::npos) {
-        fail(a, "the export failed with '" + st.exporter().status() + "', which does not contain '" + a.text + "'");
-        return false;
-      }
-      return true;
+      return run_job_line(host, a, JobLine::ExpectError, export_lines(st, a));
     case Kind::ImportCapture:
-      if (phase_ == 0) {
-        if (!host.settled()) return false;
-        start_import(st, a);
-        phase_ = 1;
-        return false;
-      }
-      return wait_import(host, a, JobState::Done);
+      return run_job_line(host, a, JobLine::Run, import_lines(st, a)) && imported_data_open(host, a);
     case Kind::ImportCaptureStart:
-      if (!host.settled()) return false;
-      start_import(st, a);
-      return true;
+      return run_job_line(host, a, JobLine::Start, import_lines(st, a));
     case Kind::ImportWait:
-      if (phase_ == 0) {
-        if (st.importer().state() == JobState::Idle) throw Error("no import was started");
-        phase_ = 1;
-      }
-      return wait_import(host, a, JobState::Done);
+      return run_job_line(host, a, JobLine::Wait, import_lines(st, a)) && imported_data_open(host, a);
     case Kind::ImportCancel:
-      if (phase_ == 0) {
-        if (!st.importer().active()) throw Error("no import is running");
-        st.importer().cancel();
-        phase_ = 1;
-      }
-      return wait_import(host, a, JobState::Cancelled);
+      return run_job_line(host, a, JobLine::Cancel, import_lines(st, a));
     case Kind::ExpectImportError:
-      if (phase_ == 0) {
-        if (st.importer().state() == JobState::Idle) throw Error("no import was started");
-        phase_ = 1;
-      }
-      if (!wait_import(host, a, JobState::Error)) return false;
-      if (st.importer().status().find(a.text) == std::string::npos) {
-        fail(a, "the import failed with '" + st.importer().status() + "', which does not contain '" + a.text + "'");
-        return false;
-      }
-      std::printf("import refused: %s\n", st.importer().status().c_str());
-      std::fflush(stdout);
-      return true;
+      return run_job_line(host, a, JobLine::ExpectError, import_lines(st, a));
     case Kind::Screenshot:
     case Kind::ScreenshotNow:
       if (phase_ == 0) {
@@ -519,23 +465,74 @@ void ScriptRunner::start_export(AppState& st, const ScriptAction& a) {
   st.start_export();
 }
 
-bool ScriptRunner::wait_export(ScriptHost& host, const ScriptAction& a, JobState expect) {
-  AppState& st = host.state();
+ScriptRunner::JobLines ScriptRunner::export_lines(AppState& st, const ScriptAction& a) {
+  ExportJob& job = st.exporter();
+  JobLines j{"export", job};
+  j.start = [&st, &a] { start_export(st, a); };
+  j.cancel = [&job] { job.cancel(); };
+  j.print_done = [&job] { std::printf("export: %s (%.1f s)\n", job.result().summary.c_str(), job.elapsed_s()); };
+  return j;
+}
+
+ScriptRunner::JobLines ScriptRunner::import_lines(AppState& st, const ScriptAction& a) {
+  CaptureJob& job = st.importer();
+  JobLines j{"import", job};
+  j.start = [&st, &a] { start_import(st, a); };
+  j.cancel = [&job] { job.cancel(); };
+  j.reported = [&st] { return st.import_reported(); };
+  j.print_done = [&job] {
+    std::printf("import: %s (%.1f s)\n%s", job.status().c_str(), job.elapsed_s(),
+                capture::report_text(*job.report()).c_str());
+  };
+  j.print_refusal = true;
+  return j;
+}
+
+bool ScriptRunner::run_job_line(ScriptHost& host, const ScriptAction& a, JobLine line, const JobLines& lines) {
+  const std::string noun = lines.noun;
+  if (line == JobLine::Start || (line == JobLine::Run && phase_ == 0)) {
+    if (!host.settled()) return false;
+    lines.start();
+    phase_ = 1;
+    return line == JobLine::Start;
+  }
+  if (phase_ == 0) {
+    if (line == JobLine::Cancel) {
+      if (!lines.job.active()) throw Error("no " + noun + " is running");
+      lines.cancel();
+    } else if (lines.job.state() == JobState::Idle) {
+      throw Error("no " + noun + " was started");
+    }
+    phase_ = 1;
+  }
+  const JobState expect = line == JobLine::Cancel        ? JobState::Cancelled
+                          : line == JobLine::ExpectError ? JobState::Error
+                                                         : JobState::Done;
   if (phase_ == 1) {
-    if (st.exporter().active()) return false;
-    const JobState s = st.exporter().state();
+    if (lines.job.active() || (lines.reported && !lines.reported())) return false;
+    const JobState s = lines.job.state();
     if (s != expect) {
-      fail(a, std::string("the export ended ") + job_state_name(s) + " (expected " + job_state_name(expect) +
-                  "): " + st.exporter().status());
+      fail(a, "the " + noun + " ended " + job_state_name(s) + " (expected " + job_state_name(expect) +
+                  "): " + lines.job.status());
       return false;
     }
     if (s == JobState::Done) {
-      std::printf("export: %s (%.1f s)\n", st.exporter().result().summary.c_str(), st.exporter().elapsed_s());
+      lines.print_done();
       std::fflush(stdout);
     }
     phase_ = 2;
   }
-  return host.settled();
+  if (!host.settled()) return false;
+  if (line != JobLine::ExpectError) return true;
+  if (lines.job.status().find(a.text) == std::string::npos) {
+    fail(a, "the " + noun + " failed with '" + lines.job.status() + "', which does not contain '" + a.text + "'");
+    return false;
+  }
+  if (lines.print_refusal) {
+    std::printf("%s refused: %s\n", lines.noun, lines.job.status().c_str());
+    std::fflush(stdout);
+  }
+  return true;
 }
 
 }  // namespace goris::ui
@@ -554,24 +551,9 @@ void ScriptRunner::start_import(AppState& st, const ScriptAction& a) {
   st.start_import(f);
 }
 
-bool ScriptRunner::wait_import(ScriptHost& host, const ScriptAction& a, JobState expect) {
+bool ScriptRunner::imported_data_open(ScriptHost& host, const ScriptAction& a) {
   AppState& st = host.state();
-  if (phase_ == 1) {
-    if (st.importer().active() || !st.import_reported()) return false;
-    const JobState s = st.importer().state();
-    if (s != expect) {
-      fail(a, std::string("the import ended ") + job_state_name(s) + " (expected " + job_state_name(expect) +
-                  "): " + st.importer().status());
-      return false;
-    }
-    if (s == JobState::Done) {
-      std::printf("import: %s (%.1f s)\n%s", st.importer().status().c_str(), st.importer().elapsed_s(),
-                  capture::report_text(*st.importer().report()).c_str());
-      std::fflush(stdout);
-    }
-    phase_ = 2;
-  }
-  if (phase_ == 2 && expect == JobState::Done) {
+  if (phase_ == 2) {
     if (st.opening()) return false;
     const fs::path out = st.importer().report()->out;
     if (!st.scene() || st.scene()->path != out) {

@@ -76,16 +76,32 @@ class ScriptRunner {
   bool run_two_click(ScriptHost& host, const ScriptAction& a);
   // Starts the removal (or, with !start, takes the running one) and waits until it has ended.
   bool run_remove(ScriptHost& host, const ScriptAction& a, bool start);
+  // The lines on one of the editor's background jobs: Run starts it and waits until it is done, Start only
+  // starts it, Wait waits for the one started, Cancel cancels the running one and waits until it has
+  // ended, ExpectError waits for the one started to fail with the line's text in its status.
+  enum class JobLine { Run, Start, Wait, Cancel, ExpectError };
+  // What those lines need of a job (the export, the import).
+  struct JobLines {
+    JobLines(const char* noun, const JobReadout& job) : noun(noun), job(job) {}
+    const char* noun;       // "export", "import": the messages' word
+    const JobReadout& job;  // its state and status
+    std::function<void()> start;       // the line's choices, then the button
+    std::function<void()> cancel;
+    std::function<bool()> reported;    // the editor has taken in the run that ended (null: at once)
+    std::function<void()> print_done;  // what a finished run made, on stdout
+    bool print_refusal = false;        // an expected error is printed ("import refused: ...")
+  };
+  static JobLines export_lines(AppState& st, const ScriptAction& a);
+  static JobLines import_lines(AppState& st, const ScriptAction& a);
+  // One job line a frame; true once it is complete. The job's end is waited for (phase 1), then the display
+  // settling; a Run or Wait that ended well leaves phase_ at 2.
+  bool run_job_line(ScriptHost& host, const ScriptAction& a, JobLine line, const JobLines& lines);
   // Sets the Export dialog's choices to the line's one part (if it names one) and presses its Export button.
   static void start_export(AppState& st, const ScriptAction& a);
-  // Waits until the running (or, with !started_here, the last) export has ended and the display settled;
-  // `expect` is the state it must end in.
-  bool wait_export(ScriptHost& host, const ScriptAction& a, JobState expect);
   // The Open panel's import fields from the line, then its Import button.
   static void start_import(AppState& st, const ScriptAction& a);
-  // Waits until the import has ended (and been taken in by the editor) and the display settled; `expect`
-  // is the state it must end in. A finished import also waits for its data set to be open.
-  bool wait_import(ScriptHost& host, const ScriptAction& a, JobState expect);
+  // After an import ended well: waits for its data set to be open and the display settled.
+  bool imported_data_open(ScriptHost& host, const ScriptAction& a);
   void fail(const ScriptAction& a, const std::string& problem);
 
   std::vector<ScriptAction> actions_;
