@@ -422,8 +422,7 @@ void StudioApp::draw_viewports() {
 }
 
 bool StudioApp::settled() const {
-  if (state_->opening() || state_->session().active())
-    return false;
+  if (state_->opening() || state_->session().active()) return false;
   if (!worker_->idle()) return false;
   if (state_->selection().busy() || state_->removal().active() || !state_->removal_reported()) return false;
   if (state_->exporter().active() || !state_->export_reported()) return false;
