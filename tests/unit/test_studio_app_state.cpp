@@ -7,9 +7,9 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/app_state.h"
-#include "ui/display_renderer.h"
-#include "ui/script_runner.h"
+#include "ui/document/app_state.h"
+#include "ui/display/display_renderer.h"
+#include "ui/script/script_runner.h"
 
 using namespace goris;
 using namespace goris::ui;

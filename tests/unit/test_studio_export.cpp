@@ -1,4 +1,4 @@
-// The editor's exports without a window: the export worker (ui/export_job.h) on a tiny intrinsic run of the
+// The editor's exports without a window: the export worker (ui/document/export_job.h) on a tiny intrinsic run of the
 // embedded scene (every part written and readable, an unwritable path failing before any work, cancel and
 // finish-early), the Export dialog's remembered choices (settings, paths relative to the run folder), and
 // the script's export actions going through AppState::start_export.
@@ -14,12 +14,12 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/app_state.h"
-#include "ui/export_job.h"
-#include "ui/script.h"
-#include "ui/script_runner.h"
-#include "ui/settings_store.h"
-#include "ui/trainer_session.h"
+#include "ui/document/app_state.h"
+#include "ui/document/export_job.h"
+#include "ui/script/script.h"
+#include "ui/script/script_runner.h"
+#include "ui/shell/settings_store.h"
+#include "ui/document/trainer_session.h"
 
 using namespace goris;
 using namespace goris::ui;

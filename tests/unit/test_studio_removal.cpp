@@ -9,8 +9,8 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/removal_session.h"
-#include "ui/trainer_session.h"
+#include "ui/document/removal_session.h"
+#include "ui/document/trainer_session.h"
 
 using namespace goris;
 using namespace goris::ui;

@@ -1,4 +1,4 @@
-// The editor's training session (ui/trainer_session.h): its state machine on a real (tiny) training of the
+// The editor's training session (ui/document/trainer_session.h): its state machine on a real (tiny) training of the
 // embedded scene, the run folder it writes (as `goris train`), snapshots and history, continuing in memory
 // and from the folder's checkpoint, and failures that end in the Error state with the reason.
 #include <chrono>
@@ -9,7 +9,7 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/trainer_session.h"
+#include "ui/document/trainer_session.h"
 
 using namespace goris;
 using namespace goris::ui;

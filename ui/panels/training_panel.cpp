@@ -11,7 +11,7 @@
 #include "core/train/config_presets.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
-#include "ui/train_options.h"
+#include "ui/document/train_options.h"
 
 namespace goris::ui {
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "core/util/error.h"
-#include "ui/app_state.h"
+#include "ui/document/app_state.h"
 
 namespace goris::ui {
 
