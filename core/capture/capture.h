@@ -4,7 +4,7 @@
 // undistortion to PINHOLE cameras); the result is COLMAP's undistorted layout, images/ + sparse/0 (+ masks/
 // when a masks folder was given), with capture_report.json and capture_report.txt beside it. Everything is
 // written into a temporary folder next to the output, renamed into place at the end: a failed or stopped
-// capture leaves no half data set. Used by `goris capture` and by the editor's Open panel (ui/capture_job.h,
+// capture leaves no half data set. Used by `goris capture` and by the editor's Open panel (ui/document/capture_job.h,
 // a background job with progress and a stop flag).
 #include <atomic>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
 // A run folder and a training configuration turned into a Trainer ready to run: shared by `goris train`
-// (app/goris/cmd_train.cpp) and the editor's training session (ui/trainer_session.h), so both train the
+// (app/goris/cmd_train.cpp) and the editor's training session (ui/document/trainer_session.h), so both train the
 // same way. It loads the data set, resolves mode "auto" (render/train/auto_mode.h: the callers pass
 // apply_auto_mode as Trainer::RunOptions::before_step for the decision after the warm-up), loads the training images (and normal priors in
 // intrinsic mode), builds the initial model or takes a checkpoint's state, and makes the differentiable

@@ -7,9 +7,9 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/app_state.h"
-#include "ui/display_renderer.h"
-#include "ui/script_runner.h"
+#include "ui/document/app_state.h"
+#include "ui/display/display_renderer.h"
+#include "ui/script/script_runner.h"
 
 using namespace goris;
 using namespace goris::ui;
@@ -34,8 +34,7 @@ class FakeHost final : public ScriptHost {
   explicit FakeHost(AppState& st) : st_(st) {}
   AppState& state() override { return st_; }
   bool settled() const override {
-    const SessionState s = st_.session().state();
-    return !st_.opening() && s != SessionState::Running && s != SessionState::Paused && s != SessionState::Stopping;
+    return !st_.opening() && !st_.session().active();
   }
   glm::vec2 main_image_size() const override { return {96, 96}; }
   void request_screenshot(const fs::path& png) override {
@@ -259,7 +258,7 @@ TEST(StudioAppState, ScriptSelectsAndRemoves) {
   EXPECT_NE(last_error().find("no removal was started"), std::string::npos) << last_error();
   // Started, cancelled at once: stopped, not complete; the next removal resumes and completes.
   ASSERT_EQ(run_script(st, host, "remove_start 3\nremove_cancel\n"), ScriptRunner::Status::Finished) << last_error();
-  EXPECT_EQ(st.removal().state(), RemovalState::Cancelled);
+  EXPECT_EQ(st.removal().state(), JobState::Cancelled);
   EXPECT_EQ(run_script(st, host, "expect_step_complete\n"), ScriptRunner::Status::Failed);
   ASSERT_EQ(run_script(st, host, "remove 3\nexpect_step_complete\nremove_wait\n"), ScriptRunner::Status::Finished)
       << last_error();

@@ -12,13 +12,13 @@
 #include "core/util/error.h"
 #include "render/train/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
-#include "ui/display_renderer.h"
+#include "ui/display/display_renderer.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_studio_scenes.h"
-#include "ui/display_frame.h"
-#include "ui/model_snapshot.h"
-#include "ui/render_worker.h"
-#include "ui/scene_loader.h"
+#include "ui/display/display_frame.h"
+#include "ui/document/model_snapshot.h"
+#include "ui/display/render_worker.h"
+#include "ui/document/scene_loader.h"
 
 using namespace goris;
 using namespace goris::ui;

@@ -1,4 +1,4 @@
-// The editor's exports without a window: the export worker (ui/export_job.h) on a tiny intrinsic run of the
+// The editor's exports without a window: the export worker (ui/document/export_job.h) on a tiny intrinsic run of the
 // embedded scene (every part written and readable, an unwritable path failing before any work, cancel and
 // finish-early), the Export dialog's remembered choices (settings, paths relative to the run folder), and
 // the script's export actions going through AppState::start_export.
@@ -14,12 +14,12 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/app_state.h"
-#include "ui/export_job.h"
-#include "ui/script.h"
-#include "ui/script_runner.h"
-#include "ui/settings_store.h"
-#include "ui/trainer_session.h"
+#include "ui/document/app_state.h"
+#include "ui/document/export_job.h"
+#include "ui/script/script.h"
+#include "ui/script/script_runner.h"
+#include "ui/shell/settings_store.h"
+#include "ui/document/trainer_session.h"
 
 using namespace goris;
 using namespace goris::ui;
@@ -47,7 +47,7 @@ const fs::path& tiny_intrinsic_run() {
     rq.config.checkpoint_interval = 0;
     rq.iterations = 4;
     t.start(rq);
-    EXPECT_EQ(t.wait(std::chrono::seconds(120)), SessionState::Done) << t.status();
+    EXPECT_EQ(t.wait(std::chrono::seconds(120)), JobState::Done) << t.status();
     return r;
   }();
   return run;
@@ -72,9 +72,7 @@ class FakeHost final : public ScriptHost {
   explicit FakeHost(AppState& st) : st_(st) {}
   AppState& state() override { return st_; }
   bool settled() const override {
-    const SessionState s = st_.session().state();
-    return !st_.opening() && s != SessionState::Running && s != SessionState::Paused && s != SessionState::Stopping &&
-           !st_.exporter().active() && st_.export_reported();
+    return !st_.opening() && !st_.session().active() && !st_.exporter().active() && st_.export_reported();
   }
   glm::vec2 main_image_size() const override { return {96, 96}; }
   void request_screenshot(const fs::path&) override {}
@@ -204,7 +202,7 @@ TEST(StudioExportJob, WritesEveryPartAndTheFilesLoad) {
   ExportJob job;
   job.start(rq);
   EXPECT_THROW(job.start(rq), Error);  // one at a time
-  ASSERT_EQ(job.wait(std::chrono::seconds(120)), ExportState::Done) << job.status();
+  ASSERT_EQ(job.wait(std::chrono::seconds(120)), JobState::Done) << job.status();
 
   const GaussianPly ply = read_ply(rq.ply);
   EXPECT_EQ(ply.count, model.count());
@@ -254,7 +252,7 @@ TEST(StudioExportJob, TheBakedModelAlsoInTheStandardFormats) {
   rq.device = "cpu";
   ExportJob job;
   job.start(rq);
-  ASSERT_EQ(job.wait(std::chrono::seconds(120)), ExportState::Done) << job.status();
+  ASSERT_EQ(job.wait(std::chrono::seconds(120)), JobState::Done) << job.status();
   const GaussianPly baked = read_ply(rq.baked);
   for (const char* name : {"baked.spz", "baked.compressed.ply", "baked.splat", "baked.glb"}) {
     const GaussianPly g = read_gaussians(out / name);
@@ -286,7 +284,7 @@ TEST(StudioExportJob, AnUnwritablePathFailsBeforeAnyWork) {
   rq.device = "cpu";
   ExportJob job;
   job.start(rq);
-  ASSERT_EQ(job.wait(std::chrono::seconds(60)), ExportState::Error);
+  ASSERT_EQ(job.wait(std::chrono::seconds(60)), JobState::Error);
   const std::string s = job.status();
   EXPECT_NE(s.find("baked PLY: "), std::string::npos) << s;
   EXPECT_NE(s.find((out / "blocker.txt" / "baked.ply").string()), std::string::npos) << s;
@@ -307,7 +305,7 @@ TEST(StudioExportJob, AnUnwritablePathFailsBeforeAnyWork) {
   not_run.ply = out / "y.ply";
   not_run.device = "cpu";
   job.start(not_run);
-  ASSERT_EQ(job.wait(std::chrono::seconds(60)), ExportState::Error);
+  ASSERT_EQ(job.wait(std::chrono::seconds(60)), JobState::Error);
   EXPECT_NE(job.status().find("load the run: "), std::string::npos) << job.status();
   EXPECT_NE(job.status().find(out.string()), std::string::npos) << job.status();
   EXPECT_FALSE(fs::exists(not_run.ply));
@@ -331,7 +329,7 @@ TEST(StudioExportJob, CancelWritesNothingFinishEarlyWritesTheModelSoFar) {
   job.start(rq);
   ASSERT_TRUE(wait_distilling(job)) << job.status();
   job.cancel();
-  ASSERT_EQ(job.wait(std::chrono::seconds(30)), ExportState::Cancelled) << job.status();
+  ASSERT_EQ(job.wait(std::chrono::seconds(30)), JobState::Cancelled) << job.status();
   EXPECT_NE(job.status().find("cancelled during baked PLY; nothing was written"), std::string::npos) << job.status();
   EXPECT_FALSE(fs::exists(rq.baked));
   EXPECT_FALSE(fs::exists(baked_json_path(rq.baked)));
@@ -340,7 +338,7 @@ TEST(StudioExportJob, CancelWritesNothingFinishEarlyWritesTheModelSoFar) {
   job.start(rq);
   ASSERT_TRUE(wait_distilling(job)) << job.status();
   job.finish_early();
-  ASSERT_EQ(job.wait(std::chrono::seconds(60)), ExportState::Done) << job.status();
+  ASSERT_EQ(job.wait(std::chrono::seconds(60)), JobState::Done) << job.status();
   EXPECT_EQ(read_ply(rq.baked).count, load_run_model(run, Device::CPU).count());
   const nlohmann::json j = read_json(baked_json_path(rq.baked));
   EXPECT_EQ(j["stopped"], true);

@@ -8,9 +8,9 @@
 #include "render/raster/rasterizer.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_studio_scenes.h"
-#include "ui/display_frame.h"
-#include "ui/frame_layout.h"
-#include "ui/frame_textures.h"
+#include "ui/display/display_frame.h"
+#include "ui/display/frame_layout.h"
+#include "ui/display/frame_textures.h"
 
 using namespace goris;
 using namespace goris::ui;

@@ -1,5 +1,5 @@
 // The editor's capture import without a window: which paths the Open panel offers to import, where the
-// data set goes by default, the script's import actions, and the import job (ui/capture_job.h) refusing an
+// data set goes by default, the script's import actions, and the import job (ui/document/capture_job.h) refusing an
 // output inside the input and an unreadable video with nothing written, and cancelling a running COLMAP
 // stage (a stand-in program that waits) with nothing written. Needs no COLMAP.
 #include <algorithm>
@@ -11,10 +11,10 @@
 #include "core/util/error.h"
 #include "tests/support/capture_inputs.h"
 #include "tests/support/test_support.h"
-#include "ui/app_state.h"
-#include "ui/capture_job.h"
-#include "ui/script.h"
-#include "ui/settings_store.h"
+#include "ui/document/app_state.h"
+#include "ui/document/capture_job.h"
+#include "ui/script/script.h"
+#include "ui/shell/settings_store.h"
 
 using namespace goris;
 using namespace goris::ui;

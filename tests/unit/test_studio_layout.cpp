@@ -7,9 +7,9 @@
 #include "core/util/duration_text.h"
 #include "tests/support/test_support.h"
 #include "render/maps/channels.h"
-#include "ui/frame_limiter.h"
-#include "ui/panel_layout.h"
-#include "ui/training_history.h"
+#include "ui/shell/frame_limiter.h"
+#include "ui/shell/panel_layout.h"
+#include "ui/document/training_history.h"
 
 using namespace goris;
 using namespace goris::ui;

@@ -1,13 +1,13 @@
-// The editor's view camera maths (ui/orbit_camera.h, ui/dataset_cameras.h): the cameras it builds follow
-// the engine's convention (core/io/camera.h), every control moves the view the way its name says, and
-// snapping to a data set camera reproduces that camera exactly.
+// The editor's view camera maths (ui/display/orbit_camera.h, ui/display/dataset_cameras.h): the cameras it
+// builds follow the engine's convention (core/io/camera.h), every control moves the view the way its name
+// says, and snapping to a data set camera reproduces that camera exactly.
 #include <cmath>
 #include <glm/gtc/matrix_access.hpp>
 #include <random>
 
 #include "tests/support/test_support.h"
-#include "ui/dataset_cameras.h"
-#include "ui/orbit_camera.h"
+#include "ui/display/dataset_cameras.h"
+#include "ui/display/orbit_camera.h"
 
 using namespace goris;
 using namespace goris::ui;

@@ -9,8 +9,8 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/removal_session.h"
-#include "ui/trainer_session.h"
+#include "ui/document/removal_session.h"
+#include "ui/document/trainer_session.h"
 
 using namespace goris;
 using namespace goris::ui;
@@ -72,7 +72,7 @@ fs::path tiny_run_with_selection() {
   rq.config.checkpoint_interval = 0;
   rq.iterations = 10;
   t.start(rq);
-  EXPECT_EQ(t.wait(std::chrono::seconds(120)), SessionState::Done) << t.status();
+  EXPECT_EQ(t.wait(std::chrono::seconds(120)), JobState::Done) << t.status();
   const GaussianModel model = load_run_model(run, Device::CPU);
   const SelectionPoints pts = selection_points(model);
   glm::vec3 mean(0.0f);
@@ -93,11 +93,11 @@ fs::path tiny_run_with_selection() {
 
 TEST(StudioRemovalSession, FailsCancelsResumesAndCompletes) {
   RemovalSession s;
-  EXPECT_EQ(s.state(), RemovalState::Idle);
+  EXPECT_EQ(s.state(), JobState::Idle);
   EXPECT_THROW(s.start(fs::path(), {}), Error);
   // Not a run: the Error state with the pipeline's reason.
   s.start(test::scratch_dir("studio_removal_not_a_run"), {});
-  EXPECT_EQ(s.wait(std::chrono::seconds(60)), RemovalState::Error);
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Error);
   EXPECT_NE(s.status().find("config.json"), std::string::npos) << s.status();
 
   const fs::path run = tiny_run_with_selection();
@@ -107,14 +107,14 @@ TEST(StudioRemovalSession, FailsCancelsResumesAndCompletes) {
   s.start(run, o);
   EXPECT_THROW(s.start(run, o), Error);  // one at a time
   s.cancel();
-  EXPECT_EQ(s.state(), RemovalState::Cancelling);
-  EXPECT_EQ(s.wait(std::chrono::seconds(120)), RemovalState::Cancelled) << s.status();
+  EXPECT_EQ(s.state(), JobState::Cancelling);
+  EXPECT_EQ(s.wait(std::chrono::seconds(120)), JobState::Cancelled) << s.status();
   EXPECT_FALSE(s.progress().all_complete());
   EXPECT_FALSE(fs::exists(run / "removal" / "report.json"));
   EXPECT_EQ(s.runs_ended(), 2u);
 
   s.start(run, o);
-  EXPECT_EQ(s.wait(std::chrono::seconds(300)), RemovalState::Done) << s.status();
+  EXPECT_EQ(s.wait(std::chrono::seconds(300)), JobState::Done) << s.status();
   const RemovalProgressTracker p = s.progress();
   EXPECT_TRUE(p.all_complete());
   EXPECT_DOUBLE_EQ(p.fraction(), 1.0);

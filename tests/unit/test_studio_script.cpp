@@ -1,10 +1,10 @@
-// The editor's script language (ui/script.h): every action parses to what the runner needs, comments and
+// The editor's script language (ui/script/script.h): every action parses to what the runner needs, comments and
 // blank lines are skipped with line numbers kept, and every mistake names the file and the line.
 #include <fstream>
 
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/script.h"
+#include "ui/script/script.h"
 
 using namespace goris;
 using namespace goris::ui;

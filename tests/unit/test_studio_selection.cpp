@@ -1,7 +1,8 @@
-// The editor's selection (ui/selection_edit.h, ui/selection_session.h) on two separate blobs of Gaussians,
-// a red one left and a blue one right: a click grows over its own blob only, shift adds, ctrl removes,
-// the slider regrows and shrinks, undo / redo walk every edit (a drag being one step), labels select,
-// saving writes a selection.json that `goris remove` accepts for this model, and another model clears it.
+// The editor's selection (ui/selection/selection_edit.h, ui/selection/selection_session.h) on two separate
+// blobs of Gaussians, a red one left and a blue one right: a click grows over its own blob only, shift
+// adds, ctrl removes, the slider regrows and shrinks, undo / redo walk every edit (a drag being one step),
+// labels select, saving writes a selection.json that `goris remove` accepts for this model, and another
+// model clears it.
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -11,7 +12,7 @@
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_studio_scenes.h"
-#include "ui/selection_session.h"
+#include "ui/selection/selection_session.h"
 
 using namespace goris;
 using namespace goris::ui;

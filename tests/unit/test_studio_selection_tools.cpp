@@ -1,4 +1,4 @@
-// The editor's selection tools (ui/selection/, ui/selection_session.h) on two blobs of Gaussians, red on
+// The editor's selection tools (ui/selection/, ui/selection/selection_session.h) on two blobs of Gaussians, red on
 // the left and blue on the right: rectangles, lassos and brush strokes on the front view, spheres, boxes
 // and a colour range each take their own blob; invert, grow / shrink steps, hide and lock work on the
 // selection and undo walks them back; object masks written from a selection select it again; and the
@@ -9,9 +9,9 @@
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_studio_scenes.h"
-#include "ui/display_renderer.h"
-#include "ui/script.h"
-#include "ui/selection_session.h"
+#include "ui/display/display_renderer.h"
+#include "ui/script/script.h"
+#include "ui/selection/selection_session.h"
 
 using namespace goris;
 using namespace goris::ui;

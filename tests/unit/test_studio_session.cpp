@@ -1,4 +1,4 @@
-// The editor's training session (ui/trainer_session.h): its state machine on a real (tiny) training of the
+// The editor's training session (ui/document/trainer_session.h): its state machine on a real (tiny) training of the
 // embedded scene, the run folder it writes (as `goris train`), snapshots and history, continuing in memory
 // and from the folder's checkpoint, and failures that end in the Error state with the reason.
 #include <chrono>
@@ -9,7 +9,7 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/trainer_session.h"
+#include "ui/document/trainer_session.h"
 
 using namespace goris;
 using namespace goris::ui;
@@ -47,10 +47,10 @@ TEST(StudioSession, TrainsIntoARunFolderAndPublishes) {
   opt.snapshot_every = 4;
   opt.snapshot_interval_s = 100;  // by iterations only, to count them
   TrainerSession s(opt);
-  EXPECT_EQ(s.state(), SessionState::Idle);
+  EXPECT_EQ(s.state(), JobState::Idle);
   EXPECT_EQ(s.snapshot(), nullptr);
   s.start(tiny_request(run, 12));
-  EXPECT_EQ(s.wait(std::chrono::seconds(60)), SessionState::Done) << s.status();
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
   EXPECT_NE(s.status().find("done: 12 iterations"), std::string::npos) << s.status();
   EXPECT_EQ(s.progress().iteration, 12);
   EXPECT_EQ(s.progress().total, 12);
@@ -73,13 +73,13 @@ TEST(StudioSession, TrainsIntoARunFolderAndPublishes) {
   TrainRequest more = tiny_request(run, 5);
   more.more = true;
   s.start(more);
-  EXPECT_EQ(s.wait(std::chrono::seconds(60)), SessionState::Done) << s.status();
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
   EXPECT_EQ(s.progress().iteration, 17);
   EXPECT_EQ(read_run_config(run).iterations, 17);
   EXPECT_EQ(s.history().samples().back().iteration, 17);
   // A target the run has already reached is an error, not a silent no-op.
   s.start(tiny_request(run, 10));
-  EXPECT_EQ(s.wait(std::chrono::seconds(60)), SessionState::Error);
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Error);
   EXPECT_NE(s.status().find("already trained for 17"), std::string::npos) << s.status();
 
   // A new session on the same folder resumes from its checkpoint (like `goris train --resume`).
@@ -87,7 +87,7 @@ TEST(StudioSession, TrainsIntoARunFolderAndPublishes) {
   TrainRequest resume = tiny_request(run, 3);
   resume.more = true;
   again.start(resume);
-  EXPECT_EQ(again.wait(std::chrono::seconds(60)), SessionState::Done) << again.status();
+  EXPECT_EQ(again.wait(std::chrono::seconds(60)), JobState::Done) << again.status();
   EXPECT_EQ(again.progress().iteration, 20);
 }
 
@@ -96,21 +96,21 @@ TEST(StudioSession, PauseResumeStop) {
   TrainerSession s;
   s.pause();  // nothing to pause: stays idle
   s.stop();
-  EXPECT_EQ(s.state(), SessionState::Idle);
+  EXPECT_EQ(s.state(), JobState::Idle);
   s.start(tiny_request(run, 1000000));
   EXPECT_THROW(s.start(tiny_request(run, 10)), Error);  // busy
   wait_for([&] { return s.progress().iteration >= 2; }, 60, "two iterations");
   s.pause();
-  EXPECT_EQ(s.state(), SessionState::Paused);
+  EXPECT_EQ(s.state(), JobState::Paused);
   wait_for([&] { return s.status().rfind("paused", 0) == 0; }, 30, "the worker to pause");
   const int at = s.progress().iteration;
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
   EXPECT_EQ(s.progress().iteration, at);  // nothing runs while paused
   s.resume();
-  EXPECT_EQ(s.state(), SessionState::Running);
+  EXPECT_EQ(s.state(), JobState::Running);
   wait_for([&] { return s.progress().iteration >= at + 2; }, 60, "training to go on");
   s.stop();
-  EXPECT_EQ(s.wait(std::chrono::seconds(60)), SessionState::Done) << s.status();
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
   EXPECT_NE(s.status().find("stopped at iteration"), std::string::npos) << s.status();
   const auto ck = latest_checkpoint(run);
   ASSERT_TRUE(ck.has_value());
@@ -127,7 +127,7 @@ TEST(StudioSession, PauseResumeStop) {
   wait_for([&] { return s.progress().iteration > at + 2; }, 60, "the restarted run");
   s.pause();
   s.stop();
-  EXPECT_EQ(s.wait(std::chrono::seconds(60)), SessionState::Done) << s.status();
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
 }
 
 TEST(StudioSession, FailuresEndInErrorWithTheReason) {
@@ -136,18 +136,18 @@ TEST(StudioSession, FailuresEndInErrorWithTheReason) {
   TrainRequest rq = tiny_request(dir / "run", 5);
   rq.data = dir / "no_such_data";
   s.start(rq);
-  EXPECT_EQ(s.wait(std::chrono::seconds(30)), SessionState::Error);
+  EXPECT_EQ(s.wait(std::chrono::seconds(30)), JobState::Error);
   EXPECT_NE(s.status().find("no_such_data"), std::string::npos) << s.status();
 
   // A folder that holds another data set's run is refused.
   rq = tiny_request(dir / "run2", 2);
   s.start(rq);
-  ASSERT_EQ(s.wait(std::chrono::seconds(60)), SessionState::Done) << s.status();
+  ASSERT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
   TrainerSession other;
   TrainRequest wrong = tiny_request(dir / "run2", 5);
   wrong.data = test::resource_dir();
   other.start(wrong);
-  EXPECT_EQ(other.wait(std::chrono::seconds(30)), SessionState::Error);
+  EXPECT_EQ(other.wait(std::chrono::seconds(30)), JobState::Error);
   EXPECT_NE(other.status().find("was trained on"), std::string::npos) << other.status();
 
   EXPECT_THROW(s.start(tiny_request(dir / "run3", 0)), Error);
@@ -161,7 +161,7 @@ TEST(StudioSession, AutoModeTrainsIntrinsicLikeTheCli) {
   rq.config.mode = "auto";
   TrainerSession s;
   s.start(rq);
-  ASSERT_EQ(s.wait(std::chrono::seconds(120)), SessionState::Done) << s.status();
+  ASSERT_EQ(s.wait(std::chrono::seconds(120)), JobState::Done) << s.status();
   EXPECT_EQ(read_run_config(run).mode, "intrinsic");
   EXPECT_TRUE(fs::exists(run / "environment.png"));
   EXPECT_TRUE(fs::exists(run / "point_cloud.ply"));
@@ -175,6 +175,6 @@ TEST(StudioSession, AutoModeTrainsIntrinsicLikeTheCli) {
   TrainRequest more = tiny_request(run, 2);
   more.more = true;
   again.start(more);
-  EXPECT_EQ(again.wait(std::chrono::seconds(120)), SessionState::Done) << again.status();
+  EXPECT_EQ(again.wait(std::chrono::seconds(120)), JobState::Done) << again.status();
   EXPECT_EQ(again.progress().iteration, 5);
 }

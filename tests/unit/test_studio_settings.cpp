@@ -1,5 +1,5 @@
-// What the editor remembers between sessions (ui/settings_store.h) and where runs go
-// (ui/train_options.h): a round trip through the file, defaults for a missing file, errors naming the file
+// What the editor remembers between sessions (ui/shell/settings_store.h) and where runs go
+// (ui/document/train_options.h): a round trip through the file, defaults for a missing file, errors naming the file
 // and the key for a bad one, the XDG locations, and the training options built from the panel.
 #include <cstdlib>
 #include <fstream>
@@ -8,8 +8,8 @@
 #include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/settings_store.h"
-#include "ui/train_options.h"
+#include "ui/shell/settings_store.h"
+#include "ui/document/train_options.h"
 
 using namespace goris;
 using namespace goris::ui;

@@ -1,6 +1,6 @@
 #pragma once
 // Opening a data set or a run folder: a path field, the recent paths, what is open. A folder of photos
-// without a data set, or a video file, is offered for import (COLMAP, ui/capture_job.h) instead: the
+// without a data set, or a video file, is offered for import (COLMAP, ui/document/capture_job.h) instead: the
 // capture options, a progress bar per stage with an ETA, Cancel, errors, and the report once the new data
 // set is open.
 #include <string>

@@ -5,7 +5,7 @@
 #include <functional>
 
 #include "core/util/error.h"
-#include "ui/app_state.h"
+#include "ui/document/app_state.h"
 
 namespace goris::ui {
 

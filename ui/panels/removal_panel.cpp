@@ -112,7 +112,7 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
           "removes the selection (saved first when it is not) or, without one, RUN/selection.json or the\n"
           "learned labels; a folder with an earlier removal is resumed where it stopped");
   } else {
-    ImGui::BeginDisabled(st.removal().state() == RemovalState::Cancelling);
+    ImGui::BeginDisabled(st.removal().state() == JobState::Cancelling);
     if (ImGui::Button("Cancel")) st.removal().cancel();
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered())
@@ -122,14 +122,14 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
 
 void RemovalPanel::draw_steps(AppState& st) {
   const RemovalSession& rs = st.removal();
-  if (rs.state() == RemovalState::Idle) return;
+  if (rs.state() == JobState::Idle) return;
   const RemovalProgressTracker p = rs.progress();
   const double elapsed = rs.elapsed_s();
   char overlay[96];
   std::snprintf(overlay, sizeof overlay, "%.0f %%", 100.0 * p.fraction());
   ImGui::ProgressBar(float(p.fraction()), ImVec2(-1, 0), overlay);
   const double eta = p.eta_s(elapsed);
-  ImGui::Text("%s   elapsed %s   ETA %s", removal_state_name(rs.state()), duration_text(elapsed).c_str(),
+  ImGui::Text("%s   elapsed %s   ETA %s", job_state_name(rs.state()), duration_text(elapsed).c_str(),
               rs.active() && eta >= 0 ? duration_text(eta).c_str() : "--");
   ImGui::TextWrapped("%s", rs.status().c_str());
   if (!ImGui::BeginTable("steps", 3, ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_RowBg)) return;
@@ -190,7 +190,7 @@ void RemovalPanel::draw_result(AppState& st) {
   // The inpainted maps: while a removal runs, once its 2D inpainting is complete; else what the run has.
   fs::path dir;
   std::string key;
-  if (rs.active() || rs.state() != RemovalState::Idle) {
+  if (rs.active() || rs.state() != JobState::Idle) {
     const bool inpainted = rs.progress().steps()[size_t(RemovalStep::Inpaint2D)].complete;
     if (inpainted || !rs.active()) dir = rs.run_dir() / "removal";
     key = dir.string() + "#" + std::to_string(rs.runs_ended()) + (inpainted ? "+" : "-");
@@ -221,7 +221,7 @@ void RemovalPanel::draw_result(AppState& st) {
       }
     }
   }
-  if (rs.state() == RemovalState::Done) {
+  if (rs.state() == JobState::Done) {
     ImGui::Separator();
     const fs::path cleaned = rs.run_dir() / "removal";
     ImGui::TextWrapped("The cleaned scene is a run folder: %s", cleaned.string().c_str());

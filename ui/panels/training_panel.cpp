@@ -11,14 +11,14 @@
 #include "core/train/config_presets.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
-#include "ui/train_options.h"
+#include "ui/document/train_options.h"
 
 namespace goris::ui {
 
 void TrainingPanel::draw(AppState& st) {
   TrainerSession& session = st.session();
-  const SessionState s = session.state();
-  const bool active = s == SessionState::Running || s == SessionState::Paused || s == SessionState::Stopping;
+  const JobState s = session.state();
+  const bool active = job_active(s);
   const OpenedScene* scene = st.scene();
   StudioSettings& set = st.settings();
   if (!scene) {
@@ -144,15 +144,15 @@ void TrainingPanel::draw(AppState& st) {
     if (ImGui::Button("+1000")) report_errors(st, [&] { st.start_training(1000, true); });
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("train 1000 more iterations");
   } else {
-    if (s == SessionState::Paused) {
+    if (s == JobState::Paused) {
       if (ImGui::Button("Resume")) session.resume();
     } else {
-      ImGui::BeginDisabled(s == SessionState::Stopping);
+      ImGui::BeginDisabled(s == JobState::Cancelling);
       if (ImGui::Button("Pause")) session.pause();
       ImGui::EndDisabled();
     }
     ImGui::SameLine();
-    ImGui::BeginDisabled(s == SessionState::Stopping);
+    ImGui::BeginDisabled(s == JobState::Cancelling);
     if (ImGui::Button("Stop")) session.stop();
     ImGui::EndDisabled();
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("finish the iteration, write a checkpoint and stop");
@@ -163,7 +163,7 @@ void TrainingPanel::draw(AppState& st) {
   char overlay[64];
   std::snprintf(overlay, sizeof overlay, "%d / %d", p.iteration, p.total);
   ImGui::ProgressBar(fraction, ImVec2(-1, 0), overlay);
-  ImGui::Text("state: %s", state_name(s));
+  ImGui::Text("state: %s", training_state_name(s));
   ImGui::TextWrapped("%s", session.status().c_str());
   if (p.total > 0) {
     ImGui::Text("loss %.4f   PSNR %.2f dB", p.loss, p.psnr);

@@ -1,9 +1,9 @@
 // ScriptRunner's actions for the selection tool bar, the volume handles and the two-click flow
-// (ui/script.h: press, drag_handle, two_click).
+// (ui/script/script.h: press, drag_handle, two_click).
 #include <cstdio>
 
 #include "core/util/error.h"
-#include "ui/script_runner.h"
+#include "ui/script/script_runner.h"
 #include "ui/selection/tool_bar.h"
 #include "ui/selection/viewport_tools.h"
 
@@ -114,7 +114,7 @@ bool ScriptRunner::run_two_click(ScriptHost& host, const ScriptAction& a) {
       return false;
     }
     if (a.what == "use" && f.step() != FlowStep::Done) {
-      fail(a, std::string("the removal ended ") + removal_state_name(st.removal().state()) + ": " +
+      fail(a, std::string("the removal ended ") + job_state_name(st.removal().state()) + ": " +
                   st.removal().status());
       return false;
     }

@@ -1,5 +1,5 @@
 #pragma once
-// What the selection worker prepares once per model (ui/selection_session.h): the selection rules' view of
+// What the selection worker prepares once per model (ui/selection/selection_session.h): the selection rules' view of
 // it, the kNN graph, the picker, and while Gaussians are hidden a copy of the model with them transparent
 // (so they hide nothing behind them from the region tools) and a picker that looks through them.
 // Worker thread only.
@@ -8,7 +8,7 @@
 
 #include "core/scene/gaussians.h"
 #include "render/removal/selection_pick.h"
-#include "ui/selection_session.h"
+#include "ui/selection/selection_session.h"
 
 namespace goris::ui {
 

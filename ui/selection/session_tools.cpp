@@ -1,4 +1,4 @@
-// SelectionSession's tool edits (ui/selection_session.h): regions, invert, grow / shrink steps, hide /
+// SelectionSession's tool edits (ui/selection/selection_session.h): regions, invert, grow / shrink steps, hide /
 // lock, and object masks from the selection. Each runs on the selection worker and is one undo step.
 #include <cstdio>
 

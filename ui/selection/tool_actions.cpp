@@ -1,7 +1,7 @@
-// AppState's selection tool actions (ui/app_state.h): the mouse, the panel and scripts all come here.
+// AppState's selection tool actions (ui/document/app_state.h): the mouse, the panel and scripts all come here.
 #include "core/io/output_path.h"
 #include "core/util/error.h"
-#include "ui/app_state.h"
+#include "ui/document/app_state.h"
 
 namespace goris::ui {
 

@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "ui/app_state.h"
-#include "ui/panel_layout.h"
+#include "ui/document/app_state.h"
+#include "ui/shell/panel_layout.h"
 
 namespace goris::ui {
 

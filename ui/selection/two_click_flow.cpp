@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "core/util/error.h"
-#include "ui/app_state.h"
+#include "ui/document/app_state.h"
 
 namespace goris::ui {
 
@@ -230,7 +230,7 @@ void TwoClickFlow::sync(AppState& st) {
     }
   }
   if (step_ == FlowStep::Removing && !st.removal().active()) {
-    if (st.removal().state() == RemovalState::Done) {
+    if (st.removal().state() == JobState::Done) {
       step_ = FlowStep::Done;
       st.message("two-click: done: the cleaned scene is shown (Display: before / after)");
     } else {

@@ -1,4 +1,4 @@
-// SelectionSession::click_regions (ui/selection_session.h): the two-click flow's evaluation on the
+// SelectionSession::click_regions (ui/selection/selection_session.h): the two-click flow's evaluation on the
 // selection worker, with `goris select --click`'s own steps (render/removal/selection_click_flow.h).
 #include <algorithm>
 #include <cmath>

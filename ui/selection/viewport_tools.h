@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
-#include "ui/app_state.h"
-#include "ui/panel_layout.h"
+#include "ui/document/app_state.h"
+#include "ui/shell/panel_layout.h"
 
 namespace goris::ui {
 
