@@ -17,6 +17,7 @@
 
 #include "core/io/file_bytes.h"
 #include "core/train/config_migration.h"
+#include "core/train/hooks/hooks.h"
 #include "core/util/error.h"
 #include "core/util/fnv1a.h"
 
@@ -78,14 +79,14 @@ class Reader {
     pos_ += n * sizeof(float);
     return device == Device::CPU ? std::move(cpu) : cpu.copy_to(device);
   }
-  std::vector<float> host_floats() {
+  // A float block of any length as its bytes: the count, then the floats.
+  std::string float_block() {
+    const size_t start = pos_;
     const std::uint64_t n = pod<std::uint64_t>();
     if (n > d_.size() / sizeof(float)) fail("is truncated");
     need(n * sizeof(float));
-    std::vector<float> v(n);
-    if (n) std::memcpy(v.data(), d_.data() + pos_, n * sizeof(float));
     pos_ += n * sizeof(float);
-    return v;
+    return d_.substr(start, pos_ - start);
   }
   [[noreturn]] void fail(const std::string& problem) const { throw Error(path_.string(), "checkpoint " + problem); }
 
@@ -136,7 +137,15 @@ void write_checkpoint(const std::filesystem::path& path, const TrainConfig& conf
   w.floats(st.stats.max_radii);
   w.pod(st.lr_scale);
   w.pod(std::int32_t(st.skipped_steps));
-  w.floats(st.emit_weights);
+  // The emit-weights hook's state in its float block (count, floats), or an empty block. It is the one hook
+  // whose state the format has a place for.
+  for (const auto& [name, bytes] : st.hooks)
+    if (name != EmitWeightsHook::kName)
+      throw Error(path.string(), "the checkpoint format has no place for the state of training hook '" + name + "'");
+  if (const auto emit = st.hooks.find(EmitWeightsHook::kName); emit != st.hooks.end())
+    w.bytes() += emit->second;
+  else
+    w.pod(std::uint64_t(0));
   w.pod(fnv1a(w.bytes()));
 
   write_file_bytes(path, w.bytes().data(), w.bytes().size());
@@ -218,7 +227,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, Device device) {
     const auto stopped_at = r.pod<std::int32_t>();
     if (stopped_at < 0 || stopped_at > st.iteration) r.fail("adaptive densification stop iteration is invalid");
   }
-  if (version >= 4) st.emit_weights = r.host_floats();  // of the model when they were set: any count
+  if (version >= 4) {  // the emit-weights hook's state: weights of the model when they were set, any count
+    std::string emit = r.float_block();
+    if (emit.size() > sizeof(std::uint64_t)) st.hooks[EmitWeightsHook::kName] = std::move(emit);
+  }
   return ck;
 }
 

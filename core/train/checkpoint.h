@@ -1,9 +1,10 @@
 #pragma once
 // Training checkpoints: one binary file with the configuration, the iteration, the view-order RNG, every
-// parameter with its Adam moments and step counts, the densification statistics, the 3D filter and
-// intrinsic mode's emit weights, ending in a checksum; older format versions still load. Written to a temporary file and renamed, so a crash
-// never leaves a half-written checkpoint under the final name. Resuming from one continues bit for bit as
-// if never interrupted.
+// parameter with its Adam moments and step counts, the densification statistics, the 3D filter and the
+// training hooks' state (TrainerState::hooks: the emit weights of intrinsic mode, in the place the format
+// gives them), ending in a checksum; older format versions still load. Written to a temporary file and
+// renamed, so a crash never leaves a half-written checkpoint under the final name. Resuming from one
+// continues bit for bit as if never interrupted.
 #include <filesystem>
 #include <optional>
 
@@ -12,6 +13,7 @@
 
 namespace goris {
 
+// Throws goris::Error for hook state the format has no place for (a hook other than the emit weights').
 void write_checkpoint(const std::filesystem::path& path, const TrainConfig& config, const TrainerState& state);
 
 struct Checkpoint {

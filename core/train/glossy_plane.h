@@ -31,7 +31,7 @@
 
 namespace goris {
 
-struct TrainView;  // core/train/trainer.h, which holds a GlossyPlaneConstraint
+struct TrainView;  // core/train/trainer.h; the GlossyPlaneHook (core/train/hooks/hooks.h) holds the constraint
 
 // Per Gaussian: 1 when its centre falls on a glossy pixel in more than half of the views with glossy masks
 // whose frame it is in.

@@ -2,7 +2,7 @@
 // The radiance warm-up's mirror world: a radiance model explains a mirror-like surface's reflections by
 // virtual geometry behind it, seen through it. Once shading starts the glossy term carries the reflections,
 // so those Gaussians only keep the surface translucent and cost time. `intrinsic_prune_mirror_world`
-// removes them at the last warm-up iteration (core/train/trainer.cpp).
+// removes them at the last warm-up iteration (MirrorWorldHook, core/train/hooks/hooks.h).
 //
 // A Gaussian counts as mirror world when, in the training views with glossy masks, its centre lies behind
 // the rendered surface (median depth x (1 + tolerance)) at a glossy pixel in at least `min_views` views and

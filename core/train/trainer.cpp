@@ -1,6 +1,3 @@
-#include "core/compute/host_device_image.h"
-#include "core/train/emit_weights.h"
-#include "core/train/mirror_world.h"
 #include "core/train/trainer.h"
 
 #include <algorithm>
@@ -17,10 +14,7 @@
 #include "core/io/file_bytes.h"
 #include "core/scene/filter3d.h"
 #include "core/train/checkpoint.h"
-#include "core/train/depth_normal_loss.h"
 #include "core/train/finite_check.h"
-#include "core/train/image_losses.h"
-#include "core/train/intrinsic_losses.h"
 #include "core/train/lr_schedule.h"
 #include "core/train/param_groups.h"
 #include "core/util/error.h"
@@ -84,6 +78,7 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
   if (state_.stats.grad_accum.size() != state_.model.count()) state_.stats.reset(state_.model.count(), device_);
   if (config_.filter_3d && state_.model.filter3d_var.size() != state_.model.count())
     compute_filter3d(state_.model, cameras());
+  make_hooks();
 }
 
 TrainerState Trainer::initial_state(const TrainConfig& config, GaussianModel model) {
@@ -93,6 +88,23 @@ TrainerState Trainer::initial_state(const TrainConfig& config, GaussianModel mod
   s.model.max_sh_degree = config.max_sh_degree;
   s.rng.seed(config.seed);
   return s;
+}
+
+void Trainer::make_hooks() {
+  hooks_ = make_train_hooks(config_, *renderer_);
+  for (const auto& h : hooks_)
+    if (const auto saved = state_.hooks.find(h->name()); saved != state_.hooks.end())
+      h->deserialize(saved->second, "training state of hook '" + std::string(h->name()) + "'");
+}
+
+void Trainer::store_hook_states() {
+  for (const auto& h : hooks_) {
+    std::string bytes = h->serialize();
+    if (bytes.empty())
+      state_.hooks.erase(h->name());
+    else
+      state_.hooks[h->name()] = std::move(bytes);
+  }
 }
 
 void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRenderer> renderer,
@@ -105,7 +117,8 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
   const size_t n_views = views_.size();
   config_ = std::move(config);
   renderer_ = std::move(renderer);
-  emit_weights_given_ = false;
+  store_hook_states();  // the new configuration's hooks continue from them, as after a resume
+  make_hooks();
   state_.model.max_sh_degree = config_.max_sh_degree;
   if (update_views) update_views(views_);
   if (views_.size() != n_views) throw Error("training: switching modes must keep the training views");
@@ -121,15 +134,6 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
     }
 }
 
-const float* Trainer::distortion_pixel_weights(const TrainView& view) {
-  const float glossy = config_.depth_distortion_glossy;
-  if (glossy == 1.0f || view.glossy_mask.empty()) return nullptr;
-  distortion_weights_.resize(view.glossy_mask.size());
-  for (std::size_t p = 0; p < distortion_weights_.size(); ++p)
-    distortion_weights_[p] = 1.0f - (1.0f - glossy) * view.glossy_mask[p];
-  return distortion_weights_.data();
-}
-
 std::vector<Camera> Trainer::cameras() const {
   std::vector<Camera> c;
   c.reserve(views_.size());
@@ -142,77 +146,23 @@ StepStats Trainer::step() {
   const int it = state_.iteration + 1;
   GaussianModel& m = state_.model;
   StepStats out;
-
   if (it % config_.sh_degree_interval == 0) m.sh_degree = std::min(m.sh_degree + 1, m.max_sh_degree);
-
-  // The next view of a random permutation of all views (a new one each epoch).
-  if (state_.view_stack.empty()) {
-    state_.view_stack.resize(views_.size());
-    std::iota(state_.view_stack.begin(), state_.view_stack.end(), std::uint32_t(0));
-    std::shuffle(state_.view_stack.begin(), state_.view_stack.end(), state_.rng);
-  }
-  out.view = int(state_.view_stack.back());
-  const TrainView& view = views_[state_.view_stack.back()];
-  state_.view_stack.pop_back();
+  const TrainView& view = next_view(out);
   const Camera& cam = view.camera;
-  const int w = cam.width, h = cam.height;
-  const size_t hw = size_t(w) * size_t(h);
+  HookStep hook{it, config_, m, views_, view, *renderer_, extent_, out};
+  hook.model_pruned = [this] { model_changed(); };
 
-  // Forward.
+  // Render.
   const bool with_extras = renderer_->wants_extras();
   renderer_->begin_iteration(it);
-  if (with_extras && config_.intrinsic.emit != "region") {
-    const bool refresh = state_.emit_weights.size() != m.count() || it % 25 == 0;
-    if (refresh) state_.emit_weights = glossy_mask_emit_weights(m, views_);
-    if (refresh || !emit_weights_given_) renderer_->set_emit_weights(state_.emit_weights, config_.intrinsic.emit == "max");
-    emit_weights_given_ = true;
-  }
+  for (const auto& h : hooks_) h->before_forward(hook);
   const GaussianView gv = m.view(with_extras);
   const RenderedImages fwd = renderer_->forward(gv, cam);
-  if (fwd.width != w || fwd.height != h) throw Error("training: the renderer returned an image of another size");
+  if (fwd.width != cam.width || fwd.height != cam.height) throw Error("training: the renderer returned an image of another size");
 
-  // Losses and their gradients on the host.
-  const HostView color(fwd.color, 3 * hw, device_);
-  std::vector<float> g_color(3 * hw, 0.0f);
-  const ColorLossParts cl = view.loss_weight.empty()
-                                ? color_loss<float>(color.data(), view.image.data(), 3, w, h, g_color.data(), config_.lambda_ssim)
-                                : weighted_color_loss(color.data(), view.image.data(), view.loss_weight.data(), w, h,
-                                                      g_color.data(), config_.lambda_ssim, 1.0f);
-  out.l1 = cl.l1;
-  out.ssim = cl.ssim;
-  out.loss = cl.total;
-  out.psnr = psnr_from_mse(mse<float>(color.data(), view.image.data(), 3 * hw));
-
-  std::vector<float> g_depth, g_alpha, g_median, g_normal, g_extras, g_detached, g_base;
-  const bool use_dn = config_.depth_normal_weight > 0 && it > config_.depth_normal_from;
-  if (use_dn) {
-    const HostView depth(fwd.depth, hw, device_), alpha(fwd.alpha, hw, device_),
-        median(fwd.median_depth, hw, device_), normal(fwd.normal, 3 * hw, device_);
-    g_depth.assign(hw, 0.0f);
-    g_alpha.assign(hw, 0.0f);
-    g_median.assign(hw, 0.0f);
-    g_normal.assign(3 * hw, 0.0f);
-    out.depth_normal = rendered_depth_normal_loss<float>(
-        depth.data(), alpha.data(), median.data(), normal.data(), w, h, cam.fx, cam.fy, cam.cx, cam.cy,
-        config_.depth_normal_median_ratio, g_depth.data(), g_alpha.data(), g_median.data(), g_normal.data(),
-        config_.depth_normal_weight);
-    out.loss += config_.depth_normal_weight * out.depth_normal;
-  }
-  if (config_.alpha_weight > 0 && view.alpha.size() == hw) {
-    const HostView alpha(fwd.alpha, hw, device_);
-    if (g_alpha.empty()) g_alpha.assign(hw, 0.0f);
-    // Stage 2 leaves the pixels under the target and its reflections to the inpainting (loss_weight 0).
-    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g_alpha.data(), config_.alpha_weight,
-                        view.loss_weight.empty() ? nullptr : view.loss_weight.data());
-    out.loss += config_.alpha_weight * out.alpha;
-  }
-  if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g_normal, g_extras, g_detached, out);
-  if (view.inpaint) out.loss += inpaint_losses(view, fwd, g_color, g_base, g_normal, g_detached, out);
-  if (!g_base.empty() && fwd.base_color == fwd.color) {  // D is the colour: one gradient
-    for (size_t i = 0; i < g_base.size(); ++i) g_color[i] += g_base[i];
-    g_base.clear();
-  }
-  // A non-finite loss skips the step, naming the terms (checked again once the distortion pass has run).
+  // Losses and their image gradients; a non-finite loss skips the step, naming the terms (checked again
+  // after the hooks' passes, which may add loss).
+  LossGradients g = losses(view, fwd, it, out);
   const auto loss_not_finite = [&] {
     if (std::isfinite(out.loss)) return false;
     skip_step(it, "the loss is not finite (" + non_finite_terms(out) + ") on view " + view.name, out);
@@ -221,45 +171,81 @@ StepStats Trainer::step() {
   if (loss_not_finite()) return out;
 
   // Backward.
-  m.zero_grad();
-  if (view_grad_norm_.size() != m.count() || view_grad_norm_.device() != device_)
-    view_grad_norm_ = Buffer<float>(m.count(), device_);
-  view_grad_norm_.fill_zero();
-  GaussianGradView gg = m.grad_view(with_extras);
-  gg.mean2d_grad_norm = view_grad_norm_.data();
-  const DeviceGrad dg_color(g_color, device_);
-  ImageGradients go;
-  go.color = dg_color.data();
-  std::optional<DeviceGrad> dg_depth, dg_alpha, dg_median, dg_normal, dg_extras, dg_detached, dg_base;
-  auto upload = [&](const std::vector<float>& host, std::optional<DeviceGrad>& dev, const float*& ptr) {
-    if (host.empty()) return;
-    dev.emplace(host, device_);
-    ptr = dev->data();
-  };
-  upload(g_depth, dg_depth, go.depth);
-  upload(g_alpha, dg_alpha, go.alpha);
-  upload(g_median, dg_median, go.median_depth);
-  upload(g_normal, dg_normal, go.normal);
-  upload(g_extras, dg_extras, go.extras);
-  upload(g_detached, dg_detached, go.extras_detached);
-  upload(g_base, dg_base, go.base_color);
-  renderer_->backward(gv, go, gg);
-  if (config_.depth_distortion_at(it)) {
-    out.distortion = renderer_->depth_distortion(gv, cam, DistortionDepthRange::for_extent(extent_),
-                                                 config_.depth_distortion_weight, distortion_pixel_weights(view), gg);
-    out.loss += config_.depth_distortion_weight * out.distortion;
-    if (loss_not_finite()) return out;
-  }
+  const GaussianGradView gg = backward(gv, g, with_extras);
+  hook.gaussians = &gv;
+  hook.grads = &gg;
+  for (const auto& h : hooks_) h->after_backward(hook);
+  if (loss_not_finite()) return out;
   if (with_extras) m.backprop_extras();
   if (it <= densify_until())
-    state_.stats.add_view(view_grad_norm_.data(), fwd.radii, ndc_gradient_scale(w, h), m.count(), device_);
+    state_.stats.add_view(view_grad_norm_.data(), fwd.radii, ndc_gradient_scale(cam.width, cam.height), m.count(), device_);
   if (const std::string bad = non_finite_gradient(); !bad.empty()) {
     skip_step(it, "non-finite gradient in " + bad + " on view " + view.name + " (loss terms: " + loss_terms(out) + ")", out);
     return out;
   }
   consecutive_skips_ = 0;
 
-  // Adam (learning rates scaled down after skipped steps).
+  // Optimiser step, density control, and the hooks that act on the updated model.
+  optimizer_step(it);
+  out.densify = densify(it);
+  for (const auto& h : hooks_) h->after_densify(hook);
+
+  // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY), in both
+  // modes, so that a radiance run's PLY opens with colours in the editor's diffuse viewport too.
+  m.derive_diffuse_from_sh();
+
+  // Smoothed over about the last 20 iterations (views differ a lot in difficulty).
+  state_.ema_loss = state_.iteration == 0 ? out.loss : 0.05 * out.loss + 0.95 * state_.ema_loss;
+  const double psnr = std::min(out.psnr, 99.0);
+  state_.ema_psnr = state_.iteration == 0 ? psnr : 0.05 * psnr + 0.95 * state_.ema_psnr;
+  state_.iteration = it;
+  return out;
+}
+
+const TrainView& Trainer::next_view(StepStats& out) {
+  if (state_.view_stack.empty()) {
+    state_.view_stack.resize(views_.size());
+    std::iota(state_.view_stack.begin(), state_.view_stack.end(), std::uint32_t(0));
+    std::shuffle(state_.view_stack.begin(), state_.view_stack.end(), state_.rng);
+  }
+  out.view = int(state_.view_stack.back());
+  state_.view_stack.pop_back();
+  return views_[std::size_t(out.view)];
+}
+
+ImageGradients Trainer::LossGradients::upload(Device device) {
+  ImageGradients go;
+  on_device.clear();
+  on_device.reserve(8);
+  auto up = [&](const std::vector<float>& host, const float*& ptr) {
+    if (host.empty()) return;
+    ptr = on_device.emplace_back(host, device).data();
+  };
+  up(color, go.color);
+  up(depth, go.depth);
+  up(alpha, go.alpha);
+  up(median, go.median_depth);
+  up(normal, go.normal);
+  up(extras, go.extras);
+  up(detached, go.extras_detached);
+  up(base, go.base_color);
+  return go;
+}
+
+GaussianGradView Trainer::backward(const GaussianView& gv, LossGradients& g, bool with_extras) {
+  GaussianModel& m = state_.model;
+  m.zero_grad();
+  if (view_grad_norm_.size() != m.count() || view_grad_norm_.device() != device_)
+    view_grad_norm_ = Buffer<float>(m.count(), device_);
+  view_grad_norm_.fill_zero();
+  GaussianGradView gg = m.grad_view(with_extras);
+  gg.mean2d_grad_norm = view_grad_norm_.data();
+  renderer_->backward(gv, g.upload(device_), gg);
+  return gg;
+}
+
+void Trainer::optimizer_step(int it) {
+  GaussianModel& m = state_.model;
   const int decay_steps = config_.lr.position_max_steps > 0 ? config_.lr.position_max_steps : config_.iterations;
   for (ParamGroup g : active_groups()) {
     float lr = 0;
@@ -281,63 +267,37 @@ StepStats Trainer::step() {
   if (const std::string bad = non_finite_parameter(); !bad.empty())  // an update cannot be undone: stop
     throw Error(format_iteration_problem(it, bad + " became non-finite; stopping, the checkpoints on disk are intact"));
   renderer_->step_own_parameters(it);
+}
 
-  // Density control and the 3D filter. An opacity reset only happens when a pruning step follows it inside
-  // the window (otherwise the Gaussians it silenced would never be removed, only dimmed).
+DensifyCounts Trainer::densify(int it) {
+  // An opacity reset only happens when a pruning step follows it inside the window (otherwise the Gaussians
+  // it silenced would never be removed, only dimmed).
+  GaussianModel& m = state_.model;
   const DensifySettings& ds = config_.densify;
   const int until = densify_until();
   const int reset_every = config_.opacity_reset_every();
+  DensifyCounts counts;
   if (it <= until) {
     if (it >= ds.from_iter && it % ds.interval == 0) {
-      out.densify = densify_and_prune(m, state_.stats, ds, extent_, it > reset_every,
-                                      config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it));
+      counts = densify_and_prune(m, state_.stats, ds, extent_, it > reset_every,
+                                 config_.seed * 0x9e3779b97f4a7c15ull + std::uint64_t(it));
       if (m.count() == 0)
         throw Error(format_iteration_problem(
             it, "pruning removed every Gaussian (opacities below " + std::to_string(ds.min_opacity) +
                     "); stopping, the checkpoints on disk are intact"));
-      state_.stats.reset(m.count(), device_);
-      if (config_.filter_3d) compute_filter3d(m, cameras());
+      model_changed();
     }
     if (it % reset_every == 0 && it + ds.interval <= until) reset_opacity(m, ds.reset_opacity);
   } else if (config_.filter_3d && it % config_.filter_3d_interval == 0 &&
              it < config_.iterations - config_.filter_3d_interval) {
     compute_filter3d(m, cameras());
   }
+  return counts;
+}
 
-  // What a prune outside densify_and_prune invalidates: the per-Gaussian statistics and the 3D filter.
-  const auto after_prune = [&] {
-    state_.stats.reset(m.count(), device_);
-    if (config_.filter_3d) compute_filter3d(m, cameras());
-  };
-  if (config_.prunes_mirror_world_after(it, out.densify.after > 0)) {
-    const size_t before = m.count();
-    const size_t removed = prune_mirror_world(m, views_, *renderer_, config_.intrinsic.prune_mirror_world);
-    after_prune();
-    out.densify_note += (out.densify_note.empty() ? "" : "; ") + std::string("mirror world: pruned ") +
-                        std::to_string(removed) + " of " + std::to_string(before) +
-                        (it == config_.shading_from() ? " Gaussians before shading starts" : " Gaussians after densifying");
-  }
-  if (config_.mode == "intrinsic" && config_.intrinsic.glossy_plane && it >= config_.shading_from()) {
-    if (!glossy_plane_.started()) {
-      const std::string note = glossy_plane_.start(m, views_);
-      if (glossy_plane_.pruned() > 0) after_prune();
-      out.densify_note += (out.densify_note.empty() ? "" : "; ") + note;
-    } else {
-      if (glossy_plane_.apply(m, views_, it, config_.intrinsic.glossy_plane_prune_sinkers).pruned > 0) after_prune();
-      if (config_.intrinsic.glossy_plane_align) glossy_plane_.align_normals(m);
-    }
-  }
-
-  // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY), in both
-  // modes, so that a radiance run's PLY opens with colours in the editor's diffuse viewport too.
-  m.derive_diffuse_from_sh();
-
-  // Smoothed over about the last 20 iterations (views differ a lot in difficulty).
-  state_.ema_loss = state_.iteration == 0 ? out.loss : 0.05 * out.loss + 0.95 * state_.ema_loss;
-  const double psnr = std::min(out.psnr, 99.0);
-  state_.ema_psnr = state_.iteration == 0 ? psnr : 0.05 * psnr + 0.95 * state_.ema_psnr;
-  state_.iteration = it;
-  return out;
+void Trainer::model_changed() {
+  state_.stats.reset(state_.model.count(), device_);
+  if (config_.filter_3d) compute_filter3d(state_.model, cameras());
 }
 
 std::string Trainer::non_finite_gradient() const {
@@ -418,7 +378,8 @@ TrainProgress Trainer::progress(double it_per_s) const {
   return p;
 }
 
-void Trainer::save_checkpoint(const std::filesystem::path& path) const {
+void Trainer::save_checkpoint(const std::filesystem::path& path) {
+  store_hook_states();
   // The renderer's part first: a checkpoint file never exists without its companion.
   const std::string own = renderer_->save_own_state();
   if (!own.empty()) write_file_bytes(renderer_state_path(path), own.data(), own.size());

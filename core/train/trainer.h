@@ -1,24 +1,27 @@
 #pragma once
 // The training loop (stage 1, radiance mode: docs/design/maths.md, Stage 1), usable from the CLI and from a
-// GUI thread: step() runs one iteration; run() loops with periodic checkpoints, a CSV log and a progress
-// callback, and stops cleanly (checkpoint written) when a stop flag is raised. A NaN/Inf loss, gradient or
-// parameter throws goris::Error naming the iteration and the parameter group; the checkpoints on disk stay
-// intact.
+// GUI thread: step() runs one iteration (render, losses, backward, optimiser step, density control, and the
+// optional behaviours as training hooks: core/train/hooks/train_hook.h); run() loops with periodic
+// checkpoints, a CSV log and a progress callback, and stops cleanly (checkpoint written) when a stop flag is
+// raised. A NaN/Inf loss, gradient or parameter throws goris::Error naming the iteration and the parameter
+// group; the checkpoints on disk stay intact.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "core/compute/host_device_image.h"
 #include "core/io/camera.h"
 #include "core/scene/gaussians.h"
 #include "core/train/adam.h"
 #include "core/train/densify.h"
 #include "core/train/differentiable_renderer.h"
-#include "core/train/glossy_plane.h"
+#include "core/train/hooks/train_hook.h"
 #include "core/train/param_groups.h"
 #include "core/train/train_config.h"
 
@@ -65,10 +68,9 @@ struct TrainerState {
   double elapsed_s = 0;                  // training time so far, over all sessions
   double lr_scale = 1.0;                 // lowered by each step skipped for non-finite values
   int skipped_steps = 0;                 // in all; consecutive ones are counted in the trainer
-  // intrinsic_emit mask or max: the emit weights last given to the renderer (one per Gaussian, from the
-  // model of that iteration; empty = none yet). A resumed run gives the renderer these again instead of
-  // weights computed from its later model.
-  std::vector<float> emit_weights;
+  // The training hooks' own state by hook name (TrainHook::serialize; core/train/hooks/train_hook.h), as a
+  // checkpoint or Trainer::save_checkpoint left it. A Trainer built on this state gives each hook its part.
+  std::map<std::string, std::string> hooks;
 };
 
 struct TrainProgress {
@@ -125,8 +127,9 @@ class Trainer {
   RunResult run(const RunOptions& options);
 
   // Checkpoint file for the current state, written to a temporary file then renamed; the renderer's own
-  // parameters (if any) go beside it (renderer_state_path).
-  void save_checkpoint(const std::filesystem::path& path) const;
+  // parameters (if any) go beside it (renderer_state_path). The hooks' state is recorded in state().hooks
+  // first.
+  void save_checkpoint(const std::filesystem::path& path);
   // Restores the renderer's own parameters saved beside a checkpoint (no-op when there is no such file and
   // the renderer owns nothing; an error when the renderer needs one and it is missing).
   static void load_renderer_state(const std::filesystem::path& checkpoint, DifferentiableRenderer& renderer);
@@ -155,6 +158,32 @@ class Trainer {
   int densify_until() const;
 
  private:
+  // A step's image gradients dL/d(rendered image) on the host (empty = zero), and their copies on the
+  // device once uploaded (alive until the step ends).
+  struct LossGradients {
+    std::vector<float> color, depth, alpha, median, normal, extras, detached, base;
+    std::vector<DeviceGrad> on_device;
+    ImageGradients upload(Device device);
+  };
+  // The next view of a random permutation of all views (a new one each epoch).
+  const TrainView& next_view(StepStats& out);
+  // Every loss of the step on `view` (photo, depth-normal, alpha, intrinsic, inpainting) with its image
+  // gradients; the terms go to `out`.
+  LossGradients losses(const TrainView& view, const RenderedImages& fwd, int it, StepStats& out) const;
+  // Zeroes the gradients, runs the renderer's backward pass of `g` and returns where it accumulated
+  // (the per-view densification statistic in view_grad_norm_).
+  GaussianGradView backward(const GaussianView& gv, LossGradients& g, bool with_extras);
+  // Adam on the active groups (learning rates scaled down after skipped steps), then the renderer's own
+  // parameters; a parameter turned non-finite stops the run.
+  void optimizer_step(int it);
+  // Density control and the 3D filter of iteration `it`; what densification did (after == 0: none).
+  DensifyCounts densify(int it);
+  // After Gaussians were removed or added: resets what is sized by their count (the densification
+  // statistics, the 3D filter).
+  void model_changed();
+  // The hooks `config_` switches on (make_train_hooks), each given its state from state_.hooks; and back.
+  void make_hooks();
+  void store_hook_states();
   // The first parameter group whose gradient / value holds a NaN or Inf, as "group 'x' (Gaussian i)"; empty
   // when all are finite.
   std::string non_finite_gradient() const;
@@ -163,7 +192,6 @@ class Trainer {
   // `out` skipped, lowers the learning rates and completes the iteration without an update.
   void skip_step(int it, const std::string& problem, StepStats& out);
   int consecutive_skips_ = 0;
-  GlossyPlaneConstraint glossy_plane_;  // intrinsic.glossy_plane; fitted again after a resume
   std::vector<ParamGroup> active_groups() const;
   // Intrinsic-mode losses on the host images; adds their gradients. Returns the weighted sum.
   double intrinsic_losses(const TrainView& view, const RenderedImages& fwd, int it, std::vector<float>& g_normal,
@@ -173,18 +201,14 @@ class Trainer {
                         std::vector<float>& g_base, std::vector<float>& g_normal, std::vector<float>& g_extras,
                         StepStats& out) const;
   std::vector<Camera> cameras() const;
-  // The depth distortion's per-pixel weights on `view` (depth_distortion_glossy on its glossy mask, 1
-  // elsewhere), or null for 1 everywhere. Points into distortion_weights_ or nowhere.
-  const float* distortion_pixel_weights(const TrainView& view);
 
   TrainConfig config_;
-  std::vector<float> distortion_weights_;
   std::vector<TrainView> views_;
-  bool emit_weights_given_ = false;  // state_.emit_weights are the renderer's (intrinsic_emit mask or max)
   float extent_;
   std::shared_ptr<DifferentiableRenderer> renderer_;
   Device device_;
   TrainerState state_;
+  TrainHooks hooks_;  // make_train_hooks(config_, *renderer_), called in this order
   Buffer<float> view_grad_norm_;  // per-view |dL/dmean2d| scratch for the densification statistic
 };
 

@@ -1,15 +1,63 @@
-// The trainer's loss terms beyond the photo loss: stage 1's material and normal losses on the rendered maps
-// (intrinsic mode) and stage 2's inpainting targets. Split from trainer.cpp, which runs the step around them.
+// The trainer's loss terms: the photo loss, depth-normal consistency and the alpha loss, stage 1's material
+// and normal losses on the rendered maps (intrinsic mode) and stage 2's inpainting targets. Split from
+// trainer.cpp, which runs the step around them.
 #include <cmath>
 #include <utility>
 
 #include "core/compute/host_device_image.h"
+#include "core/train/depth_normal_loss.h"
 #include "core/train/image_losses.h"
 #include "core/train/intrinsic_losses.h"
 #include "core/train/trainer.h"
 #include "core/util/error.h"
 
 namespace goris {
+
+Trainer::LossGradients Trainer::losses(const TrainView& view, const RenderedImages& fwd, int it, StepStats& out) const {
+  const Camera& cam = view.camera;
+  const int w = cam.width, h = cam.height;
+  const size_t hw = size_t(w) * size_t(h);
+  LossGradients g;
+  const HostView color(fwd.color, 3 * hw, device_);
+  g.color.assign(3 * hw, 0.0f);
+  const ColorLossParts cl = view.loss_weight.empty()
+                                ? color_loss<float>(color.data(), view.image.data(), 3, w, h, g.color.data(), config_.lambda_ssim)
+                                : weighted_color_loss(color.data(), view.image.data(), view.loss_weight.data(), w, h,
+                                                      g.color.data(), config_.lambda_ssim, 1.0f);
+  out.l1 = cl.l1;
+  out.ssim = cl.ssim;
+  out.loss = cl.total;
+  out.psnr = psnr_from_mse(mse<float>(color.data(), view.image.data(), 3 * hw));
+
+  if (config_.depth_normal_weight > 0 && it > config_.depth_normal_from) {
+    const HostView depth(fwd.depth, hw, device_), alpha(fwd.alpha, hw, device_),
+        median(fwd.median_depth, hw, device_), normal(fwd.normal, 3 * hw, device_);
+    g.depth.assign(hw, 0.0f);
+    g.alpha.assign(hw, 0.0f);
+    g.median.assign(hw, 0.0f);
+    g.normal.assign(3 * hw, 0.0f);
+    out.depth_normal = rendered_depth_normal_loss<float>(
+        depth.data(), alpha.data(), median.data(), normal.data(), w, h, cam.fx, cam.fy, cam.cx, cam.cy,
+        config_.depth_normal_median_ratio, g.depth.data(), g.alpha.data(), g.median.data(), g.normal.data(),
+        config_.depth_normal_weight);
+    out.loss += config_.depth_normal_weight * out.depth_normal;
+  }
+  if (config_.alpha_weight > 0 && view.alpha.size() == hw) {
+    const HostView alpha(fwd.alpha, hw, device_);
+    if (g.alpha.empty()) g.alpha.assign(hw, 0.0f);
+    // Stage 2 leaves the pixels under the target and its reflections to the inpainting (loss_weight 0).
+    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g.alpha.data(), config_.alpha_weight,
+                        view.loss_weight.empty() ? nullptr : view.loss_weight.data());
+    out.loss += config_.alpha_weight * out.alpha;
+  }
+  if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g.normal, g.extras, g.detached, out);
+  if (view.inpaint) out.loss += inpaint_losses(view, fwd, g.color, g.base, g.normal, g.detached, out);
+  if (!g.base.empty() && fwd.base_color == fwd.color) {  // D is the colour: one gradient
+    for (size_t i = 0; i < g.base.size(); ++i) g.color[i] += g.base[i];
+    g.base.clear();
+  }
+  return g;
+}
 
 double Trainer::normal_prior_weight(int it) const {
   const IntrinsicSettings& in = config_.intrinsic;

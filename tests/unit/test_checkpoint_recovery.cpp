@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <tuple>
 
 #include "core/io/file_bytes.h"
 #include "core/train/checkpoint.h"
+#include "core/train/hooks/hooks.h"
 #include "core/train/run_folder.h"
 #include "core/train/trainer.h"
 #include "core/util/fnv1a.h"
@@ -97,16 +99,21 @@ TEST(CheckpointRecovery, TemporaryFilesOfADeadWriterAreRemoved) {
 TEST(CheckpointFormat, OlderVersionsStillLoad) {
   const fs::path dir = test::scratch_dir("checkpoint_versions");
   TrainerState st = small_state(5);
-  st.emit_weights = {0.5f, 0.25f, 1.0f};
+  const std::vector<float> emit_weights{0.5f, 0.25f, 1.0f};
+  const std::uint64_t emit_count = emit_weights.size();  // the emit-weights hook's state: a float block
+  const std::string emit_state = std::string(reinterpret_cast<const char*>(&emit_count), sizeof emit_count) +
+                                 std::string(reinterpret_cast<const char*>(emit_weights.data()), 4 * emit_count);
+  st.hooks[EmitWeightsHook::kName] = emit_state;
   write_checkpoint(dir / "v5.ckpt", TrainConfig{}, st);
   std::ifstream in(dir / "v5.ckpt", std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::uint32_t version;
   std::memcpy(&version, bytes.data() + 8, 4);
   ASSERT_EQ(version, 5u);
-  const std::size_t emit_block = 8 + 4 * st.emit_weights.size();
+  const std::size_t emit_block = emit_state.size();
   const std::string body = bytes.substr(0, bytes.size() - 8);
   const std::string head = body.substr(0, body.size() - emit_block), emit = body.substr(body.size() - emit_block);
+  EXPECT_EQ(emit, emit_state) << "the hook's state is the file's emit-weight block as it is";
   auto pod = [](auto v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); };
   const std::string empty_record = pod(std::uint64_t(0)) + pod(std::int32_t(0));
   const std::string one_check = pod(std::uint64_t(1)) + pod(std::int32_t(4)) + pod(30.0) + pod(std::uint64_t(4)) +
@@ -123,7 +130,7 @@ TEST(CheckpointFormat, OlderVersionsStillLoad) {
     SCOPED_TRACE(name);
     const Checkpoint ck = read_checkpoint(older(v, file, name), Device::CPU);
     EXPECT_EQ(ck.state.iteration, 5);
-    EXPECT_EQ(ck.state.emit_weights, emits ? st.emit_weights : std::vector<float>{});
+    EXPECT_EQ(ck.state.hooks, emits ? st.hooks : decltype(st.hooks){});
     EXPECT_EQ(ck.state.model.count(), 4u);
     EXPECT_EQ(ck.state.model.tensor(Param::Position).value.to_host(), st.model.tensor(Param::Position).value.to_host());
   }
