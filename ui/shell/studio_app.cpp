@@ -297,7 +297,7 @@ void StudioApp::update_before_image() {
                             !same_camera(*requested_camera_, *before_requested_camera_))) {
     before_requested_model_ = before.get();
     before_requested_camera_ = requested_camera_;
-    before_requested_id_ = before_worker_->request({before, *requested_camera_, nullptr});
+    before_requested_id_ = before_worker_->request({before, *requested_camera_, nullptr, nullptr});
   }
   if (std::shared_ptr<const DisplayFrame> f = before_worker_->take()) {
     textures_.upload_photo(frame_color(*f));
