@@ -152,14 +152,8 @@ void run_train(const Options& o) {
   // then there is nothing to do. One killed in between (the checkpoint saved, the model not yet) is resumed
   // to write them.
   if (resumed && resumed->checkpoint.state.iteration >= config.iterations) {
-    auto written_after_checkpoint = [&](const fs::path& f) {
-      std::error_code e1, e2;
-      const auto t = fs::last_write_time(f, e1);
-      return !e1 && t >= fs::last_write_time(resumed->file, e2) && !e2;
-    };
     const int done = resumed->checkpoint.state.iteration;
-    if (written_after_checkpoint(run_ply_path(run_dir)) &&
-        (config.mode != "intrinsic" || written_after_checkpoint(run_dir / "environment.png"))) {
+    if (run_outputs_written_after(run_dir, resumed->file, config)) {
       std::printf("already trained for %d iterations: nothing to do (pass a larger --iters to train further)\n", done);
       return;
     }

@@ -50,4 +50,15 @@ GaussianModel load_run_model(const std::filesystem::path& run_dir, Device device
   throw Error(run_dir.string(), "no trained model: neither checkpoints/ nor point_cloud.ply");
 }
 
+bool run_outputs_written_after(const std::filesystem::path& run_dir, const std::filesystem::path& checkpoint,
+                               const TrainConfig& config) {
+  auto written_after = [&](const std::filesystem::path& f) {
+    std::error_code e1, e2;
+    const auto t = std::filesystem::last_write_time(f, e1);
+    return !e1 && t >= std::filesystem::last_write_time(checkpoint, e2) && !e2;
+  };
+  return written_after(run_ply_path(run_dir)) &&
+         (config.mode != "intrinsic" || written_after(run_dir / "environment.png"));
+}
+
 }  // namespace goris

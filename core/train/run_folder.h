@@ -19,6 +19,12 @@ void write_run_config(const std::filesystem::path& run_dir, const TrainConfig& c
 // Reads RUN/config.json; throws goris::Error naming the file when it is missing or invalid.
 TrainConfig read_run_config(const std::filesystem::path& run_dir);
 
+// Whether a run whose latest checkpoint is `checkpoint` wrote its outputs after it: point_cloud.ply (and an
+// intrinsic run's environment.png) no older than the checkpoint. A run stopped between its last checkpoint
+// and its outputs has reached its iterations but is not finished; resuming it writes them.
+bool run_outputs_written_after(const std::filesystem::path& run_dir, const std::filesystem::path& checkpoint,
+                               const TrainConfig& config);
+
 // The trained model of a run on `device`: the latest checkpoint (which carries the 3D filter and the
 // current SH degree), else point_cloud.ply. `source` receives the file used. Throws when the run has
 // neither.

@@ -91,6 +91,29 @@ TEST(StudioSession, TrainsIntoARunFolderAndPublishes) {
   EXPECT_EQ(again.progress().iteration, 20);
 }
 
+TEST(StudioSession, ARunStoppedBeforeWritingItsModelIsFinishedNotRefused) {
+  const fs::path run = test::scratch_dir("studio_session_unwritten") / "run";
+  {
+    TrainerSession s;
+    s.start(tiny_request(run, 6));
+    ASSERT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
+  }
+  const fs::path ck = *latest_checkpoint(run);
+  // As if stopped after its last checkpoint but before its model: point_cloud.ply older than the checkpoint.
+  fs::last_write_time(run_ply_path(run), fs::last_write_time(ck) - std::chrono::hours(1));
+  ASSERT_FALSE(run_outputs_written_after(run, ck, read_run_config(run)));
+  TrainerSession s;
+  s.start(tiny_request(run, 6));
+  EXPECT_EQ(s.wait(std::chrono::seconds(60)), JobState::Done) << s.status();
+  EXPECT_NE(s.status().find("done: 6 iterations"), std::string::npos) << s.status();
+  EXPECT_TRUE(run_outputs_written_after(run, *latest_checkpoint(run), read_run_config(run)));
+  // Finished now: the same request is refused as already trained.
+  TrainerSession t;
+  t.start(tiny_request(run, 6));
+  EXPECT_EQ(t.wait(std::chrono::seconds(60)), JobState::Error);
+  EXPECT_NE(t.status().find("already trained for 6"), std::string::npos) << t.status();
+}
+
 TEST(StudioSession, PauseResumeStop) {
   const fs::path run = test::scratch_dir("studio_session_pause") / "run";
   TrainerSession s;

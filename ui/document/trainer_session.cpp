@@ -85,8 +85,13 @@ void TrainerSession::prepare_trainer(const TrainRequest& rq) {
   }
   const int done = resumed ? resumed->checkpoint.state.iteration : 0;
   config.iterations = rq.more ? done + rq.iterations : rq.iterations;
-  if (resumed && done >= config.iterations)
-    throw Error(run_dir.string(), "already trained for " + std::to_string(done) + " iterations; ask for more");
+  // As `goris train --resume`: a run that reached its iterations is finished once its outputs are written
+  // after its last checkpoint; one stopped in between is loaded to write them (no iteration runs).
+  if (resumed && done >= config.iterations) {
+    if (run_outputs_written_after(run_dir, resumed->file, config))
+      throw Error(run_dir.string(), "already trained for " + std::to_string(done) + " iterations; ask for more");
+    config.iterations = done;
+  }
   job_.set_status("loading " + config.data);
   PreparedTraining prep = prepare_training(run_dir, config, std::move(resumed), [this](size_t i, size_t n) {
     job_.set_status("loading images " + std::to_string(i + 1) + "/" + std::to_string(n));
