@@ -232,26 +232,20 @@ std::vector<Plane> fit_planes(std::vector<glm::vec3> pts, float tolerance, const
 
 // The share of the detections (all but those on the other planes found) that stand in front of a plane's
 // surface: nearer to the camera that saw them than the surface's own thickness allows. The surface is the
-// plane refitted (least squares) to every covered surface point within `tolerance` of it, its thickness the
+// plane refitted (least squares) to `on`, every covered surface point within `tolerance` of it, its thickness the
 // 90th percentile of their distances (at least a tenth of the tolerance). A planar reflector shows its reflections on its surface, or - in a
 // radiance model - as virtual geometry behind it; when much of the view dependence sits on something
 // standing in front of the plane (fur and a varnished plaque before a papered wall), the plane is a
 // backdrop, not the reflector.
 float evidence_in_front(const std::vector<ConsistencyView>& views, const std::vector<std::vector<std::uint8_t>>& detected,
-                        const Plane& pl, const std::vector<Plane>& others, float tolerance) {
+                        const Plane& pl, const std::vector<glm::vec3>& on, const std::vector<Plane>& others,
+                        float tolerance) {
+  if (on.size() < 3) return 0.0f;
   glm::dvec3 centre(0.0);
   glm::dmat3 scatter(0.0);
-  std::vector<glm::dvec3> on;
-  for (size_t i = 0; i < views.size(); ++i)
-    for (size_t p = 0; p < detected[i].size(); ++p)
-      if (views[i].alpha[p] > 0.5f && views[i].depth[p] > 0) {
-        const glm::vec3 x = surface_point(views[i], p);
-        if (pl.distance(x) <= tolerance) on.push_back(glm::dvec3(x));
-      }
-  if (on.size() < 3) return 0.0f;
-  for (const glm::dvec3& x : on) centre += x;
+  for (const glm::vec3& x : on) centre += glm::dvec3(x);
   centre /= double(on.size());
-  for (const glm::dvec3& x : on) scatter += glm::outerProduct(x - centre, x - centre);
+  for (const glm::vec3& x : on) scatter += glm::outerProduct(glm::dvec3(x) - centre, glm::dvec3(x) - centre);
   cv::Matx33d m;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) m(r, c) = scatter[c][r];
@@ -261,7 +255,7 @@ float evidence_in_front(const std::vector<ConsistencyView>& views, const std::ve
   const glm::dvec3 n(vectors(2, 0), vectors(2, 1), vectors(2, 2));
   std::vector<double> spread;
   spread.reserve(on.size());
-  for (const glm::dvec3& x : on) spread.push_back(std::abs(glm::dot(n, x - centre)));
+  for (const glm::vec3& x : on) spread.push_back(std::abs(glm::dot(n, glm::dvec3(x) - centre)));
   const size_t k90 = spread.size() * 9 / 10;
   std::nth_element(spread.begin(), spread.begin() + long(k90), spread.end());
   const double thickness = std::max(spread[k90], 0.1 * double(tolerance));  // an exact plane is not infinitely thin
@@ -394,34 +388,34 @@ void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& 
   std::nth_element(dist.begin(), dist.begin() + long(dist.size() / 2), dist.end());
   const float tolerance = s.plane_tolerance * dist[dist.size() / 2];
   const std::vector<Plane> found = fit_planes(std::move(pts), tolerance, s);
+  // Each plane kept (not a backdrop) and its extent, from every covered surface point on it.
   std::vector<Plane> planes;
+  std::vector<PlaneExtent> extents;
   for (size_t k = 0; k < found.size(); ++k) {
+    const Plane& pl = found[k];
+    std::vector<glm::vec3> on;
+    for (size_t i = 0; i < views.size(); ++i)
+      for (size_t p = 0; p < out.masks[i].size(); ++p)
+        if (views[i].alpha[p] > 0.5f && views[i].depth[p] > 0) {
+          const glm::vec3 x = surface_point(views[i], p);
+          if (pl.distance(x) <= tolerance) on.push_back(x);
+        }
     std::vector<Plane> others = found;
     others.erase(others.begin() + long(k));
-    const Plane& pl = found[k];
-    const float in_front = evidence_in_front(views, out.masks, pl, others, tolerance);
+    const float in_front = evidence_in_front(views, out.masks, pl, on, others, tolerance);
     out.rejected_planes.push_back(in_front > s.plane_max_in_front);
     out.plane_in_front.push_back(in_front);
     if (out.rejected_planes.back()) continue;
     planes.push_back(pl);
     out.plane_normals.push_back(pl.n);
-  }
-  out.planes = int(planes.size());
-  // Each plane's extent from every covered pixel on it.
-  std::vector<PlaneExtent> extents;
-  for (const Plane& pl : planes) {
     PlaneExtent probe(pl, {}, {});
-    std::vector<glm::vec2> on, seeded;
-    for (size_t i = 0; i < views.size(); ++i)
-      for (size_t p = 0; p < out.masks[i].size(); ++p)
-        if (views[i].alpha[p] > 0.5f && views[i].depth[p] > 0) {
-          const glm::vec3 x = surface_point(views[i], p);
-          if (pl.distance(x) <= tolerance) on.push_back(probe.coordinates(x));
-        }
+    std::vector<glm::vec2> on_plane, seeded;
+    for (const glm::vec3& x : on) on_plane.push_back(probe.coordinates(x));
     for (const glm::vec3& x : seeds)
       if (pl.distance(x) <= tolerance) seeded.push_back(probe.coordinates(x));
-    extents.emplace_back(pl, on, seeded);
+    extents.emplace_back(pl, on_plane, seeded);
   }
+  out.planes = int(planes.size());
   for (size_t i = 0; i < views.size(); ++i) {
     const ConsistencyView& v = views[i];
     const glm::vec3 eye = v.camera.center();
