@@ -1,5 +1,5 @@
 # cmake -DSOURCE_DIR=<repository root> [-DTABLE=<a table file>] -P check_folder_dependencies.cmake
-# Fails (with every offending file and include named) when a source under core/, render/, ui/ or app/
+# Fails (with every offending file and include named) when a source under core/, render/, ui/, tools/ or app/
 # includes a folder its own folder does not declare in folder_dependencies.cmake, when a folder is missing
 # from that table, or when the table has a cycle.
 cmake_minimum_required(VERSION 3.20)
@@ -11,9 +11,9 @@ if(NOT TABLE)
 endif()
 include(${TABLE})
 
-# The folder a path (relative to the root) belongs to: core/io, render/train, app/goris, ui.
+# The folder a path (relative to the root) belongs to: core/io, render/train, tools/synth, app/goris, ui.
 function(folder_of path out)
-  string(REGEX MATCH "^(core|render|app)/[^/]+" f "${path}")
+  string(REGEX MATCH "^(core|render|tools|app)/[^/]+" f "${path}")
   if(NOT f)
     string(REGEX MATCH "^ui" f "${path}")
   endif()
@@ -71,10 +71,20 @@ if(cycle)
   string(APPEND problems "  the table has a cycle: ${cycle}\n")
 endif()
 
+# tools/ also holds scripts and the node_modules of ./dev setup: only its folders with code are walked.
+file(GLOB tool_folders LIST_DIRECTORIES true "${SOURCE_DIR}/tools/*")
+list(FILTER tool_folders EXCLUDE REGEX "/node_modules$")
+set(tool_patterns "")
+foreach(d IN LISTS tool_folders)
+  if(IS_DIRECTORY "${d}")
+    list(APPEND tool_patterns "${d}/*.h" "${d}/*.cpp" "${d}/*.cu" "${d}/*.cuh")
+  endif()
+endforeach()
 file(GLOB_RECURSE sources RELATIVE "${SOURCE_DIR}"
      "${SOURCE_DIR}/core/*.h" "${SOURCE_DIR}/core/*.cpp" "${SOURCE_DIR}/core/*.cu" "${SOURCE_DIR}/core/*.cuh"
      "${SOURCE_DIR}/render/*.h" "${SOURCE_DIR}/render/*.cpp" "${SOURCE_DIR}/render/*.cu" "${SOURCE_DIR}/render/*.cuh"
      "${SOURCE_DIR}/ui/*.h" "${SOURCE_DIR}/ui/*.cpp" "${SOURCE_DIR}/ui/*.cu"
+     ${tool_patterns}
      "${SOURCE_DIR}/app/*.h" "${SOURCE_DIR}/app/*.cpp")
 foreach(src IN LISTS sources)
   folder_of("${src}" from)
@@ -86,7 +96,7 @@ foreach(src IN LISTS sources)
     set(folders "${folders};${from}")  # named once
     continue()
   endif()
-  file(STRINGS "${SOURCE_DIR}/${src}" includes REGEX "^[ \t]*#[ \t]*include[ \t]+\"(core|render|ui|app)/")
+  file(STRINGS "${SOURCE_DIR}/${src}" includes REGEX "^[ \t]*#[ \t]*include[ \t]+\"(core|render|ui|tools|app)/")
   foreach(line IN LISTS includes)
     string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]+\"([^\"]+)\".*" "\\1" header "${line}")
     folder_of("${header}" to)

@@ -1,9 +1,10 @@
 # Which folders each folder of the engine, the editor and the programs may include from (besides itself,
 # the standard library and third-party headers). Checked on every build by check_folder_dependencies.cmake:
 # an #include of an undeclared folder, or a cycle in this table, fails the build. A folder is two levels
-# deep under core/, render/ and app/ (core/io, render/train, app/goris); ui/ is one folder.
+# deep under core/, render/, tools/ and app/ (core/io, render/train, tools/synth, app/goris); ui/ is one folder.
 #
-# Keep it acyclic and pointing downwards: app -> ui -> render -> core.
+# Keep it acyclic and pointing downwards: app -> ui -> render -> core, and app -> tools -> core (the code of
+# the benchmarks and of `goris synth`, which the engine and the editor never include).
 set(GORIS_FOLDER_DEPENDENCIES
   "core/util:"
   "core/compute:core/util"
@@ -12,8 +13,6 @@ set(GORIS_FOLDER_DEPENDENCIES
   "core/capture:core/io core/util"
   "core/inpaint:core/io core/util"
   "core/metrics:core/compute core/io core/util"
-  "core/report:core/util"
-  "core/synth:core/util"
   "core/removal:core/io core/scene core/util"
   "core/train:core/compute core/io core/removal core/scene core/util"
   "render/math:core/compute"
@@ -27,7 +26,9 @@ set(GORIS_FOLDER_DEPENDENCIES
   "render/maps:core/io core/scene core/util render/raster render/train"
   "render/export:core/compute core/io core/scene core/train core/util render/maps render/raster render/train"
   "render/removal:core/compute core/inpaint core/io core/removal core/scene core/train core/util render/maps render/raster render/trace render/train"
+  "tools/report:core/util"
+  "tools/synth:core/util"
   "ui:core/capture core/compute core/inpaint core/io core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train"
   "app/studio:core/util ui"
-  "app/goris:core/capture core/compute core/inpaint core/io core/metrics core/removal core/report core/scene core/synth core/train core/util render/export render/maps render/raster render/removal render/train render/trace"
+  "app/goris:core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train render/trace tools/report tools/synth"
 )

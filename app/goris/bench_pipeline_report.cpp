@@ -12,10 +12,10 @@
 
 #include "app/goris/command.h"
 #include "core/io/file_bytes.h"
-#include "core/report/chart.h"
-#include "core/report/pareto.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
+#include "tools/report/chart.h"
+#include "tools/report/pareto.h"
 
 namespace goris::bench::pipeline {
 

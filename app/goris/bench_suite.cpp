@@ -11,8 +11,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/io/file_bytes.h"
-#include "core/synth/synth.h"
 #include "core/util/error.h"
+#include "tools/synth/synth.h"
 
 namespace goris::bench {
 namespace fs = std::filesystem;

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/synth/presets.h"
+#include "tools/synth/presets.h"
 
 namespace goris::bench {
 

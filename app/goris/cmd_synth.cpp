@@ -1,12 +1,12 @@
 // `goris synth --preset NAME --out DIR ...`: renders a GOR-IS style data set with Blender Cycles
-// (core/synth: preset -> scene.json -> resources/synth/render_scene.py run by `blender -b`).
+// (tools/synth: preset -> scene.json -> resources/synth/render_scene.py run by `blender -b`).
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "app/goris/command.h"
-#include "core/synth/synth.h"
+#include "tools/synth/synth.h"
 
 namespace {
 namespace fs = std::filesystem;

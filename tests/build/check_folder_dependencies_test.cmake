@@ -10,6 +10,13 @@ function(run_check root table out_rc out_text)
   set(${out_text} "${o}${e}" PARENT_SCOPE)
 endfunction()
 
+function(expect_pass root table what)
+  run_check(${root} ${table} rc text)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what}:\n${text}")
+  endif()
+endfunction()
+
 function(expect_failure root table pattern)
   run_check(${root} ${table} rc text)
   if(rc EQUAL 0)
@@ -20,19 +27,14 @@ function(expect_failure root table pattern)
   endif()
 endfunction()
 
-run_check(${SOURCE_DIR} ${SOURCE_DIR}/cmake/folder_dependencies.cmake rc text)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the repository fails its own folder-dependency check:\n${text}")
-endif()
+expect_pass(${SOURCE_DIR} ${SOURCE_DIR}/cmake/folder_dependencies.cmake
+            "the repository fails its own folder-dependency check")
 
 file(REMOVE_RECURSE ${WORK})
 file(WRITE ${WORK}/tree/core/util/a.h "#pragma once\n#include <vector>\n")
 file(WRITE ${WORK}/tree/core/io/b.h "#pragma once\n#include \"core/util/a.h\"\n")
 file(WRITE ${WORK}/table.cmake "set(GORIS_FOLDER_DEPENDENCIES \"core/util:\" \"core/io:core/util\")\n")
-run_check(${WORK}/tree ${WORK}/table.cmake rc text)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "a declared include was refused:\n${text}")
-endif()
+expect_pass(${WORK}/tree ${WORK}/table.cmake "a declared include was refused")
 
 # An include upwards (core/util -> core/io) that the table does not declare.
 file(WRITE ${WORK}/tree/core/util/c.cpp "#include \"core/util/a.h\"\n  #  include \"core/io/b.h\"\n")
@@ -48,4 +50,18 @@ file(REMOVE_RECURSE ${WORK}/tree/core/extra)
 file(WRITE ${WORK}/cyclic.cmake
      "set(GORIS_FOLDER_DEPENDENCIES \"core/util:core/scene\" \"core/io:core/util\" \"core/scene:core/io\")\n")
 expect_failure(${WORK}/tree ${WORK}/cyclic.cmake "cycle: core/util -> core/scene -> core/io -> core/util")
+
+# tools/: its code folders are checked like the engine's (its node_modules are not walked), and an engine
+# folder that includes a tool fails.
+file(WRITE ${WORK}/tree/tools/report/e.h "#pragma once\n#include \"core/util/a.h\"\n")
+file(WRITE ${WORK}/tree/tools/node_modules/pkg/f.h "#include \"core/io/b.h\"\n")
+file(WRITE ${WORK}/tools_table.cmake
+     "set(GORIS_FOLDER_DEPENDENCIES \"core/util:\" \"core/io:core/util\" \"tools/report:core/util\")\n")
+expect_pass(${WORK}/tree ${WORK}/tools_table.cmake "a declared include of tools/ was refused, or node_modules was walked")
+file(WRITE ${WORK}/tree/core/io/g.cpp "#include \"tools/report/e.h\"\n")
+expect_failure(${WORK}/tree ${WORK}/tools_table.cmake "core/io/g.cpp: includes tools/report/e.h, but core/io does not declare tools/report")
+file(REMOVE ${WORK}/tree/core/io/g.cpp)
+file(WRITE ${WORK}/tree/tools/report/h.cpp "#include \"core/io/b.h\"\n")
+expect_failure(${WORK}/tree ${WORK}/tools_table.cmake "tools/report/h.cpp: includes core/io/b.h, but tools/report does not declare core/io")
+
 message(STATUS "folder dependencies: the repository passes; undeclared includes, unknown folders and cycles fail")

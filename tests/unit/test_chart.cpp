@@ -1,4 +1,4 @@
-// The benchmark chart pieces (core/report): Pareto front, axis ticks, the SVG text and the drawn image.
+// The benchmark chart pieces (tools/report): Pareto front, axis ticks, the SVG text and the drawn image.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,11 +7,11 @@
 
 #include <opencv2/core.hpp>
 
-#include "core/report/axis_ticks.h"
-#include "core/report/chart.h"
-#include "core/report/pareto.h"
-#include "core/report/svg_writer.h"
 #include "core/util/error.h"
+#include "tools/report/axis_ticks.h"
+#include "tools/report/chart.h"
+#include "tools/report/pareto.h"
+#include "tools/report/svg_writer.h"
 
 namespace goris {
 namespace {

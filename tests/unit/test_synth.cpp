@@ -5,8 +5,8 @@
 #include <cmath>
 #include <utility>
 
-#include "core/synth/presets.h"
 #include "core/util/error.h"
+#include "tools/synth/presets.h"
 
 using namespace goris::synth;
 

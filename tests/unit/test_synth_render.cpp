@@ -12,10 +12,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/io/dataset.h"
-#include "core/synth/blender_process.h"
-#include "core/synth/synth.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
+#include "tools/synth/blender_process.h"
+#include "tools/synth/synth.h"
 
 namespace fs = std::filesystem;
 using namespace goris::synth;

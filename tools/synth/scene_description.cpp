@@ -1,4 +1,4 @@
-#include "core/synth/scene_description.h"
+#include "tools/synth/scene_description.h"
 
 namespace goris::synth {
 namespace {

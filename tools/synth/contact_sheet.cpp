@@ -1,4 +1,4 @@
-#include "core/synth/contact_sheet.h"
+#include "tools/synth/contact_sheet.h"
 
 #include <algorithm>
 #include <cstdint>

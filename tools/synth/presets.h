@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/synth/scene_description.h"
+#include "tools/synth/scene_description.h"
 
 namespace goris::synth {
 

@@ -1,4 +1,4 @@
-#include "core/report/svg_writer.h"
+#include "tools/report/svg_writer.h"
 
 #include <cstdio>
 

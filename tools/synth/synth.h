@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <functional>
 
-#include "core/synth/presets.h"
+#include "tools/synth/presets.h"
 
 namespace goris::synth {
 

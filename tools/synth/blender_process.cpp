@@ -1,4 +1,4 @@
-#include "core/synth/blender_process.h"
+#include "tools/synth/blender_process.h"
 
 #include <unistd.h>
 

@@ -1,11 +1,11 @@
-#include "core/synth/synth.h"
+#include "tools/synth/synth.h"
 
 #include <cstdio>
 #include <fstream>
 
-#include "core/synth/blender_process.h"
-#include "core/synth/contact_sheet.h"
 #include "core/util/error.h"
+#include "tools/synth/blender_process.h"
+#include "tools/synth/contact_sheet.h"
 
 namespace goris::synth {
 namespace fs = std::filesystem;

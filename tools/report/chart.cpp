@@ -1,13 +1,13 @@
-#include "core/report/chart.h"
+#include "tools/report/chart.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
 
-#include "core/report/axis_ticks.h"
-#include "core/report/svg_writer.h"
 #include "core/util/error.h"
+#include "tools/report/axis_ticks.h"
+#include "tools/report/svg_writer.h"
 
 namespace goris {
 namespace {

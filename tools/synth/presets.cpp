@@ -1,13 +1,13 @@
-#include "core/synth/presets.h"
+#include "tools/synth/presets.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 
-#include "core/synth/cameras.h"
-#include "core/synth/random.h"
 #include "core/util/error.h"
+#include "tools/synth/cameras.h"
+#include "tools/synth/random.h"
 
 namespace goris::synth {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/report/axis_ticks.h"
+#include "tools/report/axis_ticks.h"
 
 #include <cmath>
 #include <algorithm>

@@ -4,7 +4,7 @@
 // different phase of the spiral, so they are new viewpoints between the training ones.
 #include <vector>
 
-#include "core/synth/scene_description.h"
+#include "tools/synth/scene_description.h"
 
 namespace goris::synth {
 

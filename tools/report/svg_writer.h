@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/report/chart.h"
+#include "tools/report/chart.h"
 
 namespace goris {
 

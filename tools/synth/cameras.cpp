@@ -1,4 +1,4 @@
-#include "core/synth/cameras.h"
+#include "tools/synth/cameras.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "core/report/pareto.h"
+#include "tools/report/pareto.h"
 
 #include <algorithm>
 #include <cmath>
