@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/kernel_profile.h"
 #include "core/compute/parallel_for.h"
 #include "core/compute/primitives.h"
@@ -15,16 +16,12 @@
 
 namespace goris {
 
-#ifdef GORIS_WITH_CUDA
+// The CUDA entry points (primitives_cuda.cu).
 void cuda_sort_by_key(std::uint64_t* keys, std::uint32_t* values, std::size_t n, int end_bit);
 template <class T> void cuda_scan(const T* in, T* out, std::size_t n, bool inclusive);
 template <class T> T cuda_reduce_sum(const T* in, std::size_t n);
 template <class T> T cuda_reduce_max(const T* in, std::size_t n);
 template <class T> void cuda_add_into(const T* a, T* acc, std::size_t n);
-#define GORIS_ON_CUDA(expr) return expr
-#else
-#define GORIS_ON_CUDA(expr) throw Error("CUDA buffer given to a build without the CUDA backend")
-#endif
 
 namespace {
 
@@ -105,7 +102,8 @@ void sort_by_key(Buffer<std::uint64_t>& keys, Buffer<std::uint32_t>& values, int
   if (keys.device() != values.device()) throw Error("sort_by_key: keys and values live on different devices");
   end_bit = std::clamp(end_bit, 1, 64);
   kernel_profile::Scope scope(keys.device());
-  if (keys.device() == Device::CUDA) GORIS_ON_CUDA(cuda_sort_by_key(keys.data(), values.data(), keys.size(), end_bit));
+  if (keys.device() == Device::CUDA)
+    return GORIS_CUDA_CALL("sort_by_key", cuda_sort_by_key(keys.data(), values.data(), keys.size(), end_bit));
   cpu_sort_by_key(keys.data(), values.data(), keys.size(), end_bit);
 }
 
@@ -114,7 +112,8 @@ static void scan(const Buffer<T>& in, Buffer<T>& out, bool inclusive) {
   if (out.size() != in.size() || out.device() != in.device())
     throw Error("scan: output must have the input's size and device");
   kernel_profile::Scope scope(in.device());
-  if (in.device() == Device::CUDA) GORIS_ON_CUDA(cuda_scan<T>(in.data(), out.data(), in.size(), inclusive));
+  if (in.device() == Device::CUDA)
+    return GORIS_CUDA_CALL("scan", cuda_scan<T>(in.data(), out.data(), in.size(), inclusive));
   cpu_scan<T>(in.data(), out.data(), in.size(), inclusive);
 }
 
@@ -125,7 +124,7 @@ void inclusive_scan(const Buffer<T>& in, Buffer<T>& out) { scan(in, out, true); 
 
 template <class T>
 T reduce_sum(const Buffer<T>& in) {
-  if (in.device() == Device::CUDA) GORIS_ON_CUDA(cuda_reduce_sum<T>(in.data(), in.size()));
+  if (in.device() == Device::CUDA) return GORIS_CUDA_CALL("reduce_sum", cuda_reduce_sum<T>(in.data(), in.size()));
   using Acc = typename Sum<T>::Acc;
   const T* p = in.data();
   return T(tbb::parallel_deterministic_reduce(
@@ -139,7 +138,7 @@ T reduce_sum(const Buffer<T>& in) {
 
 template <class T>
 T reduce_max(const Buffer<T>& in) {
-  if (in.device() == Device::CUDA) GORIS_ON_CUDA(cuda_reduce_max<T>(in.data(), in.size()));
+  if (in.device() == Device::CUDA) return GORIS_CUDA_CALL("reduce_max", cuda_reduce_max<T>(in.data(), in.size()));
   const T* p = in.data();
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, in.size(), 4096), std::numeric_limits<T>::lowest(),
@@ -152,7 +151,7 @@ T reduce_max(const Buffer<T>& in) {
 
 template <class T>
 void add_into(Device d, const T* a, T* acc, std::size_t n) {
-  if (d == Device::CUDA) GORIS_ON_CUDA(cuda_add_into<T>(a, acc, n));
+  if (d == Device::CUDA) return GORIS_CUDA_CALL("add_into", cuda_add_into<T>(a, acc, n));
   parallel_for(Device::CPU, n, [=](std::size_t i) { acc[i] += a[i]; }, 8192);
 }
 template void add_into<float>(Device, const float*, float*, std::size_t);

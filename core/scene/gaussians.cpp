@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/parallel_for.h"
 #include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians_cuda.h"
@@ -18,12 +19,7 @@ const std::array<const char*, kCount> kPlyNames = {"diffuse_0", "diffuse_1", "di
 namespace {
 constexpr const char* kParamNames[kParamCount] = {"position", "log_scale", "rotation", "opacity", "sh", "extras"};
 constexpr int kParamWidths[kParamCount] = {3, 3, 4, 1, kMaxShCoeffs * 3, extra::kCount};
-
-#ifdef GORIS_WITH_CUDA
-#define GORIS_ON_CUDA(call) call
-#else
-#define GORIS_ON_CUDA(call) throw Error("a CUDA scene model in a build without the CUDA backend")
-#endif
+constexpr const char* kWho = "scene model";
 }  // namespace
 
 const char* param_name(Param p) { return kParamNames[int(p)]; }
@@ -84,7 +80,7 @@ GaussianView GaussianModel::view(bool with_extras) {
     if (device_ == Device::CPU)
       parallel_for(Device::CPU, n, [=](size_t i) { kernels::extras_forward(logits, act, i); });
     else
-      GORIS_ON_CUDA(detail::extras_forward_cuda(logits, act, n));
+      GORIS_CUDA_CALL(kWho, detail::extras_forward_cuda(logits, act, n));
     v.extras = act;
     v.n_extras = extra::kCount;
   }
@@ -98,7 +94,7 @@ void GaussianModel::derive_diffuse_from_sh() {
   if (device_ == Device::CPU)
     parallel_for(Device::CPU, count_, [=](size_t i) { kernels::diffuse_from_sh_dc(sh, sw, logits, ew, first, i); });
   else
-    GORIS_ON_CUDA(detail::diffuse_from_sh_dc_cuda(sh, sw, logits, ew, first, count_));
+    GORIS_CUDA_CALL(kWho, detail::diffuse_from_sh_dc_cuda(sh, sw, logits, ew, first, count_));
 }
 
 GaussianGradView GaussianModel::grad_view(bool with_extras) {
@@ -129,7 +125,7 @@ void GaussianModel::backprop_extras() {
   if (device_ == Device::CPU)
     parallel_for(Device::CPU, n, [=](size_t i) { kernels::extras_backward(act, act_grad, logit_grad, i); });
   else
-    GORIS_ON_CUDA(detail::extras_backward_cuda(act, act_grad, logit_grad, n));
+    GORIS_CUDA_CALL(kWho, detail::extras_backward_cuda(act, act_grad, logit_grad, n));
 }
 
 void GaussianModel::zero_grad() {

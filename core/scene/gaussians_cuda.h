@@ -1,5 +1,5 @@
 #pragma once
-// CUDA entry points of the scene model's kernels (gaussians_cuda.cu); only declared in CUDA builds.
+// CUDA entry points of the scene model's kernels (gaussians_cuda.cu), called through GORIS_CUDA_CALL.
 #include <cstddef>
 
 namespace goris::detail {

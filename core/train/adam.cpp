@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/parallel_for.h"
 #include "core/train/adam_kernel.h"
 #include "core/train/train_cuda.h"
@@ -10,12 +11,6 @@
 #include "core/util/error.h"
 
 namespace goris {
-
-#ifdef GORIS_WITH_CUDA
-#define GORIS_ON_CUDA(call) call
-#else
-#define GORIS_ON_CUDA(call) throw Error("a CUDA scene model in a build without the CUDA backend")
-#endif
 
 void GaussianAdam::step(GaussianModel& model, ParamGroup group, float lr, int col_end) {
   GroupSpan span = group_span(group);
@@ -40,7 +35,7 @@ void GaussianAdam::step(GaussianModel& model, ParamGroup group, float lr, int co
   if (model.device() == Device::CPU)
     parallel_for(Device::CPU, n, [=](size_t r) { kernels::adam_group_row(p, m, v, g, s, r); }, 2048);
   else
-    GORIS_ON_CUDA(detail::adam_step_cuda(p, m, v, g, s, n));
+    GORIS_CUDA_CALL("optimiser", detail::adam_step_cuda(p, m, v, g, s, n));
 }
 
 void reset_moments(GaussianModel& model, ParamGroup group) {
@@ -52,7 +47,7 @@ void reset_moments(GaussianModel& model, ParamGroup group) {
     if (model.device() == Device::CPU)
       parallel_for(Device::CPU, model.count(), [=](size_t r) { kernels::zero_columns(d, w, c0, c1, r); });
     else
-      GORIS_ON_CUDA(detail::zero_columns_cuda(d, w, c0, c1, model.count()));
+      GORIS_CUDA_CALL("optimiser", detail::zero_columns_cuda(d, w, c0, c1, model.count()));
   }
 }
 

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/parallel_for.h"
 #include "core/compute/primitives.h"
 #include "core/scene/gaussian_kernels.h"
@@ -16,12 +17,6 @@
 #include "core/util/error.h"
 
 namespace goris {
-
-#ifdef GORIS_WITH_CUDA
-#define GORIS_ON_CUDA(call) call
-#else
-#define GORIS_ON_CUDA(call) throw Error("a CUDA scene model in a build without the CUDA backend")
-#endif
 
 namespace {
 
@@ -119,7 +114,7 @@ void DensifyStats::add_view(const float* view_grad_norm, const std::int32_t* rad
         Device::CPU, n,
         [=](size_t i) { kernels::densify_stats_add(view_grad_norm, radii, ndc_scale, acc, den, mr, i); }, 2048);
   } else {
-    GORIS_ON_CUDA(detail::densify_stats_add_cuda(view_grad_norm, radii, ndc_scale, acc, den, mr, n));
+    GORIS_CUDA_CALL("densify", detail::densify_stats_add_cuda(view_grad_norm, radii, ndc_scale, acc, den, mr, n));
   }
 }
 

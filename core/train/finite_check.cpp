@@ -6,19 +6,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/train/train_cuda.h"
 #include "core/util/error.h"
 
 namespace goris {
 
 size_t first_non_finite(const float* data, size_t n, Device d) {
-  if (d == Device::CUDA) {
-#ifdef GORIS_WITH_CUDA
-    return detail::first_non_finite_cuda(data, n);
-#else
-    throw Error("first_non_finite: CUDA buffer in a build without the CUDA backend");
-#endif
-  }
+  if (d == Device::CUDA) return GORIS_CUDA_CALL("first_non_finite", detail::first_non_finite_cuda(data, n));
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, n, 16384), n,
       [&](const tbb::blocked_range<size_t>& r, size_t best) {

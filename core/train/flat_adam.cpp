@@ -3,12 +3,11 @@
 #include <cmath>
 #include <string>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/parallel_for.h"
 #include "core/train/adam_kernel.h"
-#include "core/util/error.h"
-#ifdef GORIS_WITH_CUDA
 #include "core/train/train_cuda.h"
-#endif
+#include "core/util/error.h"
 
 namespace goris {
 
@@ -44,11 +43,7 @@ void FlatAdam::step(Buffer<float>& params, const Buffer<float>& grads, float lr,
     parallel_for(Device::CPU, n, [=](std::size_t i) { kernels::adam_group_row(p, m, v, g, s, i); }, 1024);
     return;
   }
-#ifdef GORIS_WITH_CUDA
-  goris::detail::adam_step_cuda(p, m, v, g, s, n);
-#else
-  throw Error(what, "CUDA parameters in a build without the CUDA backend");
-#endif
+  GORIS_CUDA_CALL(what, goris::detail::adam_step_cuda(p, m, v, g, s, n));
 }
 
 }  // namespace goris

@@ -1,5 +1,5 @@
 #pragma once
-// CUDA entry points of the training kernels (train_kernels_cuda.cu); declared for CUDA builds only.
+// CUDA entry points of the training kernels (train_kernels_cuda.cu), called through GORIS_CUDA_CALL.
 #include <cstddef>
 #include <cstdint>
 

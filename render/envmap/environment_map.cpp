@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_reduce.h>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/util/error.h"
 #include "render/envmap/cube_map_ops.h"
 #include "render/envmap/environment_map_cuda.h"
@@ -52,7 +53,7 @@ EnvironmentMap::EnvironmentMap(int resolution, Device device, float initial_radi
 
 void EnvironmentMap::update() {
   if (device() == Device::CUDA) {
-    envmap::cuda::build_chain(params_.data(), chain_.data(), scratch_.data(), res_, levels_);
+    GORIS_CUDA_CALL(kWho, envmap::cuda::build_chain(params_.data(), chain_.data(), scratch_.data(), res_, levels_));
     return;
   }
   const float* p = params_.data();
@@ -70,7 +71,8 @@ void EnvironmentMap::update() {
 
 void EnvironmentMap::backward() {
   if (device() == Device::CUDA) {
-    envmap::cuda::backward_chain(chain_grad_.data(), scratch_.data(), chain_.data(), grads_.data(), res_, levels_);
+    GORIS_CUDA_CALL(kWho, envmap::cuda::backward_chain(chain_grad_.data(), scratch_.data(), chain_.data(),
+                                                       grads_.data(), res_, levels_));
   } else {
     envmap::ops::prefilter_adjoint(Device::CPU, chain_grad_.data(), scratch_.data(), res_, levels_);
     envmap::ops::activate_backward(Device::CPU, chain_.data(), chain_grad_.data(), grads_.data(), params_.size());
@@ -86,7 +88,7 @@ void EnvironmentMap::zero_grad() {
 void EnvironmentMap::lookup(const float* dirs, const float* roughness, std::size_t n, float* out) const {
   if (n > 0 && (!dirs || !roughness || !out)) throw Error(kWho, "lookup given null arrays");
   if (device() == Device::CUDA)
-    envmap::cuda::lookup(mips(), dirs, roughness, n, out);
+    GORIS_CUDA_CALL(kWho, envmap::cuda::lookup(mips(), dirs, roughness, n, out));
   else
     envmap::ops::lookup(Device::CPU, mips(), dirs, roughness, n, out);
 }
@@ -95,7 +97,8 @@ void EnvironmentMap::lookup_backward(const float* dirs, const float* roughness, 
                                      float* ddirs, float* droughness) {
   if (n > 0 && (!dirs || !roughness || !dout)) throw Error(kWho, "lookup backward given null arrays");
   if (device() == Device::CUDA)
-    envmap::cuda::lookup_backward(mips(), dirs, roughness, dout, n, chain_grad_.data(), ddirs, droughness);
+    GORIS_CUDA_CALL(kWho, envmap::cuda::lookup_backward(mips(), dirs, roughness, dout, n, chain_grad_.data(), ddirs,
+                                                        droughness));
   else
     envmap::ops::lookup_backward(Device::CPU, mips(), dirs, roughness, dout, n, chain_grad_.data(), ddirs,
                                  droughness);

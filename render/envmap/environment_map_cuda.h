@@ -1,6 +1,6 @@
 #pragma once
 // The CUDA side of EnvironmentMap (environment_map_cuda.cu): the cube_map_ops.h drivers run on
-// Device::CUDA. In a build without CUDA these throw goris::Error (environment_map_no_cuda.cpp).
+// Device::CUDA. Without CUDA the call throws goris::Error (GORIS_CUDA_CALL).
 #include <cstddef>
 
 #include "render/envmap/cube_map_math.h"

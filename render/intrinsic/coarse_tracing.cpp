@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/util/error.h"
 #include "render/intrinsic/coarse_tracing_cuda.h"
 #include "render/intrinsic/coarse_tracing_ops.h"
@@ -69,8 +70,8 @@ RaySelection select_block_rays(const ReflectionRays& rays, int width, int height
     coarse::select<Device::CPU>(rays.pixels.data(), n, width, height, r, st.levels, st.max_level, st.seed, lvl.data(),
                                 keep.data());
   else
-    coarse::cuda::select(rays.pixels.data(), n, width, height, r, st.levels, st.max_level, st.seed, lvl.data(),
-                         keep.data());
+    GORIS_CUDA_CALL(kWho, coarse::cuda::select(rays.pixels.data(), n, width, height, r, st.levels, st.max_level,
+                                               st.seed, lvl.data(), keep.data()));
   return with_slots(std::move(keep));
 }
 
@@ -83,7 +84,7 @@ RaySelection selection_difference(const RaySelection& a, const RaySelection& b) 
   if (d == Device::CPU)
     coarse::difference<Device::CPU>(a.keep.data(), b.keep.data(), n, keep.data());
   else
-    coarse::cuda::difference(a.keep.data(), b.keep.data(), n, keep.data());
+    GORIS_CUDA_CALL(kWho, coarse::cuda::difference(a.keep.data(), b.keep.data(), n, keep.data()));
   return with_slots(std::move(keep));
 }
 
@@ -102,8 +103,9 @@ void gather_rays(const ReflectionRays& rays, const RaySelection& sel, Reflection
     coarse::gather<Device::CPU>(rays.pixels.data(), rays.origins.data(), rays.directions.data(), n, sel.keep.data(),
                                 sel.slot.data(), offset, out.pixels.data(), out.origins.data(), out.directions.data());
   else
-    coarse::cuda::gather(rays.pixels.data(), rays.origins.data(), rays.directions.data(), n, sel.keep.data(),
-                         sel.slot.data(), offset, out.pixels.data(), out.origins.data(), out.directions.data());
+    GORIS_CUDA_CALL(kWho, coarse::cuda::gather(rays.pixels.data(), rays.origins.data(), rays.directions.data(), n,
+                                               sel.keep.data(), sel.slot.data(), offset, out.pixels.data(),
+                                               out.origins.data(), out.directions.data()));
 }
 
 Buffer<float> representative_distance(const ReflectionRays& rays, const RaySelection* sel, const Buffer<float>& depth,
@@ -127,8 +129,9 @@ Buffer<float> representative_distance(const ReflectionRays& rays, const RaySelec
     coarse::representative_distance<Device::CPU>(rays.pixels.data(), n, width, height, keep, slot, depth.data(),
                                                  alpha.data(), block_level, extent, index.data(), out.data());
   else
-    coarse::cuda::representative_distance(rays.pixels.data(), n, width, height, keep, slot, depth.data(), alpha.data(),
-                                          block_level, extent, index.data(), out.data());
+    GORIS_CUDA_CALL(kWho, coarse::cuda::representative_distance(rays.pixels.data(), n, width, height, keep, slot,
+                                                                depth.data(), alpha.data(), block_level, extent,
+                                                                index.data(), out.data()));
   return out;
 }
 
@@ -141,7 +144,7 @@ Buffer<float> selection_mass(const ReflectionRays& rays, const RaySelection& sel
   if (d == Device::CPU)
     coarse::mass<Device::CPU>(rays.pixels.data(), rays.count, sel.keep.data(), P, out.data());
   else
-    coarse::cuda::mass(rays.pixels.data(), rays.count, sel.keep.data(), P, out.data());
+    GORIS_CUDA_CALL(kWho, coarse::cuda::mass(rays.pixels.data(), rays.count, sel.keep.data(), P, out.data()));
   return out;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The CUDA side of coarse tracing (coarse_tracing_cuda.cu): the coarse_tracing_ops.h passes on Device::CUDA.
-// In a build without CUDA these throw goris::Error (coarse_tracing_no_cuda.cpp).
+// Without CUDA the call throws goris::Error (GORIS_CUDA_CALL).
 #include <cstddef>
 #include <cstdint>
 

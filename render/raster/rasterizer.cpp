@@ -1,6 +1,7 @@
 // Public entry points: validate, convert the scene model's views, dispatch to the CPU or CUDA driver.
 #include "render/raster/rasterizer.h"
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/util/error.h"
 #include "render/raster/raster_cpu.h"
 #include "render/raster/rasterizer_cuda.h"
@@ -40,7 +41,7 @@ RasterOutput rasterize(const GaussianView& gaussians, const Camera& camera, cons
   const GaussiansT<float> g = to_raster_view(gaussians);
   if (device == Device::CUDA) {
     raster::validate_inputs(g, camera);
-    raster::forward_cuda(g, camera, settings, out.gbuffer, out.state);
+    GORIS_CUDA_CALL("rasterizer", raster::forward_cuda(g, camera, settings, out.gbuffer, out.state));
   } else {
     raster::forward_cpu(g, camera, settings, out.gbuffer, out.state);
   }
@@ -51,7 +52,7 @@ void rasterize_backward(const GaussianView& gaussians, const RasterState& state,
                         const GaussianGradView& grads) {
   const GaussiansT<float> g = to_raster_view(gaussians);
   if (state.device == Device::CUDA)
-    raster::backward_cuda(g, state, grad_out, to_raster_grads(grads));
+    GORIS_CUDA_CALL("rasterizer", raster::backward_cuda(g, state, grad_out, to_raster_grads(grads)));
   else
     raster::backward_cpu(g, state, grad_out, to_raster_grads(grads));
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The CUDA rasterizer driver (rasterizer_cuda.cu). In a build without CUDA these throw goris::Error.
+// The CUDA rasterizer driver (rasterizer_cuda.cu). Without CUDA the call throws goris::Error (GORIS_CUDA_CALL).
 #include "render/raster/raster_types.h"
 
 namespace goris::raster {

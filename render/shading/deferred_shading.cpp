@@ -3,6 +3,7 @@
 
 #include <type_traits>
 
+#include "core/compute/cuda_dispatch.h"
 #include "render/shading/shading_checks.h"
 #include "render/shading/shading_cuda.h"
 #include "render/shading/shading_ops.h"
@@ -61,7 +62,7 @@ ReflectionRaysT<T> make_reflection_rays(const Camera& cam, const SurfaceImagesT<
   check_camera(who, cam, s.width, s.height);
   check_surface(who, s, d);
   if (on_cuda<T>(who, d)) {
-    if constexpr (std::is_same_v<T, float>) return shading::cuda::make_rays(cam, s, st);
+    if constexpr (std::is_same_v<T, float>) return GORIS_CUDA_CALL("shading", shading::cuda::make_rays(cam, s, st));
   }
   return ops::make_rays(Device::CPU, cam, s, st);
 }
@@ -78,7 +79,8 @@ void reflection_rays_backward(const Camera& cam, const SurfaceImagesT<T>& s, con
   if (rays.count == 0) return;
   if (on_cuda<T>(who, d)) {
     if constexpr (std::is_same_v<T, float>)
-      shading::cuda::rays_backward(cam, s, st, rays.pixels.data(), rays.count, dorigins, ddirections, g);
+      GORIS_CUDA_CALL("shading", shading::cuda::rays_backward(cam, s, st, rays.pixels.data(), rays.count, dorigins,
+                                                              ddirections, g));
     return;
   }
   ops::rays_backward(Device::CPU, cam, s, st, rays.pixels.data(), rays.count, dorigins, ddirections, g);
@@ -101,7 +103,8 @@ void traced_to_images(const ReflectionRaysT<T>& rays, int width, int height, con
   V = Buffer<T>(P, d);
   if (on_cuda<T>(who, d)) {
     if constexpr (std::is_same_v<T, float>)
-      shading::cuda::traced_to_images(P, rays.pixels.data(), n, color.data(), alpha.data(), ts, L.data(), V.data());
+      GORIS_CUDA_CALL("shading", shading::cuda::traced_to_images(P, rays.pixels.data(), n, color.data(), alpha.data(),
+                                                                 ts, L.data(), V.data()));
     return;
   }
   for (std::size_t i = 0; i < n; ++i)
@@ -128,8 +131,9 @@ void traced_to_images_backward(const ReflectionRaysT<T>& rays, int width, int he
   const T* dv = dV.empty() ? nullptr : dV.data();
   if (on_cuda<T>(who, d)) {
     if constexpr (std::is_same_v<T, float>)
-      shading::cuda::traced_to_images_backward(P, rays.pixels.data(), n, color.data(), alpha.data(), ts, dL.data(),
-                                               dv, dcolor.data(), dalpha.data());
+      GORIS_CUDA_CALL("shading", shading::cuda::traced_to_images_backward(P, rays.pixels.data(), n, color.data(),
+                                                                          alpha.data(), ts, dL.data(), dv,
+                                                                          dcolor.data(), dalpha.data()));
     return;
   }
   ops::traced_to_images_backward(Device::CPU, P, rays.pixels.data(), n, color.data(), alpha.data(), ts, dL.data(),
@@ -156,7 +160,8 @@ ShadeOutputsT<T> shade(const Camera& cam, const SurfaceImagesT<T>& s, const Buff
   T* ldir = maps ? out.env_radiance.data() : nullptr;
   if (on_cuda<T>(who, d)) {
     if constexpr (std::is_same_v<T, float>)
-      shading::cuda::shade(cam, s, L.data(), V.data(), env, st, out.color.data(), glossy, ldir);
+      GORIS_CUDA_CALL("shading", shading::cuda::shade(cam, s, L.data(), V.data(), env, st, out.color.data(), glossy,
+                                                      ldir));
     return out;
   }
   ops::shade(Device::CPU, cam, s, L.data(), V.data(), env, st, out.color.data(), glossy, ldir);
@@ -181,8 +186,8 @@ void shade_backward(const Camera& cam, const SurfaceImagesT<T>& s, const Buffer<
   dV = Buffer<T>(P, d);
   if (on_cuda<T>(who, d)) {
     if constexpr (std::is_same_v<T, float>)
-      shading::cuda::shade_backward(cam, s, L.data(), V.data(), env, st, dcolor.data(), g, dL.data(), dV.data(),
-                                    env_grad);
+      GORIS_CUDA_CALL("shading", shading::cuda::shade_backward(cam, s, L.data(), V.data(), env, st, dcolor.data(), g,
+                                                               dL.data(), dV.data(), env_grad));
     return;
   }
   ops::shade_backward(Device::CPU, cam, s, L.data(), V.data(), env, st, dcolor.data(), g, dL.data(), dV.data(),

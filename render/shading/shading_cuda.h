@@ -1,6 +1,6 @@
 #pragma once
 // The CUDA side of deferred shading (shading_cuda.cu): the shading_ops.h drivers on Device::CUDA, float only.
-// In a build without CUDA these throw goris::Error (shading_no_cuda.cpp).
+// Without CUDA the call throws goris::Error (GORIS_CUDA_CALL).
 #include <cstdint>
 
 #include "core/io/camera.h"

@@ -3,6 +3,7 @@
 #include <string>
 #include <type_traits>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/memory.h"
 #include "render/ssf/pyramid_passes.h"
 #include "render/ssf/ssf_checks.h"
@@ -103,9 +104,9 @@ void GlossyFilter<T>::forward(const Buffer<T>& x, int channels, int height, int 
     build_levels<Device::CPU>(P);
     sample_all<Device::CPU>(P, rs_.data(), out.data());
   } else if constexpr (std::is_same_v<T, float>) {
-    cuda::normalise_normals(normals.data(), P.normal[0], plane);
-    cuda::build_levels(P);
-    cuda::sample_all(P, rs_.data(), out.data());
+    GORIS_CUDA_CALL(kOp, cuda::normalise_normals(normals.data(), P.normal[0], plane));
+    GORIS_CUDA_CALL(kOp, cuda::build_levels(P));
+    GORIS_CUDA_CALL(kOp, cuda::sample_all(P, rs_.data(), out.data()));
   }
 }
 
@@ -123,7 +124,7 @@ void GlossyFilter<T>::backward(const Buffer<T>& grad_out, Buffer<T>* grad_x, Buf
     if (d == Device::CPU)
       backward_rs<Device::CPU>(P, rs_.data(), grad_out.data(), grad_rs->data());
     else if constexpr (std::is_same_v<T, float>)
-      cuda::backward_rs(P, rs_.data(), grad_out.data(), grad_rs->data());
+      GORIS_CUDA_CALL(kOp, cuda::backward_rs(P, rs_.data(), grad_out.data(), grad_rs->data()));
   }
   if (!grad_x) return;
   grad_scratch_.resize(dims_.size());
@@ -132,7 +133,7 @@ void GlossyFilter<T>::backward(const Buffer<T>& grad_out, Buffer<T>* grad_x, Buf
   if (d == Device::CPU)
     backward_x<Device::CPU>(P, S, rs_.data(), grad_out.data(), grad_x->data());
   else if constexpr (std::is_same_v<T, float>)
-    cuda::backward_x(P, S, rs_.data(), grad_out.data(), grad_x->data());
+    GORIS_CUDA_CALL(kOp, cuda::backward_x(P, S, rs_.data(), grad_out.data(), grad_x->data()));
 }
 
 template <class T>

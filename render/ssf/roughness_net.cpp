@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/compute/memory.h"
 #include "core/compute/primitives.h"
 #include "render/ssf/conv_passes.h"
@@ -29,31 +30,32 @@ struct Layers {
   Device d;
   void conv(const ConvShape& s, const T* in, const T* w, const T* b, T* out) const {
     if (d == Device::CPU) return conv_forward<Device::CPU>(s, in, w, b, out);
-    if constexpr (std::is_same_v<T, float>) cuda::conv_forward(s, in, w, b, out);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::conv_forward(s, in, w, b, out));
   }
   void conv_input(const ConvShape& s, const T* w, const T* g_out, T* g_in) const {
     if (d == Device::CPU) return conv_backward_input<Device::CPU>(s, w, g_out, g_in);
-    if constexpr (std::is_same_v<T, float>) cuda::conv_backward_input(s, w, g_out, g_in);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::conv_backward_input(s, w, g_out, g_in));
   }
   void conv_params(const ConvShape& s, const T* in, const T* g_out, T* partials, T* g_w, T* g_b) const {
     if (d == Device::CPU) return conv_backward_params<Device::CPU>(s, in, g_out, partials, g_w, g_b);
-    if constexpr (std::is_same_v<T, float>) cuda::conv_backward_params(s, in, g_out, partials, g_w, g_b);
+    if constexpr (std::is_same_v<T, float>)
+      GORIS_CUDA_CALL(kOp, cuda::conv_backward_params(s, in, g_out, partials, g_w, g_b));
   }
   void relu(T* x, std::size_t n) const {
     if (d == Device::CPU) return relu_forward<Device::CPU>(x, n);
-    if constexpr (std::is_same_v<T, float>) cuda::relu_forward(x, n);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::relu_forward(x, n));
   }
   void relu_back(const T* y, T* g, std::size_t n) const {
     if (d == Device::CPU) return relu_backward<Device::CPU>(y, g, n);
-    if constexpr (std::is_same_v<T, float>) cuda::relu_backward(y, g, n);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::relu_backward(y, g, n));
   }
   void sigmoid(const T* z, T* y, std::size_t n) const {
     if (d == Device::CPU) return sigmoid_forward<Device::CPU>(z, y, n);
-    if constexpr (std::is_same_v<T, float>) cuda::sigmoid_forward(z, y, n);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::sigmoid_forward(z, y, n));
   }
   void sigmoid_back(const T* y, T* g, std::size_t n) const {
     if (d == Device::CPU) return sigmoid_backward<Device::CPU>(y, g, n);
-    if constexpr (std::is_same_v<T, float>) cuda::sigmoid_backward(y, g, n);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::sigmoid_backward(y, g, n));
   }
   void add(const T* a, T* acc, std::size_t n) const { add_into(d, a, acc, n); }
 };

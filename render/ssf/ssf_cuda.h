@@ -1,6 +1,6 @@
 #pragma once
 // CUDA entry points of the glossy filter and the roughness net (ssf_cuda.cu: the same passes as the CPU,
-// instantiated for Device::CUDA and float). In a build without CUDA they throw goris::Error (ssf_no_cuda.cpp).
+// instantiated for Device::CUDA and float). Without CUDA the call throws goris::Error (GORIS_CUDA_CALL).
 #include <cstddef>
 
 #include "render/ssf/conv_passes.h"

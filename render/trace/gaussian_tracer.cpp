@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/compute/cuda_dispatch.h"
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
 #include "render/trace/embree_accel.h"
@@ -119,7 +120,7 @@ void GaussianTracer::build(const GaussianView& gaussians, const float* emit) {
   m.refitted = false;
   const GaussiansT<float> g = to_raster_view(gaussians);
   if (m.device == Device::CUDA) {
-    build_cuda(g, m.prims, m.lbvh);  // the LBVH is rebuilt each time: it is cheap on the GPU
+    GORIS_CUDA_CALL(kWho, build_cuda(g, m.prims, m.lbvh));  // the LBVH is rebuilt each time: it is cheap on the GPU
   } else {
     check_finite_cpu(gaussians, emit);
     build_prims<Device::CPU>(g, m.prims);
@@ -140,7 +141,7 @@ void GaussianTracer::trace(const TraceRays& rays, const TraceOutputs& out) const
   if (rays.count == 0) return;
   const TraceScene<float> sc = m.scene();
   if (m.device == Device::CUDA) {
-    forward_cuda(sc, m.lbvh.view(), rays, out);
+    GORIS_CUDA_CALL(kWho, forward_cuda(sc, m.lbvh.view(), rays, out));
   } else if (m.settings.cpu_accel == TraceAccel::Embree) {
     forward_cpu(sc, rays, m.settings.hits_per_round, out, [&] { return m.embree->collector(sc.prims); });
   } else {
@@ -158,7 +159,8 @@ void GaussianTracer::backward(const TraceRays& rays, const TraceOutputGrads& gra
   const GaussiansT<float> g = to_raster_view(m.view);
   const GaussianGradsT<float> gg = to_raster_grads(grads);
   if (m.device == Device::CUDA) {
-    backward_cuda(sc, m.lbvh.view(), g, rays, grad_out, gg, ray_grads, grad_emit, m.settings.max_grad_scratch_bytes);
+    GORIS_CUDA_CALL(kWho, backward_cuda(sc, m.lbvh.view(), g, rays, grad_out, gg, ray_grads, grad_emit,
+                                        m.settings.max_grad_scratch_bytes));
   } else if (m.settings.cpu_accel == TraceAccel::Embree) {
     backward_cpu(sc, g, rays, m.settings.hits_per_round, grad_out, gg, ray_grads, grad_emit,
                  m.settings.max_grad_scratch_bytes, [&] { return m.embree->collector(sc.prims); });

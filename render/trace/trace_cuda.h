@@ -1,7 +1,7 @@
 #pragma once
 // The CUDA backend of the tracer (trace_cuda.cu): prims and the LBVH built on the GPU, one thread per ray
-// with a fixed-size hit list in registers/local memory, gradients summed in a fixed order. In a build without
-// CUDA these throw goris::Error (trace_no_cuda.cpp).
+// with a fixed-size hit list in registers/local memory, gradients summed in a fixed order. Without CUDA
+// the call throws goris::Error (GORIS_CUDA_CALL).
 #include "render/raster/raster_types.h"
 #include "render/trace/trace_build.h"
 #include "render/trace/trace_types.h"

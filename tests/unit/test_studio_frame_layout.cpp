@@ -167,3 +167,10 @@ TEST(StudioFrameLayout, UploadPathFollowsWhereTheImageIs) {
   EXPECT_EQ(upload_path(Device::CUDA, true, true), UploadPath::DeviceToHost);  // interop failed once: no retry
   EXPECT_EQ(upload_path(Device::CUDA, false, false), UploadPath::DeviceToHost);
 }
+
+TEST(StudioFrameLayout, CpuOnlyBuildNamesTheDisplay) {
+  if (cuda_compiled()) GTEST_SKIP() << "this build has the CUDA backend";
+  float out[4] = {};
+  test::expect_error([&] { frame_layout::fill(Device::CUDA, out, 1, 4, 0, 1.0f); },
+                     "display: CUDA device requested but this build has no CUDA backend");
+}

@@ -38,7 +38,7 @@ void clamp_unit_on(const float* in, std::size_t n, float* out) {
   parallel_for(D, n, [=] GORIS_HD(std::size_t i) { out[i] = fminf(fmaxf(in[i], 0.0f), 1.0f); });
 }
 
-// The CUDA instantiations (frame_layout_cuda.cu; frame_layout_no_cuda.cpp throws in builds without CUDA).
+// The CUDA instantiations (frame_layout_cuda.cu; a build without CUDA throws at the call, GORIS_CUDA_CALL).
 namespace cuda {
 void interleave(const float* planar, int first, int count, std::size_t hw, float* out, int stride, int at);
 void fill(float* out, std::size_t hw, int stride, int at, float value);
