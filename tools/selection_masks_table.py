@@ -11,9 +11,14 @@ WITHOUT masks, and the removal each set of masks drives, for
 Each removal runs on a copy of the same stage-1 run (`goris remove`, then `goris eval --split test`: PSNR and
 ghost ratio in the changed region).
 
-  tools/selection_masks_table.py --work DIR [--goris build/bin/goris] [--iters 2000] [--resolution 128] SCENE...
+  tools/selection_masks_table.py --work DIR [--goris build/bin/goris] [--iters 2000] [--resolution 128]
+                                 [--stage1 PATTERN] SCENE...
 
-Stage 1 runs go to DIR/<scene>/run (reused when finished: its point_cloud.ply exists), the removals to
+Stage 1 runs go to DIR/<scene>/run (reused when finished: its point_cloud.ply exists), or, with --stage1,
+are the finished runs PATTERN names ({scene} replaced by the scene's folder name; e.g. a suite bench's
+OUT/runs/{scene}/medium/stage1_default/run). Such a run may have been trained with the object masks: they
+teach only the label channel, whose gradients never reach the geometry (ImageGradients::extras_detached), so
+its Gaussians are those of the same run without masks, and neither selection reads the label. The removals to
 DIR/<scene>/<method>/run (reused when evaluated: removal/metrics.json exists); the table is printed on stdout
 with paths relative to the current folder. Standard library only (PNG masks are decoded here).
 """
@@ -106,13 +111,17 @@ def main():
     ap.add_argument("--iters", type=int, default=2000)
     ap.add_argument("--resolution", type=int, default=128)
     ap.add_argument("--device", default="cpu")
+    ap.add_argument("--stage1", help="finished stage-1 runs to use instead of training: a path with {scene}")
     a = ap.parse_args()
     rows = []
     for scene in a.scenes:
         name = os.path.basename(os.path.normpath(scene))
         work = os.path.abspath(os.path.join(a.work, name))
-        run_dir = os.path.join(work, "run")
+        run_dir = a.stage1.replace("{scene}", name) if a.stage1 else os.path.join(work, "run")
         os.makedirs(work, exist_ok=True)
+        if a.stage1 and not os.path.exists(os.path.join(run_dir, "point_cloud.ply")):
+            print(f"{name}: no finished stage-1 run at {run_dir}", file=sys.stderr)
+            continue
         if not os.path.exists(os.path.join(run_dir, "point_cloud.ply")):
             if not run([a.goris, "train", scene, "--out", run_dir, "--iters", str(a.iters), "--resolution",
                         str(a.resolution), "--device", a.device, "--set", "use_object_masks=false"],
@@ -165,12 +174,16 @@ def main():
         rows.append(row)
 
     print("# Object masks from a selection: IoU against the exact masks, and the removal they drive\n")
-    opts = (f" --iters {a.iters}" if a.iters != 2000 else "") + (
-        f" --resolution {a.resolution}" if a.resolution != 128 else "")
+    opts = (f" --iters {a.iters}" if a.iters != 2000 and not a.stage1 else "") + (
+        f" --resolution {a.resolution}" if a.resolution != 128 and not a.stage1 else "") + (
+        f" --stage1 {a.stage1}" if a.stage1 else "")
+    stage1 = (f"stage 1: {a.iters} iterations at {a.resolution} px, trained without the object masks; " if not a.stage1
+              else "stage 1: the runs --stage1 names, whose object masks taught only the label (its gradients never "
+                   "reach the geometry, so the Gaussians are those of a run without masks; neither selection reads "
+                   "the label); ")
     print("Written by `tools/selection_masks_table.py --work DIR" + opts + " " + " ".join(a.scenes) +
           " > docs/results/selection_masks.md` (SUITE: the generalization suite's rendered scenes, "
-          f"`goris bench pipeline --suite generalization`; stage 1: {a.iters} iterations at {a.resolution} px, "
-          "trained without the object masks; "
+          "`goris bench pipeline --suite generalization`; " + stage1 +
           "`goris select ... --write-masks DIR --masks-iou` on every training view; the removal: "
           "`goris select RUN --masks [DIR]`, `goris remove`, `goris eval --split test` on a copy of the same run).\n")
     print("| scene | exact masks: mean / min IoU | two-click: mean / min IoU | two-click: selected / Gaussians | "
