@@ -183,7 +183,7 @@ def main():
                    "the label); ")
     print("Written by `tools/selection_masks_table.py --work DIR" + opts + " " + " ".join(a.scenes) +
           " > docs/results/selection_masks.md` (SUITE: the generalization suite's rendered scenes, "
-          "`goris bench pipeline --suite generalization`; " + stage1 +
+          "`goris bench pipeline --suite generalization --out BENCH`; " + stage1 +
           "`goris select ... --write-masks DIR --masks-iou` on every training view; the removal: "
           "`goris select RUN --masks [DIR]`, `goris remove`, `goris eval --split test` on a copy of the same run).\n")
     print("| scene | exact masks: mean / min IoU | two-click: mean / min IoU | two-click: selected / Gaussians | "
@@ -217,7 +217,8 @@ its view (median depth and photo colour on a tolerance ladder), lifted to the Ga
 weight in the clicked views, closed, then voted once more by every view's coverage mask. The removal columns
 drive `goris remove` with each set of masks on copies of the same stage-1 run (changed region: the pixels
 where the test views with and without the target differ; ghost: what is left of the target there, 0 is
-none). docs/lab/2026-12-04-click-regions-and-mask-edges.md has the variants that lost.""")
+none). The variants that lost: docs/lab/2026-12-04-click-regions-and-mask-edges.md and
+docs/lab/2026-12-05-intrinsic-suite-and-two-click-masks.md.""")
 
 if __name__ == "__main__":
     main()
