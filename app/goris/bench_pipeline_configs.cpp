@@ -23,9 +23,6 @@ const std::vector<ConfigSpec>& ladder() {
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
        "intrinsic stage 1 with the screen-space filter"},
       {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks (reflections and the target's shadow) and the target's mirror twin"},
-      {"full-geonormals", "intrinsic_geonormals", {"--mode", "intrinsic", "--set", "intrinsic_geometry_normals=true"}, "",
-       false, "full with the normal prior read off the warmed-up geometry (the glossy plane's normal, else the smoothed "
-       "depth normal)"},
       {"planar", "intrinsic_planar", {"--mode", "intrinsic", "--preset", "planar-glossy"}, "", false,
        "full with `--preset planar-glossy` (the table opaque and held to its plane, exact normals)"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,

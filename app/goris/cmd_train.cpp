@@ -32,7 +32,6 @@
 #include "core/util/error.h"
 #include "render/train/intrinsic_renderer.h"
 #include "render/train/auto_mode.h"
-#include "render/train/geometry_normals.h"
 #include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
 
@@ -196,13 +195,9 @@ void run_train(const Options& o) {
   Trainer::RunOptions ro;
   ro.run_dir = run_dir;
   ro.progress_every = tty ? 10 : config.log_interval;
-  ro.before_step = [&](Trainer& t) {  // --mode auto's decision after the warm-up, then the geometry's normal prior
+  ro.before_step = [&](Trainer& t) {  // --mode auto's decision after the warm-up
     if (const auto d = apply_auto_mode(t, run_dir)) {
       std::printf("%s%s\n", tty ? "\n" : "", d->message().c_str());
-      std::fflush(stdout);
-    }
-    if (const auto note = apply_geometry_normals(t, run_dir)) {
-      std::printf("%s%s\n", tty ? "\n" : "", note->c_str());
       std::fflush(stdout);
     }
   };

@@ -163,7 +163,6 @@ void visit_fields(Config& c, F&& visit) {
     {"Intrinsic mode", "Weight of the object-label loss against the object masks."});
   f("intrinsic_normals", c.intrinsic.normals,
     {"Intrinsic mode", "Folder of normal-prior maps (empty = none). Also `--normals`."});
-  f("intrinsic_geometry_normals", c.intrinsic.geometry_normals);
   f("intrinsic_auto_mask_fraction", c.intrinsic.auto_mask_fraction);
   f("intrinsic_detect_neighbours", c.intrinsic.detect_neighbours);
   f("intrinsic_detect_threshold", c.intrinsic.detect_threshold);

@@ -111,10 +111,6 @@ struct IntrinsicSettings {
   // "mask", with the prune and the sphere above (docs/design/deviations.md, Emission from the glossy masks).
   std::string emit = "mask";
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
-  // Without such a folder: the prior read off the warmed-up geometry at the first shading iteration (the
-  // glossy plane's normal on its pixels, else the smoothed depth normal; render/train/geometry_normals.h),
-  // written to RUN/geometry_normals, which then becomes `normals`. Off until the suite says otherwise.
-  bool geometry_normals = false;
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction
   // of their pixels are glossy. Without: glossy regions detected by multi-view photo-consistency
   // (render/train/glossy_detection.h): a pixel is glossy when its colour lies more than detect_threshold

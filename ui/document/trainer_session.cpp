@@ -7,7 +7,6 @@
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "render/train/auto_mode.h"
-#include "render/train/geometry_normals.h"
 #include "render/train/raster_renderer.h"
 #include "render/train/run_renderer.h"
 #include "render/train/training_setup.h"
@@ -139,7 +138,6 @@ std::string TrainerSession::work(const TrainRequest& rq, const std::atomic<bool>
           shading_ = std::make_shared<const ShadingSource>(ShadingSource{t.config(), t.extent()});
         job_.set_status(d->message());
       }
-      if (const auto note = apply_geometry_normals(t, run_dir_)) job_.set_status(*note);
     };
     const Trainer::RunResult result = trainer_->run(ro);
     const TrainerState& st = trainer_->state();
