@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 #include <type_traits>
 
@@ -271,8 +272,6 @@ void TrainConfig::validate(const std::string& what) const {
   if (in.detect_settled < 0) fail("intrinsic_detect_settled must be >= 0");
   if (!(in.detect_plane_tolerance >= 0) || !std::isfinite(in.detect_plane_tolerance))
     fail("intrinsic_detect_plane_tolerance must be finite and >= 0");
-  if (in.emit != "region" && in.emit != "mask" && in.emit != "max")
-    fail("intrinsic_emit must be region, mask or max");
   for (float w : {in.lr_env, in.lr_env_final, in.lr_net, in.normal_prior, in.normal_prior_final, in.smoothness,
                   in.region, in.label})
     if (!(w >= 0) || !std::isfinite(w)) fail("intrinsic learning rates and loss weights must be finite and >= 0");
@@ -327,8 +326,11 @@ void to_json(nlohmann::json& j, const TrainConfig& c) {
   j = nlohmann::json::object();
   j["config_version"] = kConfigVersion;
   visit_fields(c, [&](const char* name, const auto& v, Doc) {
-    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, glm::vec3>)
+    using T = std::decay_t<decltype(v)>;
+    if constexpr (std::is_same_v<T, glm::vec3>)
       j[name] = vec_json(v);
+    else if constexpr (std::is_enum_v<T>)
+      j[name] = enum_name(v);
     else
       j[name] = v;
   });
@@ -369,6 +371,10 @@ void read_field(const nlohmann::json& x, T& v) {
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (!x.is_string()) throw Error("must be a string (in quotes), got " + x.dump());
     v = x.get<std::string>();
+  } else if constexpr (std::is_enum_v<T>) {
+    const std::optional<T> e = x.is_string() ? enum_from_name<T>(x.get<std::string>()) : std::nullopt;
+    if (!e) throw Error("must be " + enum_choices<T>() + ", got " + x.dump());
+    v = *e;
   } else {
     v = x.get<T>();
   }
@@ -442,6 +448,8 @@ ConfigKeyInfo key_info(const char* name, const T& v, Doc doc) {
     k.type = "number", k.default_value = real_text(v);
   } else if constexpr (std::is_same_v<T, std::string>) {
     k.type = "text", k.default_value = v.empty() ? "\"\"" : v;
+  } else if constexpr (std::is_enum_v<T>) {
+    k.type = enum_choices<T>(), k.default_value = enum_name(v);
   } else {
     static_assert(std::is_same_v<T, glm::vec3>);
     k.type = "3 numbers", k.default_value = "[" + real_text(v.x) + ", " + real_text(v.y) + ", " + real_text(v.z) + "]";

@@ -2,16 +2,27 @@
 // Everything that defines a training run (the numbers of docs/design/conventions.md and docs/design/maths.md
 // as defaults). Stored as config.json in the run folder and inside every checkpoint, so a run can be resumed
 // or repeated exactly.
+#include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
 #include "core/train/densify.h"
+#include "core/util/named_enum.h"
 
 namespace goris {
+
+// Which Gaussians emit into traced rays (IntrinsicSettings::emit; `intrinsic_emit` in config.json).
+enum class EmitSource { Region, Mask, Max };
+template <>
+struct EnumNames<EmitSource> {
+  static constexpr std::array<std::pair<EmitSource, const char*>, 3> names{
+      {{EmitSource::Region, "region"}, {EmitSource::Mask, "mask"}, {EmitSource::Max, "max"}}};
+};
 
 struct LearningRates {
   float position_init = 1.6e-4f;  // x scene extent, decays exponentially to position_final
@@ -103,13 +114,13 @@ struct IntrinsicSettings {
   bool material_losses_in_warmup = true;
   float region = 1.0f;             // mean(M_gt M)
   float label = 1.0f;              // BCE of the rendered label against the object masks
-  // Which Gaussians emit into traced rays: "region" (the paper: the learned region weight M) or "mask"
+  // Which Gaussians emit into traced rays: region (the paper: the learned region weight M) or mask
   // (1 - the Gaussian's mean glossy-mask value over the training views its centre projects into, refreshed
-  // every 25 iterations; needs glossy masks) or "max" (the larger of the two; M keeps its tracer gradient
-  // where it is the larger). Renders of a trained run recompute "mask" weights from the same masks
+  // every 25 iterations; needs glossy masks) or max (the larger of the two; M keeps its tracer gradient
+  // where it is the larger). Renders of a trained run recompute mask weights from the same masks
   // (load_run_renderer), so eval, render, export and the removal see the model that was trained. Default
-  // "mask", with the prune and the sphere above (docs/design/deviations.md, Emission from the glossy masks).
-  std::string emit = "mask";
+  // mask, with the prune and the sphere above (docs/design/deviations.md, Emission from the glossy masks).
+  EmitSource emit = EmitSource::Mask;
   std::string normals;             // folder of normal-prior maps (empty = none); see core/train/train_views.h
   // --mode auto (render/train/auto_mode.h). With glossy masks: intrinsic when at least auto_mask_fraction
   // of their pixels are glossy. Without: glossy regions detected by multi-view photo-consistency

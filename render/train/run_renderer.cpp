@@ -51,7 +51,8 @@ std::shared_ptr<DifferentiableRenderer> load_run_renderer(const std::filesystem:
     Trainer::load_renderer_state(*ck, *ir);
     ir->set_shading(true);
     // Emission from the glossy masks (not learned): the trainer's weights are not saved, so recompute them.
-    if (config.intrinsic.emit != "region") ir->set_emit_masks(training_glossy_masks(config), config.intrinsic.emit == "max");
+    if (config.intrinsic.emit != EmitSource::Region)
+      ir->set_emit_masks(training_glossy_masks(config), config.intrinsic.emit == EmitSource::Max);
   }
   return r;
 }

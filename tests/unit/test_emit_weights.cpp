@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/train/emit_weights.h"
+#include "core/train/train_config.h"
 #include "render/removal/removed_glossy_masks.h"
 #include "render/train/auto_mode.h"
 #include "tests/support/test_support.h"
@@ -117,12 +120,18 @@ TEST(EmitWeights, RemovedTargetTakesTheSurroundingGlossyValue) {
   test::expect_error([&] { fill_removed_glossy_masks(one, small); }, "training view r_000");
 }
 
-TEST(EmitWeights, ConfigAcceptsOnlyRegionOrMask) {
+// The setting is read by name, written back by the same name, and anything else is refused with the choices.
+TEST(EmitWeights, ConfigAcceptsOnlyItsEmitSources) {
   TrainConfig c;
-  c.intrinsic.emit = "mask";
-  EXPECT_NO_THROW(c.validate("test"));
-  c.intrinsic.emit = "glossy";
-  test::expect_error([&] { c.validate("test"); }, "intrinsic_emit");
+  apply_config_overrides({"intrinsic_emit=max"}, c, "set");
+  EXPECT_EQ(c.intrinsic.emit, EmitSource::Max);
+  nlohmann::json j;
+  to_json(j, c);
+  EXPECT_EQ(j.at("intrinsic_emit"), "max");
+  test::expect_error([&] { apply_config_overrides({"intrinsic_emit=glossy"}, c, "set"); },
+                     "'intrinsic_emit' must be region, mask or max, got \"glossy\"");
+  test::expect_error([&] { apply_config_overrides({"intrinsic_emit=1"}, c, "set"); }, "must be region, mask or max");
+  EXPECT_EQ(c.intrinsic.emit, EmitSource::Max);
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ TEST(ConfigPresets, FileByPathAndBadFiles) {
   TrainConfig c;
   apply_config_preset(p, c);
   EXPECT_EQ(c.alpha_weight, 0.5f);
-  EXPECT_EQ(c.intrinsic.emit, "max");
+  EXPECT_EQ(c.intrinsic.emit, EmitSource::Max);
 
   const auto refused = [&](const char* name, const std::string& text, const std::string& problem) {
     SCOPED_TRACE(name);
@@ -133,7 +133,7 @@ TEST(ConfigMigration, RunFolderOfAnOlderVersionOpens) {
   EXPECT_EQ(c.mode, "intrinsic");
   EXPECT_EQ(c.iterations, 2000);
   EXPECT_EQ(c.data, "/data/steel_snowman");
-  EXPECT_EQ(c.intrinsic.emit, "region");  // that version's default, written in the file
+  EXPECT_EQ(c.intrinsic.emit, EmitSource::Region);  // that version's default, written in the file
   EXPECT_EQ(c.intrinsic.detect_settled, 4000);
   nlohmann::json j = nlohmann::json::parse(read_text_file(old_config("46a5b55")));
   const ConfigMigrationResult m = migrate_config_json(j);
@@ -157,7 +157,7 @@ TEST(ConfigMigration, RunFolderOfAnOlderVersionOpens) {
 TEST(ConfigMigration, KeysAnOlderFileLacksReadAsItsBehaviour) {
   TrainConfig c;
   from_json(nlohmann::json::parse(read_text_file(old_config("b4b5c26"))), c);
-  EXPECT_EQ(c.intrinsic.emit, "region");
+  EXPECT_EQ(c.intrinsic.emit, EmitSource::Region);
   EXPECT_EQ(c.intrinsic.env_distance, 0.0f);
   EXPECT_EQ(c.intrinsic.prune_mirror_world, 0.0f);
   EXPECT_FALSE(c.intrinsic.prune_mirror_world_repeat);

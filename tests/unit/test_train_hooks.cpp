@@ -69,11 +69,11 @@ TEST(TrainHooks, TheConfigurationCreatesOnlyTheHooksItNeedsInAFixedOrder) {
   in.mode = "intrinsic";
   EXPECT_EQ(names(make_train_hooks(in, intrinsic_renderer)), (std::vector<std::string>{"emit_weights", "mirror_world"}))
       << "the default stage-1 setting: emit = mask and the mirror-world prune";
-  in.intrinsic.emit = "region";
+  in.intrinsic.emit = EmitSource::Region;
   in.intrinsic.prune_mirror_world = 0;
   EXPECT_TRUE(make_train_hooks(in, intrinsic_renderer).empty()) << "the paper's setting";
 
-  in.intrinsic.emit = "max";
+  in.intrinsic.emit = EmitSource::Max;
   in.intrinsic.prune_mirror_world = 0.05f;
   in.intrinsic.glossy_plane = true;
   in.depth_distortion_weight = 100;
@@ -88,7 +88,7 @@ TEST(TrainHooks, TheConfigurationCreatesOnlyTheHooksItNeedsInAFixedOrder) {
 TEST(TrainHooks, EmitWeightsAreGivenOnceAndRefreshedOnSchedule) {
   TrainConfig c;
   c.mode = "intrinsic";
-  c.intrinsic.emit = "max";
+  c.intrinsic.emit = EmitSource::Max;
   RecordingRenderer r(true);
   GaussianModel m = small_model(3);
   TrainView view;

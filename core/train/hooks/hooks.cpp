@@ -17,7 +17,7 @@ void HookStep::note(const std::string& text) { out.densify_note += (out.densify_
 TrainHooks make_train_hooks(const TrainConfig& config, const DifferentiableRenderer& renderer) {
   TrainHooks hooks;
   const bool intrinsic = config.mode == "intrinsic";
-  if (renderer.wants_extras() && config.intrinsic.emit != "region") hooks.push_back(std::make_unique<EmitWeightsHook>());
+  if (renderer.wants_extras() && config.intrinsic.emit != EmitSource::Region) hooks.push_back(std::make_unique<EmitWeightsHook>());
   if (config.depth_distortion_weight > 0) hooks.push_back(std::make_unique<DepthDistortionHook>());
   if (intrinsic && config.intrinsic.prune_mirror_world > 0) hooks.push_back(std::make_unique<MirrorWorldHook>());
   if (intrinsic && config.intrinsic.glossy_plane) hooks.push_back(std::make_unique<GlossyPlaneHook>());
@@ -27,7 +27,7 @@ TrainHooks make_train_hooks(const TrainConfig& config, const DifferentiableRende
 void EmitWeightsHook::before_forward(HookStep& s) {
   const bool refresh = weights_.size() != s.model.count() || s.iteration % kRefreshInterval == 0;
   if (refresh) weights_ = glossy_mask_emit_weights(s.model, s.views);
-  if (refresh || !given_) s.renderer.set_emit_weights(weights_, s.config.intrinsic.emit == "max");
+  if (refresh || !given_) s.renderer.set_emit_weights(weights_, s.config.intrinsic.emit == EmitSource::Max);
   given_ = true;
 }
 
