@@ -233,7 +233,6 @@ void TrainConfig::validate(const std::string& what) const {
   if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
   if (!(inpaint_appearance_weight >= 0) || !(inpaint_material_weight >= 0))
     fail("inpaint_appearance_weight and inpaint_material_weight must be >= 0");
-  if (nan_policy != "recover" && nan_policy != "stop") fail("nan_policy must be recover or stop");
   if (!(nan_lr_factor > 0 && nan_lr_factor <= 1)) fail("nan_lr_factor must lie in (0, 1]");
   if (nan_max_skips < 1) fail("nan_max_skips must be at least 1");
   const IntrinsicSettings& in = intrinsic;

@@ -16,6 +16,13 @@
 
 namespace goris {
 
+// What training does on a non-finite loss or gradient (TrainConfig::nan_policy).
+enum class NanPolicy { Recover, Stop };
+template <>
+struct EnumNames<NanPolicy> {
+  static constexpr std::array<std::pair<NanPolicy, const char*>, 2> names{{{NanPolicy::Recover, "recover"}, {NanPolicy::Stop, "stop"}}};
+};
+
 // Which Gaussians emit into traced rays (IntrinsicSettings::emit; `intrinsic_emit` in config.json).
 enum class EmitSource { Region, Mask, Max };
 template <>
@@ -229,10 +236,10 @@ struct TrainConfig {
   float inpaint_appearance_weight = 1.0f;
   float inpaint_material_weight = 1.0f;
 
-  // Non-finite losses or gradients: "recover" skips the step and multiplies every learning rate by
-  // nan_lr_factor (stopping after nan_max_skips skipped steps in a row), "stop" stops at once. Either way
+  // Non-finite losses or gradients: recover skips the step and multiplies every learning rate by
+  // nan_lr_factor (stopping after nan_max_skips skipped steps in a row), stop stops at once. Either way
   // the message names the iteration, the view, the loss term or parameter group; checkpoints stay intact.
-  std::string nan_policy = "recover";
+  NanPolicy nan_policy = NanPolicy::Recover;
   float nan_lr_factor = 0.5f;
   int nan_max_skips = 10;
 

@@ -329,7 +329,7 @@ std::string Trainer::non_finite_parameter() const {
 }
 
 void Trainer::skip_step(int it, const std::string& problem, StepStats& out) {
-  if (config_.nan_policy == "stop")
+  if (config_.nan_policy == NanPolicy::Stop)
     throw Error(format_iteration_problem(it, problem + "; stopping (nan_policy stop), the checkpoints on disk are intact"));
   ++consecutive_skips_;
   if (consecutive_skips_ > config_.nan_max_skips)

@@ -296,7 +296,7 @@ TEST(Trainer, NonFiniteGradientIsSkippedNamingTheGroupOrStopsOnRequest) {
     EXPECT_NE(bad.problem.find("'position' (Gaussian 1)"), std::string::npos) << bad.problem;
     EXPECT_NE(bad.problem.find("l1="), std::string::npos) << "the loss terms are listed: " << bad.problem;
   }
-  config.nan_policy = "stop";
+  config.nan_policy = NanPolicy::Stop;
   Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
   t.step();
   try {
