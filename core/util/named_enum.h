@@ -7,6 +7,7 @@
 //   template <> struct EnumNames<Colour> {
 //     static constexpr std::array<std::pair<Colour, const char*>, 2> names{{{Colour::Red, "red"}, {Colour::Green, "green"}}};
 //   };
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,11 +16,6 @@ namespace goris {
 
 template <class E>
 struct EnumNames;  // specialised per enumeration: `static constexpr std::array<std::pair<E, const char*>, N> names`
-
-template <class E, class = void>
-struct has_enum_names : std::false_type {};
-template <class E>
-struct has_enum_names<E, std::void_t<decltype(EnumNames<E>::names)>> : std::true_type {};
 
 template <class E>
 const char* enum_name(E value) {
