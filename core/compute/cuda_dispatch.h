@@ -3,9 +3,9 @@
 // defined in a .cu file, declared in its X_cuda.h). With the CUDA backend the macro is the call. A build
 // without nvcc has no definitions of those drivers, so there the macro throws goris::Error naming `module`
 // ("rasterizer: CUDA device requested but this build has no CUDA backend") instead. The call still sits in
-// an unevaluated decltype there: it is type-checked against its declaration but never emitted, so no stub
-// definitions are needed. The macro has the call's type, so `return GORIS_CUDA_CALL(...)` also works for
-// drivers that return a value.
+// an unevaluated decltype there: it is type-checked against its declaration but never emitted, so that
+// build needs no definitions of the drivers. The macro has the call's type, so `return GORIS_CUDA_CALL(...)`
+// also works for drivers that return a value.
 #include "core/util/error.h"
 
 namespace goris::detail {
