@@ -157,4 +157,30 @@ PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
   return out;
 }
 
+std::optional<PlaneHeights> target_rest_heights(const std::vector<Camera>& cameras,
+                                                const std::vector<const std::vector<float>*>& masks,
+                                                const std::vector<glm::vec3>& centres,
+                                                const std::vector<std::uint8_t>& target) {
+  const glm::dvec3 up = mean_camera_up(cameras);
+  if (glm::length(up) == 0) return std::nullopt;
+  std::vector<double> h;
+  for (std::size_t g = 0; g < centres.size() && g < target.size(); ++g) {
+    if (!target[g]) continue;
+    int seen = 0, on_glossy = 0;
+    for (std::size_t i = 0; i < cameras.size() && i < masks.size(); ++i) {
+      const std::vector<float>* m = masks[i];
+      if (!m || m->size() != std::size_t(cameras[i].width) * cameras[i].height) continue;
+      const long long p = cameras[i].pixel_of(cameras[i].to_camera(centres[g]));
+      if (p < 0) continue;
+      ++seen;
+      on_glossy += (*m)[std::size_t(p)] > 0.5f;
+    }
+    if (2 * on_glossy <= seen) h.push_back(glm::dot(up, glm::dvec3(centres[g])));
+  }
+  if (h.size() < 10) return std::nullopt;
+  std::sort(h.begin(), h.end());
+  const double bottom = h[h.size() / 20], span = std::max(h[h.size() * 19 / 20] - bottom, 1e-6);
+  return PlaneHeights{bottom - 0.5 * span, bottom, bottom};
+}
+
 }  // namespace goris

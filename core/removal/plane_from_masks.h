@@ -11,6 +11,7 @@
 // Objects standing on the surface hide parts of it in some views, which lowers every candidate's score
 // alike. No model is needed: a radiance model of a mirror-like surface has no Gaussians on the surface
 // (it shows a mirror world behind it), which is why fitting the plane to Gaussians fails there.
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -50,6 +51,18 @@ PlaneFromMasks plane_from_glossy_masks(const std::vector<Camera>& cameras,
                                        const std::vector<const std::vector<float>*>& masks,
                                        const PlaneFromMasksSettings& settings = {},
                                        std::optional<PlaneHeights> heights = std::nullopt);
+
+// Where the target rests, as the search band for plane_from_glossy_masks: from the bottom of the target's own
+// Gaussians (5th percentile along up of the centres where target[i] is set) down to half the target's height,
+// preferring the bottom. Over a glossy surface a radiance model selects the target's reflection with it (a
+// mirror world below the surface, inside the target's masks in many views). Those Gaussians are seen on
+// glossy pixels, through the surface, while the target's own are seen on non-glossy ones (a glossy mask
+// leaves out what stands in front of the surface), so a Gaussian counts only when it falls on a glossy pixel
+// in at most half the views whose image it falls in. nullopt with fewer than 10 Gaussians counted.
+std::optional<PlaneHeights> target_rest_heights(const std::vector<Camera>& cameras,
+                                                const std::vector<const std::vector<float>*>& masks,
+                                                const std::vector<glm::vec3>& centres,
+                                                const std::vector<std::uint8_t>& target);
 
 // The cameras' mean up direction (minus the image's down axis in world space), unit; zero if they cancel.
 glm::dvec3 mean_camera_up(const std::vector<Camera>& cameras);

@@ -99,31 +99,25 @@ Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold
 MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target, bool intrinsic,
                             const std::vector<Camera>& cameras, const std::vector<TrainView>& views) {
   const std::vector<glm::vec3> centres = selection_points(model).position;
+  // The plane comes from the photos' glossy masks where there are any (plane_from_masks.h), in both modes:
+  // a radiance model of a mirror-like surface has no Gaussians on the surface to fit a plane to (it shows a
+  // mirror world behind it), and an intrinsic model's flat glossy Gaussians can lie in another plane (the
+  // tops of the objects on a mirror table) when few of them make the surface.
+  std::vector<const std::vector<float>*> masks;
+  for (const TrainView& v : views) masks.push_back(v.glossy_mask.empty() ? nullptr : &v.glossy_mask);
+  if (std::any_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) {
+    const PlaneFromMasks pm =
+        plane_from_glossy_masks(cameras, masks, {}, target_rest_heights(cameras, masks, centres, target));
+    if (pm.plane.found || !intrinsic) return twins_below_plane(centres, target, pm.plane);
+  }
+  // No masks: the plane of the intrinsic model's flat glossy Gaussians (its region channel).
   std::vector<std::uint8_t> glossy(model.count(), 0);
-  if (intrinsic) {  // the region channel, plane fitted to the flat glossy Gaussians
+  if (intrinsic) {
     const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
     if (model.tensor(Param::ExtraLogit).width == extra::kCount)
       for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
-    return select_mirror_twins(centres, glossy, target, {}, flat_normals(model));
   }
-  // A radiance model of a mirror-like surface has no Gaussians on the surface to fit a plane to (it shows a
-  // mirror world behind it): the plane comes from the photos' glossy masks (plane_from_masks.h).
-  std::vector<const std::vector<float>*> masks;
-  for (const TrainView& v : views) masks.push_back(&v.glossy_mask);
-  // The target rests on the surface: its height is searched below the target's bottom (5th percentile of the
-  // target's centres along up, which lie above the surface), down to half the target's height.
-  const glm::dvec3 up = mean_camera_up(cameras);
-  std::vector<double> h;
-  for (std::size_t i = 0; i < centres.size(); ++i)
-    if (target[i]) h.push_back(glm::dot(up, glm::dvec3(centres[i])));
-  std::optional<PlaneHeights> band;
-  if (h.size() >= 10) {
-    std::sort(h.begin(), h.end());
-    const double bottom = h[h.size() / 20], span = std::max(h[h.size() * 19 / 20] - bottom, 1e-6);
-    band = PlaneHeights{bottom - 0.5 * span, bottom, bottom};
-  }
-  const PlaneFromMasks pm = plane_from_glossy_masks(cameras, masks, {}, band);
-  return twins_below_plane(centres, target, pm.plane);
+  return select_mirror_twins(centres, glossy, target, {}, flat_normals(model));
 }
 
 bool any_glossy_mask(const std::vector<TrainView>& views) {

@@ -216,3 +216,57 @@ TEST(PlaneFromMasks, WorldUpFromCamerasOnASector) {
   EXPECT_LT(glm::normalize(naive).z, 0.97) << "the mean of the up axes leans";
   EXPECT_GT(mean_camera_up(cams).z, 0.9999);
 }
+
+TEST(PlaneFromMasks, TargetRestsAboveItsReflection) {
+  // A column standing on a glossy floor at z = 0 and its mirror world below, both selected (what a radiance
+  // model of a mirror-like floor gives a mask selection): the band starts at the column's foot, not at its
+  // reflection's.
+  std::vector<Camera> cams;
+  for (int k = 0; k < 10; ++k) {
+    const float a = 0.6f * float(k);
+    cams.push_back(look_at({4.0f * std::cos(a), 4.0f * std::sin(a), 2.5f}, {0, 0, 0.0f}, 128, 128, 120.0f));
+  }
+  const double radius = 0.15, height = 1.0;
+  std::vector<std::vector<float>> masks;
+  for (const Camera& c : cams) {
+    std::vector<float> m = disc_mask(c, 0.0, 3.0);
+    const glm::dvec3 eye(c.center());
+    for (int y = 0; y < c.height; ++y)
+      for (int x = 0; x < c.width; ++x) {  // the column in front of the floor is not glossy
+        const glm::dvec3 d(c.ray_direction(x + 0.5f, y + 0.5f));
+        for (double t = 0; t < 8.0; t += 0.01) {
+          const glm::dvec3 p = eye + t * d;
+          if (p.z >= 0 && p.z <= height && std::hypot(p.x, p.y) < radius) {
+            m[std::size_t(y) * c.width + x] = 0.0f;
+            break;
+          }
+        }
+      }
+    masks.push_back(std::move(m));
+  }
+  std::vector<const std::vector<float>*> ptrs;
+  for (const auto& m : masks) ptrs.push_back(&m);
+  std::vector<glm::vec3> centres;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 200; ++i) {
+    const glm::vec3 p(0.1f * u(rng), 0.1f * u(rng), 0.5f * float(height) * (1.0f + u(rng)));
+    centres.push_back(p);
+    centres.push_back({p.x, p.y, -p.z});  // its reflection
+  }
+  const std::vector<std::uint8_t> target(centres.size(), 1);
+  const auto band = target_rest_heights(cams, ptrs, centres, target);
+  ASSERT_TRUE(band.has_value());
+  EXPECT_NEAR(band->high, 0.0, 0.1) << "the column's foot";
+  EXPECT_LT(band->low, band->high);
+  ASSERT_TRUE(band->preferred.has_value());
+  EXPECT_DOUBLE_EQ(*band->preferred, band->high);
+  // Every selected Gaussian counts without masks to tell them apart: the band would start in the reflection.
+  std::vector<const std::vector<float>*> none(cams.size(), nullptr);
+  const auto blind = target_rest_heights(cams, none, centres, target);
+  ASSERT_TRUE(blind.has_value());
+  EXPECT_LT(blind->high, -0.8);
+  // Fewer than ten Gaussians: no band.
+  const std::vector<glm::vec3> few(centres.begin(), centres.begin() + 8);
+  EXPECT_FALSE(target_rest_heights(cams, ptrs, few, std::vector<std::uint8_t>(few.size(), 1)).has_value());
+}
