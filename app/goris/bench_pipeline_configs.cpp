@@ -11,10 +11,11 @@ const std::vector<ConfigSpec>& ladder() {
        "radiance stage 1; RGB-only inpainting, no lighting-aware mask, no mirror twin, the hole supervised by the "
        "reference views alone (3DGIC's rule)",
        {"--view-fill", "0"}},
-      {"default", "default", {}, "", false, "`goris train` and `goris remove` with no options: what a user gets"},
+      {"default", "default", {}, "", false,
+       "`goris train` and `goris remove` with no options (--mode auto: intrinsic for a glossy scene, radiance "
+       "otherwise): what a user gets"},
       {"default-noplanar", "default", {}, "twins,reflection", false,
-       "default without what the glossy plane gives a radiance run (no planar reflection mask, no surface-only "
-       "fill): the removal as it was before them"},
+       "default without what the glossy plane gives the removal (no planar reflection mask, no mirror twin)"},
       {"default-nofill", "default", {}, "", false,
        "default without every other view's own fill of its hole (--view-fill 0): the reference views alone "
        "supervise it", {"--view-fill", "0"}},
@@ -27,10 +28,8 @@ const std::vector<ConfigSpec>& ladder() {
        "full with `--preset planar-glossy` (the table opaque and held to its plane, exact normals)"},
       {"distilled", "intrinsic", {"--mode", "intrinsic"}, "", true,
        "full, exported as a baked (SH) PLY and evaluated as a radiance run"},
-      // Modelling no more than a scene needs: each choice against full (and auto against baseline).
-      {"auto", "auto", {"--mode", "auto"}, "", false,
-       "full where the glossy masks mark >= 0.5 % of the pixels, else radiance, RGB inpainting and the target's shadow "
-       "(--mode auto)"},
+      // Modelling no more than a scene needs: each choice against full (and default, --mode auto, against
+      // baseline).
       {"auto-detect", "auto_detect", {"--mode", "auto", "--set", "use_glossy_masks=false"}, "", false,
        "--mode auto with the glossy masks hidden: glossy regions detected from the photos once the geometry has settled"},
       {"sh1", "intrinsic_sh1", {"--mode", "intrinsic", "--set", "max_sh_degree=1"}, "", false,

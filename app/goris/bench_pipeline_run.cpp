@@ -112,7 +112,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
       r.peak_mib = st.train.peak_mib, r.peak_device_mib = st.train.peak_device_mib;
       if (!st.train.ok) throw Error(st.train.error);
       fs::copy(st.run, run, fs::copy_options::recursive);  // each configuration removes in its own copy
-      if (std::string(c.stage1).rfind("auto", 0) == 0)  // what --mode auto decided
+      if (c.train_args.empty() || std::string(c.stage1).rfind("auto", 0) == 0)  // what --mode auto decided
         r.note += "stage 1 finished as " + read_json_object(run / "config.json").value("mode", std::string("?")) + "; ";
       const StepRun sel =
           run_child("select", {"select", run.string(), "--masks", "--device", o_.device}, logs / "select.log");

@@ -1,4 +1,4 @@
-// `goris train DATA --out RUN`: stage-1 training (radiance mode) into a run folder: config.json,
+// `goris train DATA --out RUN`: stage-1 training (radiance, intrinsic, or auto: the one the scene needs) into a run folder: config.json,
 // checkpoints/, log.csv and the final point_cloud.ply. SIGINT (Ctrl-C), SIGTERM or SIGHUP finishes the
 // current iteration, writes a checkpoint, prints the command that resumes the run and exits 130, 143 or 129
 // (stop_signals.h), so that `goris train ... && next` does not go on with an unfinished run.
@@ -41,7 +41,7 @@ using namespace goris;
 
 struct Options {
   std::string data, out, device = "auto", normals, init;
-  std::optional<std::string> mode;  // radiance when not given
+  std::optional<std::string> mode;  // the configuration's (auto) when not given
   std::optional<int> iters, resolution, init_points, checkpoint_every;
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;

@@ -32,7 +32,7 @@ void visit_fields(Config& c, F&& visit) {
   const auto f = [&](const char* name, auto& member, Doc doc = {}) { visit(name, member, doc); };
   f("mode", c.mode,
     {"Run", "What to train: `radiance` (SH colour), `intrinsic` (stage 1: materials, traced reflections and "
-            "shading after a radiance warm-up) or `auto` (intrinsic only for a glossy scene). Also `--mode`."});
+            "shading after a radiance warm-up) or `auto` (intrinsic for a glossy scene, radiance otherwise). Also `--mode`."});
   f("iterations", c.iterations,
     {"Run", "Training iterations; the schedule points of the full 30000-iteration schedule scale with it. Also "
             "`--iters`."});

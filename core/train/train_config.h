@@ -155,8 +155,11 @@ constexpr int kMaxRandomInitPoints = 20000000;
 
 struct TrainConfig {
   // "radiance": SH colour only (also the warm-up of intrinsic stage 1); "intrinsic": stage 1 with
-  // materials, tracing and shading (the data set's glossy masks drive the region loss).
-  std::string mode = "radiance";
+  // materials, tracing and shading (the data set's glossy masks drive the region loss); "auto": intrinsic for
+  // a glossy scene, radiance otherwise (render/train/auto_mode.h), resolved before training starts, so a run's
+  // config.json names the mode it trained in. The default: on the generalization suite it removes more of
+  // the target's reflection than radiance on the mean and the worst glossy scene (docs/results).
+  std::string mode = "auto";
   int iterations = 30000;
   std::uint64_t seed = 0;
   std::string device = "auto";  // auto | cpu | cuda

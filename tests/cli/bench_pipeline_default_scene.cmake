@@ -78,18 +78,19 @@ if(NOT at EQUAL -1)
   message(FATAL_ERROR "a reused bench trained again:\n${OUT}")
 endif()
 
-# The choices beyond the ladder: baseline and full are reused, auto and sh1 run, and the table of each choice
-# against full and baseline names them with their time ratios; auto says what it decided.
-goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full,auto,sh1 --out "${OUTDIR}"
+# The choices beyond the ladder: baseline and full are reused, default (--mode auto) and sh1 run, and the
+# table of each choice against full and baseline names them with their time ratios; default says what
+# --mode auto decided.
+goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full,default,sh1 --out "${OUTDIR}"
          --schedule tiny --device cpu)
 expect_text("${OUT}" "default_scene / tiny / full: reused")
 file(READ "${OUTDIR}/results.md" md)
 expect_text("${md}" "| time vs full | ΔPSNR vs full | time vs baseline | ΔPSNR vs baseline |")
-expect_text("${md}" "| default_scene | tiny | auto |")
+expect_text("${md}" "| default_scene | tiny | default |")
 expect_text("${md}" "| default_scene | tiny | sh1 |")
-expect_text("${md}" "default_scene / auto / tiny: stage 1 finished as intrinsic")
+expect_text("${md}" "default_scene / default / tiny: stage 1 finished as intrinsic")
 expect_text("${md}" "Stage-1 runs (from their logs):")
-expect_text("${md}" "default_scene / tiny / stage 1 `auto`: --mode auto: intrinsic (the glossy masks mark")
+expect_text("${md}" "default_scene / tiny / stage 1 `default`: --mode auto: intrinsic (the glossy masks mark")
 expect_text("${md}" "default_scene / tiny / stage 1 `intrinsic`: reflection rays: ")
 file(READ "${OUTDIR}/runs/default_scene/tiny/sh1/run/config.json" sh1_config)
 expect_text("${sh1_config}" "\"max_sh_degree\": 1")

@@ -43,7 +43,7 @@ if(n LESS 1)
 endif()
 
 # A radiance run: the formats hold its model without a distillation.
-goris_ok(train "${RESOURCES}/default_scene" --out "${WORK}/radiance" --iters 20 --resolution 48 --device cpu
+goris_ok(train "${RESOURCES}/default_scene" --out "${WORK}/radiance" --mode radiance --iters 20 --resolution 48 --device cpu
          --init-points 2000 --checkpoint-every 0)
 goris_ok(export "${WORK}/radiance" --spz "${OUTD}/r.spz" --splat "${OUTD}/r.splat" --device cpu)
 string(FIND "${OUT}" "distill" at)

@@ -7,7 +7,7 @@ file(MAKE_DIRECTORY "${WORK}")
 set(RUN "${WORK}/run")
 
 # The random initial points fill only the middle of the views, so the image corners show background.
-goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --iters 50 --resolution 64 --device cpu
+goris_ok(train "${RESOURCES}/default_scene" --out "${RUN}" --mode radiance --iters 50 --resolution 64 --device cpu
          --init-points 3000 --checkpoint-every 0 --set random_init_box_ratio=0.15)
 
 # --masks: the data set's train mask_XXX.png.

@@ -12,7 +12,7 @@ if(GUI_SKIP)
   return()
 endif()
 
-execute_process(COMMAND "${GORIS}" train "${RESOURCES}/default_scene" --out "${WORK}/run" --iters 600 --resolution 64
+execute_process(COMMAND "${GORIS}" train "${RESOURCES}/default_scene" --out "${WORK}/run" --mode radiance --iters 600 --resolution 64
                         --device cpu --init-points 10000 --checkpoint-every 0
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)

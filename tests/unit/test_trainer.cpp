@@ -58,6 +58,7 @@ GaussianModel ground_truth_scene(int n, std::uint64_t seed) {
 
 TrainConfig refit_config(int iterations) {
   TrainConfig c;
+  c.mode = "radiance";
   c.iterations = iterations;
   c.device = "cpu";
   c.max_sh_degree = 0;

@@ -16,7 +16,7 @@ struct StudioSettings {
   int display_max_side = 512;        // viewport renders are capped at this many pixels on their longest side
   std::string compare_mode = "off";  // off | side_by_side | slider
   // Training options of the panel (a new run; a resumed run keeps its own).
-  std::string train_mode = "radiance";  // radiance | intrinsic | auto (as `goris train --mode`)
+  std::string train_mode = "auto";  // radiance | intrinsic | auto (as `goris train --mode`)
   std::string train_preset;             // "" or a preset's name or file (as `goris train --preset`)
   int train_iterations = 3000;
   int train_resolution = 0;       // 0 = the data set's size
