@@ -122,7 +122,8 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
   const std::filesystem::path run_dir = std::filesystem::absolute(run);
   TrainConfig config = read_run_config(run_dir);
   if (coarse_max_level > 0) config.intrinsic.coarse_max_level = coarse_max_level;
-  if (config.mode != "intrinsic") throw Error(run_dir.string(), "is a " + config.mode + " run; train with --mode intrinsic");
+  if (config.mode != TrainMode::Intrinsic)
+    throw Error(run_dir.string(), std::string("is a ") + enum_name(config.mode) + " run; train with --mode intrinsic");
   const Device device = resolve_device(dev);
   DatasetOptions dopt = dataset_options(config);
   if (resolution > 0) dopt.target_width = resolution;

@@ -174,7 +174,7 @@ std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& confi
                        {"normal_mean_deg", acc.normal_mean_deg},
                        {"normal_median_deg", acc.normal_median_deg},
                        {"where", "training views, glossy mask >= 0.5, alpha >= 0.5; truth " + gt_dir->string()}};
-  if (config.mode == "intrinsic") {
+  if (config.mode == TrainMode::Intrinsic) {
     ja["roughness_mean"] = acc.roughness_mean;
     ja["f0_mean"] = {acc.f0_mean.x, acc.f0_mean.y, acc.f0_mean.z};
     if (acc.reference) {
@@ -198,7 +198,7 @@ nlohmann::json material_stats_json(const MaterialStats& m) {
 // (render/train/material_separation.h); j["materials"].
 std::optional<MaterialSeparation> material_separation(const TrainConfig& config, const Dataset& ds,
                                                       GaussianModel& model, Device device, nlohmann::json& j) {
-  if (config.mode != "intrinsic") return std::nullopt;
+  if (config.mode != TrainMode::Intrinsic) return std::nullopt;
   const std::vector<TrainView> tv = glossy_train_views(ds);
   if (tv.empty()) return std::nullopt;
   MaterialSeparation s;
@@ -355,7 +355,7 @@ void run_eval(const Options& o) {
   }
   j["stage_seconds"] = stages;
   const std::optional<IntrinsicAccuracy> acc = intrinsic_ground_truth(config, ds, model, device, j);
-  const bool materials = config.mode == "intrinsic";
+  const bool materials = config.mode == TrainMode::Intrinsic;
   const std::optional<MaterialSeparation> sep = material_separation(config, ds, model, device, j);
   j["per_view"] = per_view;
 

@@ -130,7 +130,7 @@ void run_export(const Options& o) {
   ex.require_channel(channel);  // before any distillation
   const std::string of_channel = channel == Channel::Final ? "" : " of " + o.channel;
   std::printf("exporting %s (%s run, %zu Gaussians from %s) on %s\n", ex.run_dir().string().c_str(),
-              ex.config().mode.c_str(), ex.model().count(), ex.model_source().c_str(), device_name(device));
+              enum_name(ex.config().mode), ex.model().count(), ex.model_source().c_str(), device_name(device));
   std::fflush(stdout);  // before the progress on stderr
   const bool tty = isatty(STDERR_FILENO);
 

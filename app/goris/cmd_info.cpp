@@ -149,7 +149,7 @@ void print_run(const fs::path& run, bool nested = false) {
                     ? ""
                     : "  (not found: moved? other commands read it from config.json; --data NEW_FOLDER points them "
                       "at its new place)");
-    std::printf("mode:        %s\n", c.mode.c_str());
+    std::printf("mode:        %s\n", enum_name(c.mode));
   }
   const fs::path ply = goris::run_ply_path(run);
   std::printf("%s%-13s%s\n", in, "progress:", run_progress(run, c).c_str());

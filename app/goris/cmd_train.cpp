@@ -60,7 +60,7 @@ std::string shell_quote(const std::string& s) {
 // The settings the options ask for, applied to `config`: a new run's, or a copy of a resumed run's to
 // compare with it. --iters, --checkpoint-every and --device may change on resume and are applied later.
 void apply_settings(const Options& o, TrainConfig& config) {
-  if (o.mode) config.mode = *o.mode;
+  if (o.mode) config.mode = *enum_from_name<TrainMode>(*o.mode);  // a name, checked by the option
   if (!o.normals.empty()) config.intrinsic.normals = fs::weakly_canonical(fs::absolute(o.normals)).string();
   if (o.seed) config.seed = *o.seed;
   if (o.resolution) config.resolution = *o.resolution;
@@ -171,10 +171,10 @@ void run_train(const Options& o) {
   config = prep.config;
   for (const auto& w : prep.dataset.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!prep.auto_mode_reason.empty())
-    std::printf("--mode auto: %s (%s)\n", config.mode.c_str(), prep.auto_mode_reason.c_str());
+    std::printf("--mode auto: %s (%s)\n", enum_name(config.mode), prep.auto_mode_reason.c_str());
   Trainer& trainer = *prep.trainer;
   const std::vector<TrainView>& views = trainer.views();
-  if (config.mode == "intrinsic")
+  if (config.mode == TrainMode::Intrinsic)
     std::printf("intrinsic mode: %zu/%zu views with glossy masks, %zu with object masks, normal prior %s; shading "
                 "from iteration %d\n",
                 prep.glossy_views, views.size(), prep.mask_views,

@@ -58,7 +58,7 @@ bool run_outputs_written_after(const std::filesystem::path& run_dir, const std::
     return !e1 && t >= std::filesystem::last_write_time(checkpoint, e2) && !e2;
   };
   return written_after(run_ply_path(run_dir)) &&
-         (config.mode != "intrinsic" || written_after(run_dir / "environment.png"));
+         (config.mode != TrainMode::Intrinsic || written_after(run_dir / "environment.png"));
 }
 
 }  // namespace goris

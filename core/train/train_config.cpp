@@ -197,8 +197,6 @@ nlohmann::json vec_json(const glm::vec3& v) { return nlohmann::json::array({v.x,
 
 void TrainConfig::validate(const std::string& what) const {
   auto fail = [&](const std::string& p) { throw Error(what, p); };
-  if (mode != "radiance" && mode != "intrinsic" && mode != "auto")
-    fail("mode '" + mode + "' is not supported (expected radiance, intrinsic or auto)");
   if (iterations < 1) fail("iterations must be at least 1");
   if (device != "auto" && device != "cpu" && device != "cuda") fail("device must be auto, cpu or cuda");
   if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
@@ -302,7 +300,7 @@ int TrainConfig::shading_from() const {
 }
 
 bool TrainConfig::prunes_mirror_world_after(int it, bool densified) const {
-  if (mode != "intrinsic" || !(intrinsic.prune_mirror_world > 0)) return false;
+  if (mode != TrainMode::Intrinsic || !(intrinsic.prune_mirror_world > 0)) return false;
   const int from = shading_from();
   return it == from || (intrinsic.prune_mirror_world_repeat && densified && it > from);
 }

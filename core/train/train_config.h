@@ -31,6 +31,14 @@ struct EnumNames<EmitSource> {
       {{EmitSource::Region, "region"}, {EmitSource::Mask, "mask"}, {EmitSource::Max, "max"}}};
 };
 
+// What a run trains (TrainConfig::mode; `mode` in config.json, `goris train --mode`).
+enum class TrainMode { Radiance, Intrinsic, Auto };
+template <>
+struct EnumNames<TrainMode> {
+  static constexpr std::array<std::pair<TrainMode, const char*>, 3> names{
+      {{TrainMode::Radiance, "radiance"}, {TrainMode::Intrinsic, "intrinsic"}, {TrainMode::Auto, "auto"}}};
+};
+
 struct LearningRates {
   float position_init = 1.6e-4f;  // x scene extent, decays exponentially to position_final
   float position_final = 1.6e-6f;
@@ -154,12 +162,12 @@ struct IntrinsicSettings {
 constexpr int kMaxRandomInitPoints = 20000000;
 
 struct TrainConfig {
-  // "radiance": SH colour only (also the warm-up of intrinsic stage 1); "intrinsic": stage 1 with
-  // materials, tracing and shading (the data set's glossy masks drive the region loss); "auto": intrinsic for
+  // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
+  // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
   // a glossy scene, radiance otherwise (render/train/auto_mode.h), resolved before training starts, so a run's
   // config.json names the mode it trained in. The default: on the generalization suite it removes more of
   // the target's reflection than radiance on the mean and the worst glossy scene (docs/results).
-  std::string mode = "auto";
+  TrainMode mode = TrainMode::Auto;
   int iterations = 30000;
   std::uint64_t seed = 0;
   std::string device = "auto";  // auto | cpu | cuda

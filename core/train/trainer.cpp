@@ -64,7 +64,7 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
       state_(std::move(state)) {
   if (!renderer_) throw Error("training: no renderer");
   config_.validate("training configuration");
-  if (config_.mode == "auto") throw Error("training: mode 'auto' must be resolved from the data set before training");
+  if (config_.mode == TrainMode::Auto) throw Error("training: mode 'auto' must be resolved from the data set before training");
   if (views_.empty()) throw Error("training: no training views");
   for (const TrainView& v : views_)
     if (v.image.size() != size_t(3) * v.camera.width * v.camera.height)
@@ -112,7 +112,7 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
   if (!renderer) throw Error("training: no renderer");
   if (renderer->device() != device_) throw Error("training: the new renderer lives on another device");
   config.validate("training configuration");
-  if (config.mode == "auto") throw Error("training: mode 'auto' must be resolved before switching to it");
+  if (config.mode == TrainMode::Auto) throw Error("training: mode 'auto' must be resolved before switching to it");
   const std::vector<ParamGroup> before = active_groups();
   const size_t n_views = views_.size();
   config_ = std::move(config);

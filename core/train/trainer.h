@@ -136,7 +136,7 @@ class Trainer {
 
   // The normal-prior weight at an iteration (the 0.5 -> 0.001 decay of S1.5, scaled to the run's length).
   double normal_prior_weight(int iteration) const;
-  bool intrinsic() const { return config_.mode == "intrinsic"; }
+  bool intrinsic() const { return config_.mode == TrainMode::Intrinsic; }
 
   // Continues the run under another configuration and renderer (--mode auto switching a radiance run to
   // intrinsic after the warm-up); `update_views` may set the views' glossy masks and normal priors. The

@@ -63,7 +63,7 @@ GaussianModel student_from(const GaussianModel& start) {
 
 TrainConfig distill_config(const TrainConfig& run_config, const DistillSettings& s) {
   TrainConfig c = run_config;
-  c.mode = "radiance";
+  c.mode = TrainMode::Radiance;
   c.iterations = std::max(1, s.iterations);  // a valid configuration even when nothing is trained
   c.seed = s.seed;
   c.max_sh_degree = 3;

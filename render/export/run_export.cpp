@@ -207,7 +207,7 @@ void RunExport::write_baked_files(BakedReport& rep, const fs::path& out) const {
   nlohmann::json per_view = nlohmann::json::array();
   for (double p : d.psnr_per_view) per_view.push_back(number_or_null(p));
   const nlohmann::json j = {
-      {"run", run_dir_.string()}, {"model", model_source_}, {"mode", config_.mode},
+      {"run", run_dir_.string()}, {"model", model_source_}, {"mode", enum_name(config_.mode)},
       {"ply", fs::absolute(out).string()}, {"distilled", rep.distilled},
       {"note", rep.distilled ? "SH distilled from the run's shaded renders (paper S1.6)"
                              : "radiance run: the model is plain SH already; the baked PLY is the --ply export without "

@@ -68,7 +68,7 @@ class RunExport {
 
   const std::filesystem::path& run_dir() const { return run_dir_; }
   const TrainConfig& config() const { return config_; }
-  bool intrinsic() const { return config_.mode == "intrinsic"; }
+  bool intrinsic() const { return config_.mode == TrainMode::Intrinsic; }
   const GaussianModel& model() const { return model_; }
   const std::string& model_source() const { return model_source_; }
   const Dataset& dataset() const { return dataset_; }

@@ -206,7 +206,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   select_training_data(config, ds);  // stage 2 sees the views and masks stage 1 trained with
   const float extent = scene_extent(ds);
   const std::vector<Camera> cameras = cameras_of(ds.train);
-  const bool intrinsic = config.mode == "intrinsic";
+  const bool intrinsic = config.mode == TrainMode::Intrinsic;
   const bool materials = intrinsic && !o.ablate.count("material");
 
   RemovalReport report;

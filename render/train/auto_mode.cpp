@@ -85,16 +85,16 @@ std::optional<double> glossy_mask_fraction(const std::vector<TrainView>& views) 
 }
 
 std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>& views) {
-  if (config.mode != "auto") return {};
+  if (config.mode != TrainMode::Auto) return {};
   const std::optional<double> f = glossy_mask_fraction(views);
   const double threshold = config.intrinsic.auto_mask_fraction;
   if (f) {
     const bool glossy = *f > 0 && *f >= threshold;
-    config.mode = glossy ? "intrinsic" : "radiance";
+    config.mode = glossy ? TrainMode::Intrinsic : TrainMode::Radiance;
     return glossy ? "the glossy masks mark " + percent(*f) + " of the pixels, threshold " + percent(threshold)
                   : "the glossy masks are empty: " + percent(*f) + " of the pixels, threshold " + percent(threshold);
   }
-  config.mode = "radiance";
+  config.mode = TrainMode::Radiance;
   config.auto_detect_glossy = true;
   const int at = auto_detection_iteration(config);
   std::string why = "no glossy masks: radiance through the warm-up, then glossy regions are detected from the photos after "
@@ -211,7 +211,7 @@ std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& ru
   if (det.glossy) {
     next = lengthened_for_late_decision(next, d.iteration);
     d.extended_by = next.iterations - config.iterations;
-    next.mode = "intrinsic";
+    next.mode = TrainMode::Intrinsic;
     next.glossy_mask_dir = d.mask_dir.string();
     next.intrinsic.warmup = warmup_ending_at(next, d.iteration);
     trainer.switch_mode(next, make_renderer(next, trainer.extent(), trainer.device()), [&](std::vector<TrainView>& views) {

@@ -36,7 +36,7 @@ std::vector<GlossyMaskView> training_glossy_masks(const TrainConfig& config) {
 }  // namespace
 
 std::shared_ptr<DifferentiableRenderer> make_renderer(const TrainConfig& config, float extent, Device device) {
-  if (config.mode == "intrinsic") return std::make_shared<IntrinsicRenderer>(config, extent, device);
+  if (config.mode == TrainMode::Intrinsic) return std::make_shared<IntrinsicRenderer>(config, extent, device);
   return std::make_shared<RasterRenderer>(RasterRenderer::settings_for(config), device);
 }
 

@@ -65,7 +65,7 @@ PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, s
     p.glossy_views += !v.glossy_mask.empty();
     p.mask_views += !v.object_mask.empty();
   }
-  if (config.mode == "intrinsic" && !config.intrinsic.normals.empty())
+  if (config.mode == TrainMode::Intrinsic && !config.intrinsic.normals.empty())
     load_normal_priors(config.intrinsic.normals, views);
 
   TrainerState state;

@@ -65,7 +65,7 @@ inline GaussianModel floor_and_blob(std::uint64_t seed) {
 
 inline TrainConfig intrinsic_config(int iterations) {
   TrainConfig c;
-  c.mode = "intrinsic";
+  c.mode = TrainMode::Intrinsic;
   c.iterations = iterations;
   c.device = "cpu";
   c.max_sh_degree = 0;

@@ -46,37 +46,37 @@ std::vector<TrainView> views_with_masks(int n_views, int glossy_pixels_per_view,
 
 TEST(AutoMode, MaskFractionRule) {
   TrainConfig c;
-  c.mode = "auto";
+  c.mode = TrainMode::Auto;
   EXPECT_NE(resolve_auto_mode(c, views_with_masks(4, 0)).find("empty"), std::string::npos);
-  EXPECT_EQ(c.mode, "radiance");
+  EXPECT_EQ(c.mode, TrainMode::Radiance);
   EXPECT_FALSE(c.auto_detect_glossy);
 
-  c.mode = "auto";  // 1 % of the pixels: above the 0.5 % default
+  c.mode = TrainMode::Auto;  // 1 % of the pixels: above the 0.5 % default
   EXPECT_NE(resolve_auto_mode(c, views_with_masks(4, 1)).find("mark"), std::string::npos);
-  EXPECT_EQ(c.mode, "intrinsic");
+  EXPECT_EQ(c.mode, TrainMode::Intrinsic);
 
-  c.mode = "auto";
+  c.mode = TrainMode::Auto;
   c.intrinsic.auto_mask_fraction = 0.02f;
   resolve_auto_mode(c, views_with_masks(4, 1));
-  EXPECT_EQ(c.mode, "radiance");
+  EXPECT_EQ(c.mode, TrainMode::Radiance);
   EXPECT_DOUBLE_EQ(*glossy_mask_fraction(views_with_masks(4, 1)), 0.01);
 
-  c.mode = "auto";
+  c.mode = TrainMode::Auto;
   c.iterations = 30000;
   const std::string long_run = resolve_auto_mode(c, views_with_masks(4, 0, false));
   EXPECT_NE(long_run.find("no glossy masks"), std::string::npos);
   EXPECT_EQ(long_run.find("caution"), std::string::npos);
-  EXPECT_EQ(c.mode, "radiance");
+  EXPECT_EQ(c.mode, TrainMode::Radiance);
   EXPECT_TRUE(c.auto_detect_glossy);
-  c.mode = "auto";  // a run that ends before the geometry has settled decides anyway, with a caution
+  c.mode = TrainMode::Auto;  // a run that ends before the geometry has settled decides anyway, with a caution
   c.iterations = 500;
   EXPECT_NE(resolve_auto_mode(c, views_with_masks(4, 0, false)).find("caution"), std::string::npos);
   EXPECT_FALSE(glossy_mask_fraction(views_with_masks(2, 0, false)).has_value());
 
   TrainConfig given;
-  given.mode = "intrinsic";
+  given.mode = TrainMode::Intrinsic;
   EXPECT_EQ(resolve_auto_mode(given, views_with_masks(2, 0)), "");
-  EXPECT_EQ(given.mode, "intrinsic");
+  EXPECT_EQ(given.mode, TrainMode::Intrinsic);
 }
 
 TEST(AutoMode, DetectionWaitsForTheGeometry) {
@@ -150,7 +150,7 @@ TEST(AutoMode, MaskFolderErrorsNameTheFile) {
 // after 20 (the warm-up set to 15000 of 30000, scaled).
 TrainConfig tiny_auto_config() {
   TrainConfig c;
-  c.mode = "auto";
+  c.mode = TrainMode::Auto;
   c.data = (test::resource_dir() / "default_scene").string();
   c.device = "cpu";
   c.resolution = 32;
@@ -178,7 +178,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   c.intrinsic.detect_fraction = 0.0f;
   PreparedTraining p = prepare_training(run, c, std::nullopt);
   Trainer& t = *p.trainer;
-  EXPECT_EQ(p.config.mode, "radiance");
+  EXPECT_EQ(p.config.mode, TrainMode::Radiance);
   EXPECT_TRUE(p.config.auto_detect_glossy);
   EXPECT_NE(p.auto_mode_reason.find("no glossy masks"), std::string::npos);
   EXPECT_EQ(auto_detection_iteration(p.config), 20);
@@ -218,7 +218,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   EXPECT_EQ(summary["decision"], "intrinsic");
   EXPECT_EQ(summary["iteration"], 20);
   EXPECT_TRUE(summary.contains("seconds") && summary.contains("fraction") && summary.contains("threshold"));
-  EXPECT_EQ(read_run_config(run).mode, "intrinsic");
+  EXPECT_EQ(read_run_config(run).mode, TrainMode::Intrinsic);
   // The extras' groups start fresh; the others keep their step counts.
   for (ParamGroup g : {ParamGroup::Materials, ParamGroup::Region, ParamGroup::Label})
     EXPECT_EQ(t.state().adam.steps[size_t(g)], 0) << group_name(g);
@@ -242,7 +242,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   std::optional<ResumePoint> r = read_latest_checkpoint(run);
   ASSERT_TRUE(r.has_value());
   TrainConfig rc = r->checkpoint.config;
-  EXPECT_EQ(rc.mode, "intrinsic");
+  EXPECT_EQ(rc.mode, TrainMode::Intrinsic);
   rc.iterations = 45;
   PreparedTraining p2 = prepare_training(run, rc, std::move(r));
   EXPECT_TRUE(p2.trainer->intrinsic());
@@ -255,7 +255,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
 
   // A checkpoint written before the decision resumes in radiance mode with the detection still to come.
   const Checkpoint early = read_checkpoint(checkpoint_path(run, 10), Device::CPU);
-  EXPECT_EQ(early.config.mode, "radiance");
+  EXPECT_EQ(early.config.mode, TrainMode::Radiance);
   EXPECT_TRUE(early.config.auto_detect_glossy);
 }
 
@@ -289,7 +289,7 @@ TEST(AutoMode, StaysRadianceWhenNothingIsGlossy) {
   EXPECT_FALSE(fs::exists(run / "environment.png"));
   EXPECT_EQ(read_json(run / "detected_gloss" / "summary.json")["decision"], "radiance");
   const TrainConfig saved = read_run_config(run);
-  EXPECT_EQ(saved.mode, "radiance");
+  EXPECT_EQ(saved.mode, TrainMode::Radiance);
   EXPECT_FALSE(saved.auto_detect_glossy);
   const Checkpoint last = read_checkpoint(checkpoint_path(run, 24), Device::CPU);
   EXPECT_FALSE(last.config.auto_detect_glossy);
@@ -326,7 +326,7 @@ TEST(AutoMode, ALateGlossyDecisionAtTheEndLengthensTheRun) {
   EXPECT_GT(t.state().adam.steps[size_t(ParamGroup::Region)], 0);
   const TrainConfig saved = read_run_config(run);
   EXPECT_EQ(saved.iterations, 60);
-  EXPECT_EQ(saved.mode, "intrinsic");
+  EXPECT_EQ(saved.mode, TrainMode::Intrinsic);
 
   // The same run on a scene with nothing glossy keeps its length.
   const fs::path run2 = test::scratch_dir("auto_mode_late_radiance");
@@ -351,7 +351,7 @@ TEST(AutoMode, EmbeddedSceneMasksChooseIntrinsic) {
   c.use_glossy_masks = true;
   c.iterations = 1;
   PreparedTraining p = prepare_training(test::scratch_dir("auto_mode_masks"), c, std::nullopt);
-  EXPECT_EQ(p.config.mode, "intrinsic");
+  EXPECT_EQ(p.config.mode, TrainMode::Intrinsic);
   EXPECT_FALSE(p.config.auto_detect_glossy);
   EXPECT_NE(p.auto_mode_reason.find("mark"), std::string::npos) << p.auto_mode_reason;
 }

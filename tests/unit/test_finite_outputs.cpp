@@ -117,7 +117,7 @@ TEST(FiniteOutputs, NanInAnIntrinsicRunsEnvironmentMapIsFlagged) {
   const fs::path run = test::scratch_dir("finite_outputs_env");
   fs::create_directories(run / "checkpoints");
   TrainConfig config;
-  config.mode = "intrinsic";
+  config.mode = TrainMode::Intrinsic;
   config.intrinsic.env_resolution = 4;
   config.intrinsic.net_hidden_layers = 1;
   write_run_config(run, config);

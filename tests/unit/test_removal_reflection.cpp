@@ -47,7 +47,7 @@ std::vector<std::vector<float>> glossy_maps(const fs::path& run, const Dataset& 
 TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   const fs::path run = test::scratch_dir("removal_reflection") / "run";
   TrainConfig c;
-  c.mode = "intrinsic";
+  c.mode = TrainMode::Intrinsic;
   c.data = (test::resource_dir() / "default_scene").string();
   c.device = "cpu";
   c.resolution = 64;

@@ -82,7 +82,7 @@ TEST(StudioDisplay, SnapshotGivesBackTheModel) {
 TEST(StudioDisplay, RendersIntrinsicMapsAndSelection) {
   GaussianModel m = wall();
   TrainConfig cfg;
-  cfg.mode = "intrinsic";
+  cfg.mode = TrainMode::Intrinsic;
   cfg.intrinsic.env_resolution = 8;
   cfg.iterations = 100;
   const float extent = 4.0f;

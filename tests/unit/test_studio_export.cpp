@@ -38,7 +38,7 @@ const fs::path& tiny_intrinsic_run() {
     TrainRequest rq;
     rq.data = test::resource_dir() / "default_scene";
     rq.run_dir = r;
-    rq.config.mode = "intrinsic";
+    rq.config.mode = TrainMode::Intrinsic;
     rq.config.resolution = 32;
     rq.config.random_init_points = 300;
     rq.config.random_init_box_ratio = 0.15f;

@@ -181,17 +181,17 @@ TEST(StudioSession, AutoModeTrainsIntrinsicLikeTheCli) {
   // The embedded scene has glossy masks: --mode auto picks intrinsic, whose run keeps its environment map.
   const fs::path run = test::scratch_dir("studio_session_auto") / "run";
   TrainRequest rq = tiny_request(run, 3);
-  rq.config.mode = "auto";
+  rq.config.mode = TrainMode::Auto;
   TrainerSession s;
   s.start(rq);
   ASSERT_EQ(s.wait(std::chrono::seconds(120)), JobState::Done) << s.status();
-  EXPECT_EQ(read_run_config(run).mode, "intrinsic");
+  EXPECT_EQ(read_run_config(run).mode, TrainMode::Intrinsic);
   EXPECT_TRUE(fs::exists(run / "environment.png"));
   EXPECT_TRUE(fs::exists(run / "point_cloud.ply"));
   // Its snapshots carry what the display shades them with: the run's settings and the renderer's state.
   ASSERT_NE(s.snapshot(), nullptr);
   EXPECT_TRUE(s.snapshot()->intrinsic());
-  EXPECT_EQ(s.snapshot()->shading()->config.mode, "intrinsic");
+  EXPECT_EQ(s.snapshot()->shading()->config.mode, TrainMode::Intrinsic);
   EXPECT_GT(s.snapshot()->renderer_state()->size(), 0u);
   // Resuming restores the renderer's own state (environment map, net) from the checkpoint.
   TrainerSession again;

@@ -164,7 +164,7 @@ TEST(StudioSettings, TrainingOptionsOfANewRun) {
   s.train_white_background = true;
   s.train_mode = "auto";
   TrainConfig c = new_run_config(s, {{"seed", "5"}, {"lambda_ssim", "0.5"}, {"random_init_points", "123"}});
-  EXPECT_EQ(c.mode, "auto");
+  EXPECT_EQ(c.mode, TrainMode::Auto);
   EXPECT_EQ(c.iterations, 77);
   EXPECT_EQ(c.resolution, 48);
   EXPECT_EQ(c.random_init_points, 123);  // the override wins over the panel
@@ -188,13 +188,13 @@ TEST(StudioSettings, PresetOfANewRun) {
   s.train_mode = "intrinsic";
   s.train_preset = "planar-glossy";
   TrainConfig c = new_run_config(s, {{"intrinsic_env_distance", "1.2"}});
-  EXPECT_EQ(c.mode, "intrinsic");
+  EXPECT_EQ(c.mode, TrainMode::Intrinsic);
   EXPECT_TRUE(c.intrinsic.glossy_plane);
   EXPECT_FLOAT_EQ(c.alpha_weight, 0.3f);
   EXPECT_FLOAT_EQ(c.intrinsic.env_distance, 1.2f);  // the override wins over the preset
   // The same run as the panel's fields with `goris train --preset planar-glossy`.
   TrainConfig by_cli = new_run_config(StudioSettings{}, {});
-  by_cli.mode = "intrinsic";
+  by_cli.mode = TrainMode::Intrinsic;
   apply_config_preset(load_config_preset("planar-glossy"), by_cli);
   EXPECT_EQ(nlohmann::json(new_run_config(s, {})).dump(), nlohmann::json(by_cli).dump());
   const fs::path dir = test::scratch_dir("studio_settings_preset");

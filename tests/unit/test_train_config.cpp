@@ -54,7 +54,7 @@ TEST(ConfigPresets, EveryPresetFileParsesAndItsKeysExist) {
 // plane), applied like --set lines: later --set lines win.
 TEST(ConfigPresets, PlanarGlossySetsTheMeasuredSetting) {
   TrainConfig c;
-  c.mode = "intrinsic";
+  c.mode = TrainMode::Intrinsic;
   apply_config_preset(load_config_preset("planar-glossy"), c);
   EXPECT_FALSE(c.intrinsic.material_losses_in_warmup);
   EXPECT_EQ(c.alpha_weight, 0.3f);
@@ -66,7 +66,7 @@ TEST(ConfigPresets, PlanarGlossySetsTheMeasuredSetting) {
   EXPECT_NO_THROW(c.validate("preset"));
   // The same configuration as the --set lines the preset stands for.
   TrainConfig by_set;
-  by_set.mode = "intrinsic";
+  by_set.mode = TrainMode::Intrinsic;
   apply_config_overrides({"intrinsic_material_losses_in_warmup=false", "alpha_weight=0.3", "intrinsic_glossy_plane=true",
                           "intrinsic_glossy_plane_prune_sinkers=true", "intrinsic_trace_glossy_transparent=0.5",
                           "intrinsic_glossy_plane_align=true", "intrinsic_env_distance=1.4"},
@@ -130,7 +130,7 @@ TEST(ConfigMigration, RunFolderOfAnOlderVersionOpens) {
   const fs::path run = test::scratch_dir("config_migration_run");
   fs::copy_file(old_config("46a5b55"), run_config_path(run));
   const TrainConfig c = read_run_config(run);
-  EXPECT_EQ(c.mode, "intrinsic");
+  EXPECT_EQ(c.mode, TrainMode::Intrinsic);
   EXPECT_EQ(c.iterations, 2000);
   EXPECT_EQ(c.data, "/data/steel_snowman");
   EXPECT_EQ(c.intrinsic.emit, EmitSource::Region);  // that version's default, written in the file

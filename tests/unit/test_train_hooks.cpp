@@ -66,7 +66,7 @@ TEST(TrainHooks, TheConfigurationCreatesOnlyTheHooksItNeedsInAFixedOrder) {
   EXPECT_TRUE(make_train_hooks(c, radiance).empty());
 
   TrainConfig in;
-  in.mode = "intrinsic";
+  in.mode = TrainMode::Intrinsic;
   EXPECT_EQ(names(make_train_hooks(in, intrinsic_renderer)), (std::vector<std::string>{"emit_weights", "mirror_world"}))
       << "the default stage-1 setting: emit = mask and the mirror-world prune";
   in.intrinsic.emit = EmitSource::Region;
@@ -87,7 +87,7 @@ TEST(TrainHooks, TheConfigurationCreatesOnlyTheHooksItNeedsInAFixedOrder) {
 // iterations or when the count changed. Restored weights are given again at once, not recomputed.
 TEST(TrainHooks, EmitWeightsAreGivenOnceAndRefreshedOnSchedule) {
   TrainConfig c;
-  c.mode = "intrinsic";
+  c.mode = TrainMode::Intrinsic;
   c.intrinsic.emit = EmitSource::Max;
   RecordingRenderer r(true);
   GaussianModel m = small_model(3);

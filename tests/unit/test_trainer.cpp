@@ -58,7 +58,7 @@ GaussianModel ground_truth_scene(int n, std::uint64_t seed) {
 
 TrainConfig refit_config(int iterations) {
   TrainConfig c;
-  c.mode = "radiance";
+  c.mode = TrainMode::Radiance;
   c.iterations = iterations;
   c.device = "cpu";
   c.max_sh_degree = 0;
@@ -400,10 +400,12 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   bad = j;
   bad["iterations"] = "many";
   EXPECT_THROW(from_json(bad, back), Error);
+  EXPECT_EQ(j.at("mode"), "auto");
+  bad = j;
+  bad["mode"] = "intrinsic-but-not-yet";
+  test::expect_error([&] { from_json(bad, back); },
+                     "'mode' must be radiance, intrinsic or auto, got \"intrinsic-but-not-yet\"");
   TrainConfig invalid;
-  invalid.mode = "intrinsic-but-not-yet";
-  EXPECT_THROW(invalid.validate("cfg"), Error);
-  invalid = TrainConfig{};
   invalid.downscale = 0.5f;
   EXPECT_THROW(invalid.validate("cfg"), Error);
   invalid = TrainConfig{};
@@ -655,7 +657,7 @@ TEST(TrainConfig, MirrorWorldPruneSchedule) {
   // densification, never in radiance mode or with the tolerance at 0.
   TrainConfig c;
   c.iterations = 4000;
-  c.mode = "intrinsic";
+  c.mode = TrainMode::Intrinsic;
   const int from = c.shading_from();
   ASSERT_EQ(from, 2000);
   EXPECT_TRUE(c.prunes_mirror_world_after(from, false)) << "on by default (session 26)";
@@ -672,7 +674,7 @@ TEST(TrainConfig, MirrorWorldPruneSchedule) {
   EXPECT_TRUE(c.prunes_mirror_world_after(from + 500, true));
   EXPECT_FALSE(c.prunes_mirror_world_after(from + 501, false)) << "only after a densification";
   EXPECT_FALSE(c.prunes_mirror_world_after(from - 500, true)) << "not during the warm-up";
-  c.mode = "radiance";
+  c.mode = TrainMode::Radiance;
   EXPECT_FALSE(c.prunes_mirror_world_after(from, false));
   EXPECT_FALSE(c.prunes_mirror_world_after(from + 500, true));
 }

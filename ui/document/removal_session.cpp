@@ -42,7 +42,7 @@ std::string RemovalSession::work(const fs::path& run_dir, const RemovalOptions& 
     const Dataset ds = load_dataset(config.data, dataset_options(config));
     const int iters =
         options.finetune_iterations > 0 ? options.finetune_iterations : std::max(100, config.scaled_iteration(4000));
-    const bool intrinsic = config.mode == "intrinsic";
+    const bool intrinsic = config.mode == TrainMode::Intrinsic;
     const RemovalCostModel cost = RemovalCostModel::estimate(
         ds.train.size(), iters, intrinsic && !options.ablate.count("lamask"), intrinsic && !options.ablate.count("material"));
     progress_.with([&](RemovalProgressTracker& p) {

@@ -71,7 +71,7 @@ std::shared_ptr<const ModelSnapshot> run_snapshot(const fs::path& path, const Tr
   GaussianModel model = load_run_model(path, device, source);
   std::shared_ptr<const ShadingSource> shading;
   std::shared_ptr<const std::string> renderer_state;
-  if (config.mode == "intrinsic") {
+  if (config.mode == TrainMode::Intrinsic) {
     float extent = 0;
     if (s.dataset && !s.dataset->train.empty()) {
       extent = scene_extent(*s.dataset);

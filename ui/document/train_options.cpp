@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
+#include <optional>
 
 #include "core/train/config_presets.h"
 #include "core/util/error.h"
@@ -25,7 +26,9 @@ void apply_config_override(TrainConfig& config, const std::string& key, const st
 
 TrainConfig new_run_config(const StudioSettings& s, const std::vector<std::pair<std::string, std::string>>& overrides) {
   TrainConfig c;
-  c.mode = s.train_mode;
+  const std::optional<TrainMode> mode = enum_from_name<TrainMode>(s.train_mode);
+  if (!mode) throw Error("train_mode '" + s.train_mode + "' must be " + enum_choices<TrainMode>());
+  c.mode = *mode;
   c.iterations = s.train_iterations;
   c.resolution = s.train_resolution;
   c.random_init_points = s.train_init_points;

@@ -46,7 +46,7 @@ void TrainingPanel::draw(AppState& st) {
   if (is_run && scene->run_config) {
     // A run keeps its own settings; only where it trains is this machine's choice.
     const TrainConfig& c = *scene->run_config;
-    ImGui::TextDisabled("mode %s, %s, background (%.2g, %.2g, %.2g)", c.mode.c_str(),
+    ImGui::TextDisabled("mode %s, %s, background (%.2g, %.2g, %.2g)", enum_name(c.mode),
                         c.resolution > 0 ? ("width " + std::to_string(c.resolution)).c_str() : "full size",
                         double(c.background.x), double(c.background.y), double(c.background.z));
   } else {
@@ -64,7 +64,7 @@ void TrainingPanel::draw(AppState& st) {
         if (k == key) ImGui::SetTooltip("set by `set %s %s`", k.c_str(), v.c_str());
     };
     static const char* kModes[] = {"radiance", "intrinsic", "auto"};
-    int mode = eff.mode == "intrinsic" ? 1 : eff.mode == "auto" ? 2 : 0;
+    int mode = eff.mode == TrainMode::Intrinsic ? 1 : eff.mode == TrainMode::Auto ? 2 : 0;
     ImGui::SetNextItemWidth(120);
     if (ImGui::Combo("mode", &mode, kModes, 3)) {
       set.train_mode = kModes[mode];

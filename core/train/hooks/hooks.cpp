@@ -16,7 +16,7 @@ void HookStep::note(const std::string& text) { out.densify_note += (out.densify_
 
 TrainHooks make_train_hooks(const TrainConfig& config, const DifferentiableRenderer& renderer) {
   TrainHooks hooks;
-  const bool intrinsic = config.mode == "intrinsic";
+  const bool intrinsic = config.mode == TrainMode::Intrinsic;
   if (renderer.wants_extras() && config.intrinsic.emit != EmitSource::Region) hooks.push_back(std::make_unique<EmitWeightsHook>());
   if (config.depth_distortion_weight > 0) hooks.push_back(std::make_unique<DepthDistortionHook>());
   if (intrinsic && config.intrinsic.prune_mirror_world > 0) hooks.push_back(std::make_unique<MirrorWorldHook>());
