@@ -1,6 +1,7 @@
-// `goris train DATA --out RUN`: stage-1 training (radiance, intrinsic, or auto: the one the scene needs) into a run folder: config.json,
-// checkpoints/, log.csv and the final point_cloud.ply. SIGINT (Ctrl-C), SIGTERM or SIGHUP finishes the
-// current iteration, writes a checkpoint, prints the command that resumes the run and exits 130, 143 or 129
+// `goris train DATA --out RUN`: stage-1 training (--mode auto by default: intrinsic for a glossy scene,
+// radiance otherwise) into a run folder: config.json, checkpoints/, log.csv and the final point_cloud.ply.
+// SIGINT (Ctrl-C), SIGTERM or SIGHUP finishes the current iteration, writes a checkpoint, prints the command
+// that resumes the run and exits 130, 143 or 129
 // (stop_signals.h), so that `goris train ... && next` does not go on with an unfinished run.
 #include <unistd.h>
 

@@ -110,7 +110,8 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
         plane_from_glossy_masks(cameras, masks, {}, target_rest_heights(cameras, masks, centres, target));
     if (pm.plane.found || !intrinsic) return twins_below_plane(centres, target, pm.plane);
   }
-  // No masks: the plane of the intrinsic model's flat glossy Gaussians (its region channel).
+  // No masks, or no plane through them: the plane of the intrinsic model's flat glossy Gaussians (its region
+  // channel).
   std::vector<std::uint8_t> glossy(model.count(), 0);
   if (intrinsic) {
     const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
