@@ -63,17 +63,19 @@ void TrainingPanel::draw(AppState& st) {
       for (const auto& [k, v] : st.overrides())
         if (k == key) ImGui::SetTooltip("set by `set %s %s`", k.c_str(), v.c_str());
     };
-    static const char* kModes[] = {"radiance", "intrinsic", "auto"};
-    int mode = eff.mode == TrainMode::Intrinsic ? 1 : eff.mode == TrainMode::Auto ? 2 : 0;
     ImGui::SetNextItemWidth(120);
-    if (ImGui::Combo("mode", &mode, kModes, 3)) {
-      set.train_mode = kModes[mode];
-      st.drop_override("mode");
+    if (ImGui::BeginCombo("mode", enum_name(eff.mode))) {  // the names config.json and `--mode` use
+      for (const auto& [value, name] : EnumNames<TrainMode>::names)
+        if (ImGui::Selectable(name, value == eff.mode)) {
+          set.train_mode = name;
+          st.drop_override("mode");
+        }
+      ImGui::EndCombo();
     }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip(
           "radiance: SH colour only; intrinsic: materials, tracing and shading (stage 1);\n"
-          "auto: intrinsic when the data set has glossy masks");
+          "auto: intrinsic for a glossy scene, radiance otherwise");
     overridden("mode");
     // Presets: the files of resources/presets (as `goris train --preset`), applied before a script's `set`
     // lines. The folder is listed again, and the tooltip's file read again, whenever the chooser opens.

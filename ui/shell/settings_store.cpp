@@ -129,7 +129,8 @@ StudioSettings load_settings(const fs::path& path) {
   for (const std::string& c : s.grid_channels) check_channel(c, "grid_channels", path);
   check_member(s.compare_mode, {"off", "side_by_side", "slider"}, "compare_mode", path);
   check_member(s.train_device, {"auto", "cpu", "cuda"}, "train_device", path);
-  check_member(s.train_mode, {"radiance", "intrinsic", "auto"}, "train_mode", path);
+  if (!enum_from_name<TrainMode>(s.train_mode))
+    throw Error(path.string(), "'train_mode': unknown value '" + s.train_mode + "'");
   // A preset's name must be one of the presets folder's; a preset file (a path) is read when a run starts.
   const std::vector<std::string> presets = config_preset_names();
   if (!s.train_preset.empty() && s.train_preset.find('/') == std::string::npos && !s.train_preset.ends_with(".json") &&
