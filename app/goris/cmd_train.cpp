@@ -147,7 +147,7 @@ void run_train(const Options& o) {
   check_output_dir(run_dir, OutputGuard{{data}, {}});
   if (o.iters) config.iterations = *o.iters;
   if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;
-  config.device = o.device;
+  config.device = enum_from_name<DeviceChoice>(o.device).value();  // --device's check accepts only the names
   config.validate("training options");
   // A run that reached its last iteration is finished once its outputs are written after that checkpoint:
   // then there is nothing to do. One killed in between (the checkpoint saved, the model not yet) is resumed

@@ -1,5 +1,6 @@
 #include "core/compute/device.h"
 
+#include "core/compute/device_choice.h"
 #include "core/util/error.h"
 
 namespace goris {
@@ -35,14 +36,20 @@ std::string cuda_device_description() {
 #endif
 }
 
-Device resolve_device(const std::string& choice) {
-  if (choice == "cpu") return Device::CPU;
-  if (choice == "auto") return cuda_device_count() > 0 ? Device::CUDA : Device::CPU;
-  if (choice == "cuda") {
-    if (cuda_device_count() > 0) return Device::CUDA;
-    throw Error("--device cuda: no usable CUDA device (" + cuda_device_description() + ")");
+Device resolve_device(DeviceChoice choice) {
+  switch (choice) {
+    case DeviceChoice::CPU: return Device::CPU;
+    case DeviceChoice::Auto: return cuda_device_count() > 0 ? Device::CUDA : Device::CPU;
+    case DeviceChoice::CUDA:
+      if (cuda_device_count() > 0) return Device::CUDA;
+      throw Error("--device cuda: no usable CUDA device (" + cuda_device_description() + ")");
   }
-  throw Error("--device: unknown value '" + choice + "' (expected auto, cpu or cuda)");
+  throw Error("--device: invalid choice");
+}
+
+Device resolve_device(const std::string& choice) {
+  if (const auto c = enum_from_name<DeviceChoice>(choice)) return resolve_device(*c);
+  throw Error("--device: unknown value '" + choice + "' (expected " + enum_choices<DeviceChoice>() + ")");
 }
 
 }  // namespace goris

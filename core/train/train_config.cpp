@@ -39,7 +39,8 @@ void visit_fields(Config& c, F&& visit) {
   f("seed", c.seed,
     {"Run", "Random seed of the initial points, the view order and the splits. Also `--seed`."});
   f("device", c.device,
-    {"Run", "`auto`, `cpu` or `cuda`. Also `--device`."});
+    {"Run", "Where to train: `auto` (CUDA when a device is usable, else the CPU), `cpu` or `cuda`. Also "
+            "`--device`."});
   f("data", c.data);
   f("data_views", c.data_views);
   f("downscale", c.downscale,
@@ -198,7 +199,6 @@ nlohmann::json vec_json(const glm::vec3& v) { return nlohmann::json::array({v.x,
 void TrainConfig::validate(const std::string& what) const {
   auto fail = [&](const std::string& p) { throw Error(what, p); };
   if (iterations < 1) fail("iterations must be at least 1");
-  if (device != "auto" && device != "cpu" && device != "cuda") fail("device must be auto, cpu or cuda");
   if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
   if (resolution < 0) fail("resolution must be positive (or 0 for none)");
   if (max_train_views < 0) fail("max_train_views must be >= 0 (0 = all views)");

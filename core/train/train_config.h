@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/compute/device_choice.h"
 #include "core/train/densify.h"
 #include "core/util/named_enum.h"
 
@@ -170,7 +171,7 @@ struct TrainConfig {
   TrainMode mode = TrainMode::Auto;
   int iterations = 30000;
   std::uint64_t seed = 0;
-  std::string device = "auto";  // auto | cpu | cuda
+  DeviceChoice device = DeviceChoice::Auto;
 
   // Data.
   std::string data;             // data set path (as given, made absolute)

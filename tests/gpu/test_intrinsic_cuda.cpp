@@ -40,7 +40,7 @@ TEST(IntrinsicCuda, TrainingRepeatsBitForBitAndFollowsTheCpu) {
   const TrainConfig cfg = densifying_intrinsic_config();
   const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
   TrainConfig cuda_cfg = cfg;
-  cuda_cfg.device = "cuda";
+  cuda_cfg.device = DeviceChoice::CUDA;
   const Trained a = train(cuda_cfg, views, Device::CUDA), b = train(cuda_cfg, views, Device::CUDA);
   EXPECT_EQ(a.losses, b.losses);
   EXPECT_EQ(a.model, b.model);

@@ -67,7 +67,7 @@ inline TrainConfig intrinsic_config(int iterations) {
   TrainConfig c;
   c.mode = TrainMode::Intrinsic;
   c.iterations = iterations;
-  c.device = "cpu";
+  c.device = DeviceChoice::CPU;
   c.max_sh_degree = 0;
   c.filter_3d = false;
   c.intrinsic.env_resolution = 8;

@@ -152,7 +152,7 @@ TrainConfig tiny_auto_config() {
   TrainConfig c;
   c.mode = TrainMode::Auto;
   c.data = (test::resource_dir() / "default_scene").string();
-  c.device = "cpu";
+  c.device = DeviceChoice::CPU;
   c.resolution = 32;
   c.iterations = 40;
   c.random_init_points = 4000;

@@ -74,7 +74,7 @@ GaussianModel scene(bool view_dependent) {
 
 TrainConfig run_config() {
   TrainConfig c;
-  c.device = "cpu";
+  c.device = DeviceChoice::CPU;
   c.background = glm::vec3(0.1f, 0.1f, 0.1f);
   return c;
 }

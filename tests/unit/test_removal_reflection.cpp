@@ -49,7 +49,7 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   TrainConfig c;
   c.mode = TrainMode::Intrinsic;
   c.data = (test::resource_dir() / "default_scene").string();
-  c.device = "cpu";
+  c.device = DeviceChoice::CPU;
   c.resolution = 64;
   // Radiance until 1000, then shading. Shorter runs (600 iterations, or 3000 points in a small box) leave the
   // geometry too blurred for any reflection ray to reach the torus: no lighting-aware mask at all.

@@ -43,7 +43,7 @@ const fs::path& tiny_intrinsic_run() {
     rq.config.random_init_points = 300;
     rq.config.random_init_box_ratio = 0.15f;
     rq.config.intrinsic.env_resolution = 8;
-    rq.config.device = "cpu";
+    rq.config.device = DeviceChoice::CPU;
     rq.config.checkpoint_interval = 0;
     rq.iterations = 4;
     t.start(rq);

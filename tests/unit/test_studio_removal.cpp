@@ -68,7 +68,7 @@ fs::path tiny_run_with_selection() {
   rq.config.resolution = 32;
   rq.config.random_init_points = 300;
   rq.config.random_init_box_ratio = 0.15f;
-  rq.config.device = "cpu";
+  rq.config.device = DeviceChoice::CPU;
   rq.config.checkpoint_interval = 0;
   rq.iterations = 10;
   t.start(rq);

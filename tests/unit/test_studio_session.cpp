@@ -23,7 +23,7 @@ TrainRequest tiny_request(const fs::path& run, int iterations) {
   rq.run_dir = run;
   rq.config.resolution = 32;
   rq.config.random_init_points = 400;
-  rq.config.device = "cpu";
+  rq.config.device = DeviceChoice::CPU;
   rq.config.checkpoint_interval = 0;
   rq.iterations = iterations;
   return rq;

@@ -168,7 +168,7 @@ TEST(StudioSettings, TrainingOptionsOfANewRun) {
   EXPECT_EQ(c.iterations, 77);
   EXPECT_EQ(c.resolution, 48);
   EXPECT_EQ(c.random_init_points, 123);  // the override wins over the panel
-  EXPECT_EQ(c.device, "cpu");
+  EXPECT_EQ(c.device, DeviceChoice::CPU);
   EXPECT_EQ(c.seed, 5u);
   EXPECT_FLOAT_EQ(c.lambda_ssim, 0.5f);
   EXPECT_EQ(c.background, glm::vec3(1.0f));

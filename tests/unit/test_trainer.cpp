@@ -60,7 +60,7 @@ TrainConfig refit_config(int iterations) {
   TrainConfig c;
   c.mode = TrainMode::Radiance;
   c.iterations = iterations;
-  c.device = "cpu";
+  c.device = DeviceChoice::CPU;
   c.max_sh_degree = 0;
   c.densify.from_iter = 1 << 30;  // pure optimisation: no densification, no opacity reset
   c.densify.until_iter = 0;
@@ -389,6 +389,7 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   c.background = glm::vec3(1, 0.5f, 0);
   c.densify.grad_threshold = 3e-4f;
   c.lr.label = 0.5f;
+  c.device = DeviceChoice::CPU;
   const nlohmann::json j = c;
   TrainConfig back;
   from_json(j, back);
@@ -405,6 +406,10 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   bad["mode"] = "intrinsic-but-not-yet";
   test::expect_error([&] { from_json(bad, back); },
                      "'mode' must be radiance, intrinsic or auto, got \"intrinsic-but-not-yet\"");
+  EXPECT_EQ(j.at("device"), "cpu");  // the enumeration is written by name, as the files always had it
+  bad = j;
+  bad["device"] = "gpu";
+  test::expect_error([&] { from_json(bad, back); }, "'device' must be auto, cpu or cuda, got \"gpu\"");
   TrainConfig invalid;
   invalid.downscale = 0.5f;
   EXPECT_THROW(invalid.validate("cfg"), Error);
