@@ -17,7 +17,7 @@
 #include "ui/document/capture_job.h"
 #include "ui/display/display_frame.h"
 #include "ui/document/export_job.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 #include "ui/display/orbit_camera.h"
 #include "ui/document/removal_session.h"
 #include "ui/document/scene_loader.h"
