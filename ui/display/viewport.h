@@ -9,7 +9,7 @@
 #include "ui/display/channel_renderer.h"
 #include "ui/display/frame_textures.h"
 #include "ui/gl/framebuffer.h"
-#include "ui/shell/panel_layout.h"
+#include "ui/document/panel_layout.h"
 #include "ui/selection/viewport_tools.h"
 
 namespace goris::ui {

@@ -24,7 +24,7 @@
 #include "ui/selection/selection_tools.h"
 #include "ui/selection/two_click_flow.h"
 #include "ui/selection/selection_session.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 #include "ui/document/trainer_session.h"
 
 namespace goris::ui {

@@ -17,7 +17,7 @@
 #include "ui/panels/panel.h"
 #include "ui/display/render_worker.h"
 #include "ui/script/script_runner.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 #include "ui/shell/studio_window.h"
 #include "ui/display/viewport.h"
 
