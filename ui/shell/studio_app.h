@@ -19,7 +19,7 @@
 #include "ui/script/script_runner.h"
 #include "ui/document/settings_store.h"
 #include "ui/shell/studio_window.h"
-#include "ui/display/viewport.h"
+#include "ui/viewport/viewport.h"
 
 namespace goris::ui {
 
