@@ -11,12 +11,9 @@ if(NOT TABLE)
 endif()
 include(${TABLE})
 
-# The folder a path (relative to the root) belongs to: core/io, render/train, tools/synth, app/goris, ui.
+# The folder a path (relative to the root) belongs to: core/io, render/train, ui/document, tools/synth, app/goris.
 function(folder_of path out)
-  string(REGEX MATCH "^(core|render|tools|app)/[^/]+" f "${path}")
-  if(NOT f)
-    string(REGEX MATCH "^ui" f "${path}")
-  endif()
+  string(REGEX MATCH "^(core|render|ui|tools|app)/[^/]+" f "${path}")
   set(${out} "${f}" PARENT_SCOPE)
 endfunction()
 

@@ -1,10 +1,11 @@
 # Which folders each folder of the engine, the editor and the programs may include from (besides itself,
 # the standard library and third-party headers). Checked on every build by check_folder_dependencies.cmake:
 # an #include of an undeclared folder, or a cycle in this table, fails the build. A folder is two levels
-# deep under core/, render/, tools/ and app/ (core/io, render/train, tools/synth, app/goris); ui/ is one folder.
+# deep: core/io, render/train, ui/document, tools/synth, app/goris.
 #
 # Keep it acyclic and pointing downwards: app -> ui -> render -> core, and app -> tools -> core (the code of
-# the benchmarks and of `goris synth`, which the engine and the editor never include).
+# the benchmarks and of `goris synth`, which the engine and the editor never include). Inside ui/, from the
+# bottom: gl, display (frames to pixels), selection, document (AppState), viewport, panels, script, shell.
 set(GORIS_FOLDER_DEPENDENCIES
   "core/util:"
   "core/compute:core/util"
@@ -28,7 +29,14 @@ set(GORIS_FOLDER_DEPENDENCIES
   "render/removal:core/compute core/inpaint core/io core/removal core/scene core/train core/util render/maps render/raster render/trace render/train"
   "tools/report:core/util"
   "tools/synth:core/util"
-  "ui:core/capture core/compute core/inpaint core/io core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train"
-  "app/studio:core/util ui"
+  "ui/gl:core/compute core/util"
+  "ui/display:core/compute core/io core/removal core/scene core/train core/util render/maps render/raster render/train ui/gl"
+  "ui/selection:core/inpaint core/io core/removal core/scene core/util render/raster render/removal ui/display"
+  "ui/document:core/capture core/compute core/io core/removal core/train core/util render/export render/maps render/removal render/train ui/display ui/selection"
+  "ui/viewport:core/util ui/display ui/document ui/gl"
+  "ui/panels:core/capture core/io core/train core/util ui/document ui/gl ui/viewport"
+  "ui/script:core/util render/maps ui/document ui/panels ui/selection ui/viewport"
+  "ui/shell:core/io core/util ui/display ui/document ui/gl ui/panels ui/script ui/viewport"
+  "app/studio:core/util ui/shell"
   "app/goris:core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train render/trace tools/report tools/synth"
 )

@@ -64,4 +64,14 @@ file(REMOVE ${WORK}/tree/core/io/g.cpp)
 file(WRITE ${WORK}/tree/tools/report/h.cpp "#include \"core/io/b.h\"\n")
 expect_failure(${WORK}/tree ${WORK}/tools_table.cmake "tools/report/h.cpp: includes core/io/b.h, but tools/report does not declare core/io")
 
+# ui/: its folders are two levels deep too (ui/gl, ui/shell), each with its own row.
+file(REMOVE ${WORK}/tree/tools/report/h.cpp)
+file(WRITE ${WORK}/tree/ui/gl/i.h "#pragma once\n#include \"core/util/a.h\"\n")
+file(WRITE ${WORK}/tree/ui/shell/j.h "#pragma once\n#include \"ui/gl/i.h\"\n")
+file(WRITE ${WORK}/ui_table.cmake
+     "set(GORIS_FOLDER_DEPENDENCIES \"core/util:\" \"core/io:core/util\" \"tools/report:core/util\" \"ui/gl:core/util\" \"ui/shell:ui/gl\")\n")
+expect_pass(${WORK}/tree ${WORK}/ui_table.cmake "a declared include between ui/ folders was refused")
+file(WRITE ${WORK}/tree/ui/gl/k.cpp "#include \"ui/shell/j.h\"\n")
+expect_failure(${WORK}/tree ${WORK}/ui_table.cmake "ui/gl/k.cpp: includes ui/shell/j.h, but ui/gl does not declare ui/shell")
+
 message(STATUS "folder dependencies: the repository passes; undeclared includes, unknown folders and cycles fail")

@@ -1,5 +1,5 @@
 #pragma once
-// The .layout.json beside an editor screenshot (ui/display/screenshot.h): every viewport's image rectangle and
+// The .layout.json beside an editor screenshot (ui/shell/screenshot.h): every viewport's image rectangle and
 // channel. Shared by the GUI tests' checking tools.
 #include <filesystem>
 #include <fstream>

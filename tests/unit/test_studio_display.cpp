@@ -16,7 +16,7 @@
 #include "tests/support/test_support.h"
 #include "tests/unit/test_studio_scenes.h"
 #include "ui/display/display_frame.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 #include "ui/display/render_worker.h"
 #include "ui/document/scene_loader.h"
 

@@ -18,7 +18,7 @@
 #include "ui/document/export_job.h"
 #include "ui/script/script.h"
 #include "ui/script/script_runner.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 #include "ui/document/trainer_session.h"
 
 using namespace goris;

@@ -14,7 +14,7 @@
 #include "ui/document/app_state.h"
 #include "ui/document/capture_job.h"
 #include "ui/script/script.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 
 using namespace goris;
 using namespace goris::ui;

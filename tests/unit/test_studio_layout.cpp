@@ -8,7 +8,7 @@
 #include "tests/support/test_support.h"
 #include "render/maps/channels.h"
 #include "ui/shell/frame_limiter.h"
-#include "ui/shell/panel_layout.h"
+#include "ui/document/panel_layout.h"
 #include "ui/document/training_history.h"
 
 using namespace goris;

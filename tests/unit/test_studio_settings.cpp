@@ -1,4 +1,4 @@
-// What the editor remembers between sessions (ui/shell/settings_store.h) and where runs go
+// What the editor remembers between sessions (ui/document/settings_store.h) and where runs go
 // (ui/document/train_options.h): a round trip through the file, defaults for a missing file, errors naming the file
 // and the key for a bad one, the XDG locations, and the training options built from the panel.
 #include <cstdlib>
@@ -8,7 +8,7 @@
 #include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 #include "ui/document/train_options.h"
 
 using namespace goris;

@@ -10,7 +10,7 @@
 #include "core/compute/buffer.h"
 #include "core/removal/selection_points.h"
 #include "ui/display/display_frame.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 
 namespace goris {
 class IntrinsicRenderer;

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "ui/document/background_priority.h"
+#include "ui/display/background_priority.h"
 #include "ui/display/display_renderer.h"
 
 namespace goris::ui {

@@ -14,7 +14,7 @@
 
 #include "core/removal/selection_points.h"
 #include "ui/display/display_frame.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 
 namespace goris::ui {
 

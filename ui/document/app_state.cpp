@@ -9,7 +9,7 @@
 #include "core/train/checkpoint.h"
 #include "core/train/run_folder.h"
 #include "core/util/error.h"
-#include "ui/shell/panel_layout.h"
+#include "ui/document/panel_layout.h"
 #include "ui/document/train_options.h"
 
 namespace goris::ui {

@@ -17,14 +17,14 @@
 #include "ui/document/capture_job.h"
 #include "ui/display/display_frame.h"
 #include "ui/document/export_job.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 #include "ui/display/orbit_camera.h"
 #include "ui/document/removal_session.h"
 #include "ui/document/scene_loader.h"
 #include "ui/selection/selection_tools.h"
-#include "ui/selection/two_click_flow.h"
+#include "ui/document/two_click_flow.h"
 #include "ui/selection/selection_session.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 #include "ui/document/trainer_session.h"
 
 namespace goris::ui {
@@ -99,7 +99,7 @@ class AppState {
   std::uint64_t redo_selection();
   std::filesystem::path save_selection();  // RUN/selection.json
 
-  // --- Selection tools (ui/selection/selection_tools.h; defined in ui/selection/tool_actions.cpp) ---
+  // --- Selection tools (ui/selection/selection_tools.h; defined in ui/document/tool_actions.cpp) ---
   SelectionTools tools;
   // Shapes on the main viewport's image shown at `display` (w, h): points in its window pixels. Only what
   // the view shows is taken unless tools.through_all. Throw goris::Error without a frame or when selecting
@@ -118,7 +118,7 @@ class AppState {
   // Use as target masks: every training view's object mask of the selection into `dir` (empty:
   // RUN/target_masks), and the selection becomes their votes, which Remove then takes.
   std::uint64_t use_as_target_masks(std::filesystem::path dir);
-  // The guided two-click flow (ui/selection/two_click_flow.h); poll() keeps it in step.
+  // The guided two-click flow (ui/document/two_click_flow.h); poll() keeps it in step.
   TwoClickFlow two_click;
   // Puts the sphere and box at the last picked point (else the surface in the middle of the view) unless
   // placed already.

@@ -3,7 +3,7 @@
 #include <exception>
 
 #include "core/util/error.h"
-#include "ui/document/background_priority.h"
+#include "ui/display/background_priority.h"
 
 namespace goris::ui {
 

@@ -13,7 +13,7 @@
 
 #include "core/io/dataset.h"
 #include "core/train/train_config.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 
 namespace goris::ui {
 

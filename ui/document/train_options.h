@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/train/train_config.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 
 namespace goris::ui {
 

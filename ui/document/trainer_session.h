@@ -24,7 +24,7 @@
 #include "core/train/train_config.h"
 #include "core/train/trainer.h"
 #include "ui/document/background_job.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 #include "ui/document/training_history.h"
 
 namespace goris::ui {

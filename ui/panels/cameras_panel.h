@@ -1,7 +1,7 @@
 #pragma once
 // The view camera: orbit or fly, field of view, and the data set's cameras to snap to.
 #include "ui/panels/panel.h"
-#include "ui/display/viewport.h"
+#include "ui/viewport/viewport.h"
 
 namespace goris::ui {
 

@@ -2,7 +2,7 @@
 
 #include <imgui.h>
 
-#include "ui/selection/tool_bar.h"
+#include "ui/panels/tool_bar.h"
 
 namespace goris::ui {
 

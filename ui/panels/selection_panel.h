@@ -1,5 +1,5 @@
 #pragma once
-// Selecting the target (docs/user/editor.md): what is selected, the tools (ui/selection/tool_bar.h), the grow /
+// Selecting the target (docs/user/editor.md): what is selected, the tools (ui/panels/tool_bar.h), the grow /
 // shrink slider, selection by the learned labels or the data set's object masks, clear, undo / redo, and
 // saving RUN/selection.json. Clicks and drags in the main viewport select too (plain: replace, shift: add,
 // ctrl: remove).

@@ -1,5 +1,5 @@
 #pragma once
-// The guided two-click flow (ui/selection/two_click_flow.h) as a step-by-step panel: the four steps with
+// The guided two-click flow (ui/document/two_click_flow.h) as a step-by-step panel: the four steps with
 // the current one marked, the view chooser for the clicks, the view offered for the second click, the
 // review's stepper and strip over every training view's mask (the mask itself is drawn over the main
 // viewport), the progress of the running step, Undo step and Cancel.

@@ -43,7 +43,7 @@
 //                              radius, x, y, z) by (DX, DY) pixels of the main viewport's image; a size
 //                              handle's DX is along its direction from the centre (outward), DY across it
 //   two_click start [VIEW] | view N | click X Y | offered | take_back K | undo | cancel | use [ITERS] |
-//             expect STEP      the Two-click panel (ui/selection/two_click_flow.h): start on training view
+//             expect STEP      the Two-click panel (ui/document/two_click_flow.h): start on training view
 //                              VIEW, show training view N, click at (X, Y) of the main viewport's image (the
 //                              mouse's path), click the point offered in the second view, take back click K
 //                              (1-based), undo a step, cancel the flow, use the masks and remove (waits

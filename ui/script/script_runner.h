@@ -13,7 +13,7 @@
 
 #include "ui/document/app_state.h"
 #include "ui/script/script.h"
-#include "ui/shell/studio_window.h"
+#include "ui/script/scripted_mouse.h"
 
 namespace goris::ui {
 
@@ -70,7 +70,7 @@ class ScriptRunner {
                           const std::function<std::uint64_t()>& start);
   // Plays a drag (the mouse of one frame per step), then waits for the edit it made.
   bool run_drag(ScriptHost& host, const ScriptAction& a);
-  // The tool bar's buttons, the volume handles and the two-click flow (ui/selection/script_tools.cpp).
+  // The tool bar's buttons, the volume handles and the two-click flow (ui/script/script_tools.cpp).
   bool run_press(ScriptHost& host, const ScriptAction& a);
   bool run_drag_handle(ScriptHost& host, const ScriptAction& a);
   bool run_two_click(ScriptHost& host, const ScriptAction& a);

@@ -8,7 +8,7 @@
 #include "core/removal/selection_labels.h"
 #include "core/util/error.h"
 #include "render/removal/selection_masks.h"
-#include "ui/document/background_priority.h"
+#include "ui/display/background_priority.h"
 #include "ui/selection/session_context.h"
 
 namespace goris::ui {

@@ -25,7 +25,7 @@
 
 #include "core/io/camera.h"
 #include "core/io/dataset.h"
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 #include "ui/selection/region_masks.h"
 #include "ui/selection/selection_edit.h"
 

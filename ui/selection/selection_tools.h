@@ -1,7 +1,7 @@
 #pragma once
 // The selection tools' state in the editor: which tool the main viewport's left button uses, the
 // "through everything" toggle, the brush radius, the placed sphere and box, the colour range. No OpenGL or
-// ImGui here (the panel and the viewport draw it; ui/selection/tool_bar.h, ui/selection/viewport_tools.h).
+// ImGui here (the panel and the viewport draw it; ui/panels/tool_bar.h, ui/viewport/viewport_tools.h).
 #include <optional>
 #include <string>
 

@@ -8,8 +8,8 @@
 #include "core/util/error.h"
 #include "render/removal/selection_click_flow.h"
 #include "render/removal/selection_view_masks.h"
+#include "ui/selection/flow_result.h"
 #include "ui/selection/session_context.h"
-#include "ui/selection/two_click_flow.h"
 
 namespace goris::ui {
 

@@ -22,7 +22,7 @@
 #include "ui/panels/selection_panel.h"
 #include "ui/panels/two_click_panel.h"
 #include "ui/panels/training_panel.h"
-#include "ui/display/screenshot.h"
+#include "ui/shell/screenshot.h"
 #include "ui/display/shader_paths.h"
 
 namespace goris::ui {

@@ -17,9 +17,9 @@
 #include "ui/panels/panel.h"
 #include "ui/display/render_worker.h"
 #include "ui/script/script_runner.h"
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 #include "ui/shell/studio_window.h"
-#include "ui/display/viewport.h"
+#include "ui/viewport/viewport.h"
 
 namespace goris::ui {
 

@@ -5,17 +5,11 @@
 #include <optional>
 #include <string>
 
+#include "ui/script/scripted_mouse.h"
+
 struct GLFWwindow;
 
 namespace goris::ui {
-
-// A mouse the scripted mode drives (`drag`): replaces the real pointer, its left button and the modifier
-// keys for the frame it is given to.
-struct ScriptedMouse {
-  glm::vec2 pos{0.0f};  // window pixels
-  bool left_down = false;
-  bool shift = false, ctrl = false, alt = false;
-};
 
 class StudioWindow {
  public:

@@ -1,4 +1,4 @@
-#include "ui/display/screenshot.h"
+#include "ui/shell/screenshot.h"
 
 #include <cstdint>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "ui/selection/viewport_tools.h"
+#include "ui/viewport/viewport_tools.h"
 
 #include <imgui.h>
 

@@ -1,4 +1,4 @@
-#include "ui/selection/two_click_flow.h"
+#include "ui/document/two_click_flow.h"
 
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-#include "ui/shell/panel_layout.h"
+#include "ui/document/panel_layout.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ui/selection/tool_bar.h"
+#include "ui/panels/tool_bar.h"
 
 #include <imgui.h>
 

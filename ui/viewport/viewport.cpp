@@ -1,4 +1,4 @@
-#include "ui/display/viewport.h"
+#include "ui/viewport/viewport.h"
 
 #include <imgui.h>
 

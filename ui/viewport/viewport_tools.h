@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "ui/document/app_state.h"
-#include "ui/shell/panel_layout.h"
+#include "ui/document/panel_layout.h"
 
 namespace goris::ui {
 

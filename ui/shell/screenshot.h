@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "ui/shell/panel_layout.h"
+#include "ui/document/panel_layout.h"
 
 namespace goris::ui {
 

@@ -1,4 +1,4 @@
-#include "ui/shell/settings_store.h"
+#include "ui/document/settings_store.h"
 
 #include <algorithm>
 #include <cstdlib>

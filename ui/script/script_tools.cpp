@@ -4,8 +4,8 @@
 
 #include "core/util/error.h"
 #include "ui/script/script_runner.h"
-#include "ui/selection/tool_bar.h"
-#include "ui/selection/viewport_tools.h"
+#include "ui/panels/tool_bar.h"
+#include "ui/viewport/viewport_tools.h"
 
 namespace goris::ui {
 

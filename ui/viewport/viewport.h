@@ -2,15 +2,15 @@
 // One viewport: an ImGui window at a given rectangle showing one channel of the current frame (drawn
 // into its own framebuffer by the channel shader), with its channel chooser, and the mouse controls of
 // the view camera (left drag orbit / look, right or middle drag pan, wheel zoom, left click = pick); the main
-// viewport also runs the selection tools (ui/selection/viewport_tools.h) on its left button.
+// viewport also runs the selection tools (ui/viewport/viewport_tools.h) on its left button.
 #include <string>
 
 #include "ui/document/app_state.h"
 #include "ui/display/channel_renderer.h"
 #include "ui/display/frame_textures.h"
 #include "ui/gl/framebuffer.h"
-#include "ui/shell/panel_layout.h"
-#include "ui/selection/viewport_tools.h"
+#include "ui/document/panel_layout.h"
+#include "ui/viewport/viewport_tools.h"
 
 namespace goris::ui {
 

@@ -1,4 +1,4 @@
-#include "ui/document/model_snapshot.h"
+#include "ui/display/model_snapshot.h"
 
 #include <vector>
 

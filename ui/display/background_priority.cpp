@@ -1,4 +1,4 @@
-#include "ui/document/background_priority.h"
+#include "ui/display/background_priority.h"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>

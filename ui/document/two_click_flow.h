@@ -14,61 +14,21 @@
 // selection worker (SelectionSession::click_regions), one undo step of the selection; the flow's undo steps
 // back through its clicks (and the target masks), its cancel undoes them all and stops a running removal.
 // No ImGui here: the panel (ui/panels/two_click_panel.h), the main viewport and scripts drive it.
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "core/inpaint/mask.h"
 #include "core/removal/selection_points.h"
+#include "ui/selection/flow_result.h"
 
 namespace goris::ui {
 
 class AppState;
-
-// A click of the flow: pixel (x, y) of training view `view` at the run's training resolution.
-struct FlowClick {
-  std::size_t view = 0;
-  int x = 0, y = 0;
-};
-
-// How far the running evaluation is; shared with the selection worker.
-struct FlowProgress {
-  std::atomic<int> done{0}, total{0};
-  std::atomic<bool> cancel{false};
-  void set_stage(const std::string& s) {
-    std::lock_guard lk(mutex);
-    stage = s;
-  }
-  std::string get_stage() const {
-    std::lock_guard lk(mutex);
-    return stage;
-  }
-
- private:
-  mutable std::mutex mutex;
-  std::string stage;
-};
-
-// What one evaluation found (written by the worker before its job finishes, read-only afterwards).
-struct FlowResult {
-  std::vector<FlowClick> clicks;
-  std::vector<Mask> masks;          // every training view's object mask, at the training resolution
-  std::vector<Mask> click_regions;  // each click's region of its view
-  std::filesystem::path dir;        // where the masks were written
-  std::size_t selected = 0, total = 0;
-  std::shared_ptr<const SelectionMask> selection;  // what the evaluation selected
-  // One click: the view offered for the second one and the point on the object there (its mask's
-  // deepest pixel); none when no other view shows the object.
-  std::optional<FlowClick> offered;
-};
 
 enum class FlowStep { Off, FirstClick, SecondClick, Review, Removing, Done };
 const char* flow_step_name(FlowStep s);  // "off", "first click", ...
