@@ -30,5 +30,6 @@ set(GORIS_FOLDER_DEPENDENCIES
   "tools/synth:core/util"
   "ui:core/capture core/compute core/inpaint core/io core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train"
   "app/studio:core/util ui"
-  "app/goris:core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train render/trace tools/report tools/synth"
+  "app/cli_common:core/util"
+  "app/goris:app/cli_common core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train render/trace tools/report tools/synth"
 )

@@ -6,7 +6,7 @@
 #include <optional>
 #include <sstream>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"

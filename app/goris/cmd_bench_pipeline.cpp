@@ -9,8 +9,8 @@
 #include <memory>
 
 #include "app/goris/bench_pipeline.h"
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/util/error.h"
 
 namespace {

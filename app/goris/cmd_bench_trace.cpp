@@ -14,8 +14,8 @@
 
 #include <glm/glm.hpp>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/compute/buffer.h"
 #include "core/io/npy.h"
 #include "core/compute/bench.h"

@@ -10,6 +10,8 @@ using CommandSetup = void (*)(CLI::App& root);
 
 // `order` sorts the subcommands in --help.
 bool register_command(int order, CommandSetup setup);
+// Adds every registered command to `root`, in their order (main calls it once, before parsing).
+void add_registered_commands(CLI::App& root);
 
 // The subcommand `name` of `parent`, created on first use: lets several files add children to one group
 // (e.g. each `goris bench KIND` lives in its own file and registers with an order after the group's).
