@@ -4,7 +4,9 @@
 # deep under core/, render/, tools/ and app/ (core/io, render/train, tools/synth, app/goris); ui/ is one folder.
 #
 # Keep it acyclic and pointing downwards: app -> ui -> render -> core, and app -> tools -> core (the code of
-# the benchmarks and of `goris synth`, which the engine and the editor never include).
+# the benchmarks and of `goris synth`, which the engine and the editor never include). Inside app/, the
+# `goris` program's user commands (app/goris) and its benchmarks (app/bench) stand side by side, neither
+# including the other, over what every command shares (app/cli_common).
 set(GORIS_FOLDER_DEPENDENCIES
   "core/util:"
   "core/compute:core/util"
@@ -31,5 +33,6 @@ set(GORIS_FOLDER_DEPENDENCIES
   "ui:core/capture core/compute core/inpaint core/io core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train"
   "app/studio:core/util ui"
   "app/cli_common:core/util"
-  "app/goris:app/cli_common core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train render/trace tools/report tools/synth"
+  "app/goris:app/cli_common core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train tools/synth"
+  "app/bench:app/cli_common core/compute core/io core/train core/util render/raster render/removal render/trace render/train tools/report tools/synth"
 )

@@ -1,7 +1,8 @@
 #pragma once
-// Each `goris` subcommand lives in its own cmd_*.cpp and registers itself here, so adding a command never
-// touches main.cpp. A command's setup adds a CLI11 subcommand to the root app and sets its callback; the
-// callback throws goris::Error for bad input (main prints it and exits 1) and returns normally on success.
+// Each `goris` subcommand lives in its own cmd_*.cpp (the user commands in app/goris, the benchmarks in
+// app/bench) and registers itself here, so adding a command never touches main.cpp. A command's setup adds
+// a CLI11 subcommand to the root app and sets its callback; the callback throws goris::Error for bad input
+// (main prints it and exits 1) and returns normally on success.
 #include <CLI/CLI.hpp>
 
 namespace goris::cli {

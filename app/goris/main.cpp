@@ -1,4 +1,5 @@
-// `goris`: the command-line twin of the editor. Wiring only: every subcommand is a cmd_*.cpp file.
+// `goris`: the command-line twin of the editor. Wiring only: every subcommand is a cmd_*.cpp file that
+// registers itself (app/cli_common/command.h): the user commands here, the `goris bench` commands in app/bench.
 #include <cstdio>
 #include <exception>
 

@@ -24,7 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/bench_child.h"
+#include "app/bench/bench_child.h"
 #include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"

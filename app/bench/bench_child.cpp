@@ -1,4 +1,4 @@
-#include "app/goris/bench_child.h"
+#include "app/bench/bench_child.h"
 
 #include <fcntl.h>
 #include <spawn.h>
