@@ -6,6 +6,8 @@
 # Keep it acyclic and pointing downwards: app -> ui -> render -> core, and app -> tools -> core (the code of
 # the benchmarks and of `goris synth`, which the engine and the editor never include). Inside ui/, from the
 # bottom: gl, display (frames to pixels), selection, document (AppState), viewport, panels, script, shell.
+# Inside app/, the `goris` program's user commands (app/goris) and its benchmarks (app/bench) stand side by
+# side, neither including the other, over what every command shares (app/cli_common).
 set(GORIS_FOLDER_DEPENDENCIES
   "core/util:"
   "core/compute:core/util"
@@ -38,5 +40,7 @@ set(GORIS_FOLDER_DEPENDENCIES
   "ui/script:core/util render/maps ui/document ui/panels ui/selection ui/viewport"
   "ui/shell:core/io core/util ui/display ui/document ui/gl ui/panels ui/script ui/viewport"
   "app/studio:core/util ui/shell"
-  "app/goris:core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train render/trace tools/report tools/synth"
+  "app/cli_common:core/util"
+  "app/goris:app/cli_common core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train tools/synth"
+  "app/bench:app/cli_common core/compute core/io core/train core/util render/raster render/removal render/trace render/train tools/report tools/synth"
 )

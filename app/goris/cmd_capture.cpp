@@ -13,9 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
-#include "app/goris/stop_signals.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
+#include "app/cli_common/stop_signals.h"
 #include "core/capture/capture.h"
 #include "core/capture/pose_alignment.h"
 #include "core/io/dataset.h"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/train/config_presets.h"
 #include "core/train/train_config.h"
 #include "core/util/error.h"

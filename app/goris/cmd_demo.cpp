@@ -23,9 +23,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "app/goris/bench_child.h"
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/json_number.h"
+#include "app/cli_common/number_checks.h"
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/metrics/removal_metrics.h"
@@ -234,8 +234,8 @@ void write_report(const Options& o, const fs::path& out, const fs::path& run, co
                     "image): PSNR %.2f dB, FLIP %.3f, ghost %.2f (what is left of the target's imprint: 1 = all of "
                     "it, 0 = none).\n\nEach row, cropped to that region: with the target | ground truth without it "
                     "| render after removal\n\n",
-                    100.0 * goris::bench::json_number(rm, "region_fraction"), goris::bench::json_number(rm, "region_psnr"),
-                    goris::bench::json_number(rm, "region_flip"), goris::bench::json_number(rm, "ghost_ratio"));
+                    100.0 * goris::cli::json_number(rm, "region_fraction"), goris::cli::json_number(rm, "region_psnr"),
+                    goris::cli::json_number(rm, "region_flip"), goris::cli::json_number(rm, "ghost_ratio"));
       md += text;
       for (int i = 0; i < n; ++i) {
         const auto& v = ds.test[size_t(i) * ds.test.size() / size_t(n)];

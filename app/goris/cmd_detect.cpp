@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/io/dataset.h"
 #include "core/io/image.h"
 #include "core/removal/plane_from_masks.h"

@@ -1,7 +1,7 @@
 // `goris devices`: which compute backends this build has and which one --device auto would pick.
 #include <cstdio>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/compute/device.h"
 
 namespace {

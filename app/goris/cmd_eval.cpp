@@ -33,7 +33,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/io/json_file.h"
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"

@@ -19,9 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
-#include "app/goris/stop_signals.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
+#include "app/cli_common/stop_signals.h"
 #include "core/io/file_bytes.h"
 #include "core/io/splat_formats.h"
 #include "core/train/run_folder.h"

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/io/dataset.h"
 #include "core/io/ply.h"
 #include "core/io/splat_compare.h"

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
-#include "app/goris/stop_signals.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
+#include "app/cli_common/stop_signals.h"
 #include "core/compute/device.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"

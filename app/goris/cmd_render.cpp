@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/io/dataset.h"
 #include "core/io/image.h"
 #include "core/io/splat_formats.h"

@@ -28,8 +28,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/io/dataset.h"
 #include "core/inpaint/mask.h"
 #include "core/io/image.h"

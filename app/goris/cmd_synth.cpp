@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "tools/synth/synth.h"
 
 namespace {

@@ -17,9 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
-#include "app/goris/stop_signals.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
+#include "app/cli_common/stop_signals.h"
 #include "core/compute/device.h"
 #include "core/io/file_bytes.h"
 #include "core/io/output_path.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "app/goris/bench_suite.h"
+#include "app/bench/bench_suite.h"
 #include "core/util/error.h"
 
 using namespace goris::bench;

@@ -7,7 +7,7 @@
 #include <csignal>
 #include <thread>
 
-#include "../../app/goris/stop_signals.h"
+#include "app/cli_common/stop_signals.h"
 
 namespace goris::cli {
 namespace {

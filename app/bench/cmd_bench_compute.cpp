@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/compute/primitives.h"
 #include "core/compute/bench.h"
 

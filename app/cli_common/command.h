@@ -1,7 +1,8 @@
 #pragma once
-// Each `goris` subcommand lives in its own cmd_*.cpp and registers itself here, so adding a command never
-// touches main.cpp. A command's setup adds a CLI11 subcommand to the root app and sets its callback; the
-// callback throws goris::Error for bad input (main prints it and exits 1) and returns normally on success.
+// Each `goris` subcommand lives in its own cmd_*.cpp (the user commands in app/goris, the benchmarks in
+// app/bench) and registers itself here, so adding a command never touches main.cpp. A command's setup adds
+// a CLI11 subcommand to the root app and sets its callback; the callback throws goris::Error for bad input
+// (main prints it and exits 1) and returns normally on success.
 #include <CLI/CLI.hpp>
 
 namespace goris::cli {
@@ -10,6 +11,8 @@ using CommandSetup = void (*)(CLI::App& root);
 
 // `order` sorts the subcommands in --help.
 bool register_command(int order, CommandSetup setup);
+// Adds every registered command to `root`, in their order (main calls it once, before parsing).
+void add_registered_commands(CLI::App& root);
 
 // The subcommand `name` of `parent`, created on first use: lets several files add children to one group
 // (e.g. each `goris bench KIND` lives in its own file and registers with an order after the group's).

@@ -2,15 +2,15 @@
 // [--device D] [--check SUITE.json]`: the paper's ablation ladder (baseline, +elt, +ssf, full, distilled) run end to
 // end per scene and schedule, each step a `goris` child process (this binary), so a crash in one configuration is
 // recorded and the bench goes on. Writes results.csv, results.md and PSNR-against-time charts (chart.svg/png and
-// chart_SCENE.svg/png) with the Pareto front; with --suite (app/goris/bench_suite.h) the scenes are made with
+// chart_SCENE.svg/png) with the Pareto front; with --suite (app/bench/bench_suite.h) the scenes are made with
 // `goris synth` (cached) and suite.md / suite.json summarise the removal metrics. A configuration whose result.json
 // in DIR was made with the same options is reused, not rerun. This file is the command line; the bench is
-// app/goris/bench_pipeline.h.
+// app/bench/bench_pipeline.h.
 #include <memory>
 
-#include "app/goris/bench_pipeline.h"
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/bench/bench_pipeline.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/util/error.h"
 
 namespace {

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/cli_common/json_number.h"
+
 namespace goris::bench {
 
 // One child process: whether it exited 0, its wall time, its peak resident memory, when it failed a message
@@ -72,8 +74,8 @@ void write_result(const std::filesystem::path& dir, const nlohmann::json& option
 
 // A JSON object read from `path`; goris::Error naming the file when it is missing or not an object.
 nlohmann::json read_json_object(const std::filesystem::path& path);
-// j[key] when it is a number, else NaN.
-double json_number(const nlohmann::json& j, const char* key);
+// j[key] when it is a number, else NaN (shared with the user commands).
+using cli::json_number;
 // Writes text through a temporary file renamed into place.
 void write_text(const std::filesystem::path& path, const std::string& text);
 

@@ -1,4 +1,4 @@
-#include "app/goris/bench_pipeline.h"
+#include "app/bench/bench_pipeline.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <optional>
 #include <sstream>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"

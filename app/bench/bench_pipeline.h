@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/bench_child.h"
-#include "app/goris/bench_suite.h"
+#include "app/bench/bench_child.h"
+#include "app/bench/bench_suite.h"
 
 namespace goris::bench::pipeline {
 

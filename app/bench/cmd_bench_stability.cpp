@@ -24,8 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/goris/bench_child.h"
-#include "app/goris/command.h"
+#include "app/bench/bench_child.h"
+#include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
 #include "core/train/train_config.h"

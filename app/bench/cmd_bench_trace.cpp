@@ -14,8 +14,8 @@
 
 #include <glm/glm.hpp>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/compute/buffer.h"
 #include "core/io/npy.h"
 #include "core/compute/bench.h"
@@ -67,7 +67,7 @@ RaySet camera_rays(const fs::path& dir, int w, int h) {
     t[r] = V.data[4 * r + 3];
   }
   const glm::dvec3 centre = -glm::transpose(R) * t;
-  RaySet rs{std::to_string(w) + "x" + std::to_string(h) + " camera rays"};
+  RaySet rs{std::to_string(w) + "x" + std::to_string(h) + " camera rays", {}, {}};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const glm::dvec3 dc((x + 0.5 - cx) / fx, (y + 0.5 - cy) / fy, 1.0);
@@ -83,7 +83,7 @@ RaySet camera_rays(const fs::path& dir, int w, int h) {
 std::vector<RaySet> fixture_rays(const fs::path& tracer_dir) {
   const auto o = goris::load_npy(tracer_dir / "rays_o.npy"), d = goris::load_npy(tracer_dir / "rays_d.npy");
   const std::size_t n = o.data.size() / 3, half = n / 2;
-  RaySet cam{"fixture camera rays"}, rnd{"fixture random rays"};
+  RaySet cam{"fixture camera rays", {}, {}}, rnd{"fixture random rays", {}, {}};
   for (std::size_t i = 0; i < 3 * n; ++i) {
     RaySet& s = i < 3 * half ? cam : rnd;
     s.o.push_back(float(o.data[i]));

@@ -1,4 +1,4 @@
-#include "app/goris/bench_suite.h"
+#include "app/bench/bench_suite.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <map>
 #include <set>
 
-#include "app/goris/bench_child.h"
+#include "app/bench/bench_child.h"
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 

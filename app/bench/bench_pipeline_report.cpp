@@ -1,4 +1,4 @@
-#include "app/goris/bench_pipeline.h"
+#include "app/bench/bench_pipeline.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "app/goris/command.h"
-#include "app/goris/number_checks.h"
+#include "app/cli_common/command.h"
+#include "app/cli_common/number_checks.h"
 #include "core/compute/kernel_profile.h"
 #include "core/compute/memory.h"
 #include "core/io/dataset.h"

@@ -1,4 +1,4 @@
-#include "app/goris/bench_child.h"
+#include "app/bench/bench_child.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -15,7 +15,7 @@
 #include <sstream>
 #include <thread>
 
-#include "app/goris/stop_signals.h"
+#include "app/cli_common/stop_signals.h"
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
 #include "core/util/error.h"
@@ -209,10 +209,6 @@ json read_json_object(const fs::path& path) {
   const json j = json::parse(read_text_file(path), nullptr, false);
   if (j.is_discarded() || !j.is_object()) throw Error(path.string(), "not a JSON object");
   return j;
-}
-
-double json_number(const json& j, const char* key) {
-  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
 }
 
 void write_text(const fs::path& path, const std::string& text) { write_file_bytes(path, text.data(), text.size()); }

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "app/goris/command.h"
+#include "app/cli_common/command.h"
 #include "core/compute/memory.h"
 #include "core/compute/bench.h"
 #include "core/util/error.h"

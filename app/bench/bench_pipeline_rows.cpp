@@ -1,4 +1,4 @@
-#include "app/goris/bench_pipeline.h"
+#include "app/bench/bench_pipeline.h"
 
 #include <algorithm>
 #include <cmath>
