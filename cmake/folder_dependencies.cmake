@@ -36,11 +36,11 @@ set(GORIS_FOLDER_DEPENDENCIES
   "ui/selection:core/inpaint core/io core/removal core/scene core/util render/raster render/removal ui/display"
   "ui/document:core/capture core/compute core/io core/removal core/train core/util render/export render/maps render/removal render/train ui/display ui/selection"
   "ui/viewport:core/util ui/display ui/document ui/gl"
-  "ui/panels:core/capture core/io core/train core/util ui/document ui/gl ui/viewport"
+  "ui/panels:core/capture core/compute core/io core/train core/util ui/document ui/gl ui/viewport"
   "ui/script:core/util render/maps ui/document ui/panels ui/selection ui/viewport"
   "ui/shell:core/io core/util ui/display ui/document ui/gl ui/panels ui/script ui/viewport"
   "app/studio:core/util ui/shell"
-  "app/cli_common:core/util"
+  "app/cli_common:core/compute core/util"
   "app/goris:app/cli_common core/capture core/compute core/inpaint core/io core/metrics core/removal core/scene core/train core/util render/export render/maps render/raster render/removal render/train tools/synth"
   "app/bench:app/cli_common core/compute core/io core/train core/util render/raster render/removal render/trace render/train tools/report tools/synth"
 )

@@ -193,7 +193,7 @@ void setup_bench_intrinsic(CLI::App& root) {
   c->add_option("--view", *view, "Training view index")->capture_default_str();
   c->add_option("--repeats", *repeats, "Timed iterations (median reported)")->capture_default_str()->check(cli::whole(1, 1000));
   c->add_option("--threads", *threads, "CPU threads (0 = all)")->capture_default_str()->check(cli::whole(0, 4096));
-  c->add_option("--device", *device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, *device);
   c->add_option("--coarse-tracing", *coarse,
                 "run (as the run was trained) | on | off | both (off then on, with the PSNR between the two frames)")
       ->capture_default_str()

@@ -53,7 +53,7 @@ void setup_bench_pipeline(CLI::App& root) {
                                                                                  : "unknown schedule '" + s + "'";
           },
           "short|medium|long|full"));
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  goris::cli::add_device_option(*c, o->device);
   c->add_option("--time-axis", o->time_axis,
                  "Time of the chart and the ratios: wall, cpu (the steps' CPU seconds: fairer on a shared machine) or "
                  "auto (cpu when every result ran on the CPU and has it)")

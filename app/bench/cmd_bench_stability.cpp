@@ -577,7 +577,7 @@ void setup_bench_stability(CLI::App& root) {
             return s == "short" || s == "medium" || s == "tiny" ? std::string() : "unknown schedule '" + s + "'";
           },
           "short|medium"));
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  goris::cli::add_device_option(*c, o->device);
   c->add_option("--datasets", o->datasets, "Folder of the shared data sets (lambert_room, twin_mirrors)")
       ->capture_default_str();
   c->add_option("--glossy-data", o->glossy_data,

@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/compute/device_choice.h"
+
 namespace goris::cli {
 namespace {
 std::vector<std::pair<int, CommandSetup>>& registry() {
@@ -35,6 +37,13 @@ CLI::Option* add_data_option(CLI::App& command, std::string& data) {
   return command.add_option("--data", data,
                             "The run's data set at its new folder, when it moved after training: replaces "
                             "config.json's \"data\" for this command (checked to hold the same training views)");
+}
+
+CLI::Option* add_device_option(CLI::App& command, std::string& device, const std::string& use) {
+  std::string help;
+  for (const std::string& name : enum_name_list<DeviceChoice>()) help += (help.empty() ? "" : " | ") + name;
+  if (!use.empty()) help += " (" + use + ")";
+  return command.add_option("--device", device, help)->check(CLI::IsMember(enum_name_list<DeviceChoice>()));
 }
 
 void set_exit_code(int code) { g_exit_code = code; }

@@ -3,7 +3,12 @@
 // app/bench) and registers itself here, so adding a command never touches main.cpp. A command's setup adds
 // a CLI11 subcommand to the root app and sets its callback; the callback throws goris::Error for bad input
 // (main prints it and exits 1) and returns normally on success.
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
+
+#include "core/util/named_enum.h"
 
 namespace goris::cli {
 
@@ -22,6 +27,18 @@ CLI::App& subcommand_group(CLI::App& parent, const std::string& name, const std:
 // set's new folder when it moved after training, in place of config.json's "data" for this one command
 // (core/train/run_data.h checks that it holds the same training views).
 CLI::Option* add_data_option(CLI::App& command, std::string& data);
+
+// The names of a named enumeration (core/util/named_enum.h), for an option's IsMember check.
+template <class E>
+std::vector<std::string> enum_name_list() {
+  std::vector<std::string> names;
+  for (const auto& [value, name] : EnumNames<E>::names) names.emplace_back(name);
+  return names;
+}
+
+// --device of the commands that compute: auto, cpu or cuda (DeviceChoice, core/compute/device_choice.h);
+// `use` says what runs there when it is not the whole command.
+CLI::Option* add_device_option(CLI::App& command, std::string& device, const std::string& use = "");
 
 // Exit code a callback may set for "finished, but with a non-fatal failure" (e.g. a failed check).
 void set_exit_code(int code);

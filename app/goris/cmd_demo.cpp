@@ -29,6 +29,7 @@
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/metrics/removal_metrics.h"
+#include "core/train/train_config.h"
 #include "core/util/error.h"
 #include "render/removal/removal_pipeline.h"
 
@@ -388,12 +389,12 @@ void setup_demo(CLI::App& root) {
   c->add_option("--data", o->data, "Data set (default: the embedded default scene)")->capture_default_str();
   c->add_option("--out", o->out, "Output folder (report.md, images, run/)")->capture_default_str();
   c->add_option("--iters", o->iters, "Training iterations")->capture_default_str()->check(goris::cli::whole(1, goris::cli::kIntMax));
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  goris::cli::add_device_option(*c, o->device);
   c->add_option("--mode", o->mode,
                 "Stage-1 mode: auto (intrinsic where the data set's glossy masks mark a glossy surface, as on the "
                 "embedded scene; else radiance), radiance (fast) or intrinsic")
       ->capture_default_str()
-      ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
+      ->check(CLI::IsMember(goris::cli::enum_name_list<goris::TrainMode>()));
   c->callback([o] { run_demo(*o); });
 }
 

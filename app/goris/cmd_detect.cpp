@@ -98,7 +98,7 @@ void setup_detect(CLI::App& root) {
   auto* c = root.add_subcommand("detect", "What --mode auto would decide on a trained run: glossy regions from the photos");
   c->add_option("run", o->run, "A run folder with checkpoints")->required();
   c->add_option("--checkpoint", o->checkpoint, "A checkpoint file (default: the run's latest)");
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device);
   c->add_option("--out", o->out, "Write the detected masks (gloss_<view>.png) here");
   c->add_option("--set", o->sets, "KEY=VALUE: another detection setting to try (intrinsic_detect_*), repeatable");
   c->callback([o] { run_detect(*o); });

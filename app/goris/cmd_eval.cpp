@@ -397,7 +397,7 @@ void setup_eval(CLI::App& root) {
                 "(GOR-IS test/full_XXX.png, the scene with the target)")
       ->check(CLI::IsMember({"after", "full"}));
   c->add_option("--out", o->out, "Metrics file (default RUN/metrics.json)");
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device);
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_eval(*o); });
 }

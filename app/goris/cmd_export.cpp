@@ -281,7 +281,7 @@ void setup_export(CLI::App& root) {
       ->check(cli::real(1e-30, cli::kRealMax));
   c->add_option("--seed", o->seed, "Seed of the distillation's view order and interpolated cameras")
       ->check(cli::whole(0, cli::kSeedMax));
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device);
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_export(*o); });
 }

@@ -122,7 +122,7 @@ void setup_remove(CLI::App& root) {
                 "point lands (0 = the reference views alone)")
       ->capture_default_str()
       ->check(cli::real(0.0, 10.0));
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device);
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_remove(*o); });
 }

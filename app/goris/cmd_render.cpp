@@ -126,7 +126,7 @@ void setup_render(CLI::App& root) {
               "indirect_traced and visibility_traced (L_ind and V as traced, before the screen-space filter)");
   c->add_option("--model", o->model,
                 "Render this model file (.ply, .compressed.ply, .spz, .splat or .glb) instead of the run's own model");
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device);
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_render(*o); });
 }

@@ -576,8 +576,7 @@ void setup_select(CLI::App& root) {
   c->add_flag("--no-close", o->no_close, "Do not add the Gaussians inside the hull of the selected centres");
   c->add_option("--out", o->out, "Selection file to write (default RUN/selection.json; the mask goes beside it)");
   c->add_option("--previews", o->previews, "Preview images of training views to write")->check(cli::whole(0, 1000));
-  c->add_option("--device", o->device, "auto | cpu | cuda (rendering for masks and previews)")
-      ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device, "rendering for masks and previews");
   cli::add_data_option(*c, o->data);
   c->callback([o, click, masks, labels, iou] {
     o->masks = masks->count() > 0;

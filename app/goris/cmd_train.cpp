@@ -249,7 +249,7 @@ void setup_train(CLI::App& root) {
                  "What to train: radiance (SH colour), intrinsic (materials, tracing, shading: stage 1), auto "
                  "(intrinsic only for a glossy scene: from its glossy masks, or detected from the photos after the "
                  "warm-up when it has none)")
-      ->check(CLI::IsMember({"radiance", "intrinsic", "auto"}));
+      ->check(CLI::IsMember(cli::enum_name_list<TrainMode>()));
   c->add_option("--normals", o->normals, "Folder of normal-prior maps for intrinsic mode (see README)");
   c->add_option("--iters", o->iters, "Number of iterations (default 30000)")->check(cli::whole(1, cli::kIntMax));
   auto* res = c->add_option("--resolution", o->resolution, "Train at this image width (height keeps the aspect)")
@@ -257,7 +257,7 @@ void setup_train(CLI::App& root) {
   auto* ds = c->add_option("--downscale", o->downscale, "Divide the image size by this factor (>= 1)")
                  ->check(cli::real(1, 1000));
   res->excludes(ds);
-  c->add_option("--device", o->device, "auto | cpu | cuda")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  cli::add_device_option(*c, o->device);
   auto* resume = c->add_flag("--resume", o->resume, "Continue the run in --out from its latest checkpoint");
   c->add_flag("--restart", o->restart,
               "Start the run in --out over: its config.json, checkpoints/, log.csv and point_cloud.ply are removed")

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/compute/device_choice.h"
 #include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "render/maps/channels.h"
@@ -128,7 +129,8 @@ StudioSettings load_settings(const fs::path& path) {
   check_channel(s.main_channel, "main_channel", path);
   for (const std::string& c : s.grid_channels) check_channel(c, "grid_channels", path);
   check_member(s.compare_mode, {"off", "side_by_side", "slider"}, "compare_mode", path);
-  check_member(s.train_device, {"auto", "cpu", "cuda"}, "train_device", path);
+  if (!enum_from_name<DeviceChoice>(s.train_device))
+    throw Error(path.string(), "'train_device': unknown value '" + s.train_device + "'");
   if (!enum_from_name<TrainMode>(s.train_mode))
     throw Error(path.string(), "'train_mode': unknown value '" + s.train_mode + "'");
   // A preset's name must be one of the presets folder's; a preset file (a path) is read when a run starts.

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/compute/device_choice.h"
 #include "core/train/config_presets.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
@@ -128,10 +129,12 @@ void TrainingPanel::draw(AppState& st) {
     }
     overridden("background");
   }
-  static const char* kDevices[] = {"auto", "cpu", "cuda"};
-  int dev = set.train_device == "cpu" ? 1 : set.train_device == "cuda" ? 2 : 0;
   ImGui::SetNextItemWidth(120);
-  if (ImGui::Combo("device", &dev, kDevices, 3)) set.train_device = kDevices[dev];
+  if (ImGui::BeginCombo("device", set.train_device.c_str())) {  // the names config.json and `--device` use
+    for (const auto& [value, name] : EnumNames<DeviceChoice>::names)
+      if (ImGui::Selectable(name, set.train_device == name)) set.train_device = name;
+    ImGui::EndCombo();
+  }
   ImGui::EndDisabled();
   ImGui::BeginDisabled(active);
   ImGui::SetNextItemWidth(120);
