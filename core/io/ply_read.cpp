@@ -9,6 +9,7 @@
 #include "core/io/ply.h"
 #include "core/io/ply_header.h"
 #include "core/io/ply_vertex_data.h"
+#include "core/io/splat_codec.h"
 #include "core/util/error.h"
 
 static_assert(std::endian::native == std::endian::little, "the PLY reader assumes a little-endian host");
@@ -158,7 +159,11 @@ GaussianPly parse_gaussians(const uint8_t* data, size_t size, const std::string&
       case Slot::normal: c.dst = g.normals.data(), c.stride = 3; break;
       case Slot::dc: c.dst = g.f_dc.data(), c.stride = 3; break;
       case Slot::rest: c.dst = g.f_rest.data(), c.stride = n_rest; break;
-      case Slot::opacity: c.dst = g.opacity.data(), c.stride = 1; break;
+      case Slot::opacity:
+        // Other tools write alpha 1 or 0 as an infinite logit (an SPZ opacity byte of 255, decoded by
+        // splat-transform): read as the finite logit our own 8-bit decoders give those alphas.
+        c.dst = g.opacity.data(), c.stride = 1, c.saturate = splat_detail::logit_of_alpha(1.0f);
+        break;
       case Slot::scale: c.dst = g.scales.data(), c.stride = 3; break;
       case Slot::rotation: c.dst = g.rotations.data(), c.stride = 4; break;
       case Slot::extra: c.dst = g.extras[extra_i++].second.data(), c.stride = 1; break;

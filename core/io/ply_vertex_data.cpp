@@ -96,6 +96,13 @@ bool ascii_value(std::string_view tok, PlyType t, float& out) {
 
 // --- the vertex element -----------------------------------------------------------------------------
 
+// Column::saturate: an infinite v becomes +-limit (true); NaN, or no limit, stays an error (false).
+bool saturated(float& v, float limit) {
+  if (!(limit > 0.0f) || !std::isinf(v)) return false;
+  v = v > 0.0f ? limit : -limit;
+  return true;
+}
+
 Error non_finite(const std::string& name, size_t vertex, const PlyProperty& p) {
   return Error(name, "vertex " + std::to_string(vertex) + ": property '" + p.name +
                          "' is not a finite float (NaN, infinite or out of float range)");
@@ -121,8 +128,10 @@ void convert_column(const uint8_t* rows, size_t row_bytes, size_t r0, size_t r1,
     *dst = f;
   }
   if (!finite)
-    for (size_t r = r0; r < r1; ++r)
-      if (!std::isfinite(dst0[(r - r0) * step])) throw non_finite(name, r, *c.prop);
+    for (size_t r = r0; r < r1; ++r) {
+      float& v = dst0[(r - r0) * step];
+      if (!std::isfinite(v) && !saturated(v, c.saturate)) throw non_finite(name, r, *c.prop);
+    }
 }
 
 }  // namespace
@@ -217,7 +226,7 @@ void read_ascii_vertices(AsciiTokens& tok, size_t count, const std::vector<Colum
       if (!ascii_value(w, c.prop->type, f))
         throw Error(name, "vertex " + std::to_string(i) + ": property '" + c.prop->name + "' has invalid " +
                               type_name(c.prop->type) + " value " + shown(w));
-      if (!std::isfinite(f)) throw non_finite(name, i, *c.prop);
+      if (!std::isfinite(f) && !saturated(f, c.saturate)) throw non_finite(name, i, *c.prop);
       c.dst[i * c.stride + c.offset] = f;
     }
 }

@@ -17,6 +17,8 @@ struct Column {
   float* dst = nullptr;
   size_t stride = 1, offset = 0;
   size_t byte_offset = 0;  // within a binary row
+  // > 0: an infinite value is read as +-saturate (a logit of alpha 0 or 1, e.g. opacity); NaN is still an error.
+  float saturate = 0.0f;
 };
 
 // Whitespace-separated words of an ASCII PLY body.

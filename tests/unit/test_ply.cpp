@@ -566,6 +566,44 @@ TEST(Ply, RejectsBadValues) {
   expect_read_error(dir, "double_range.ply", dh + drow, {"vertex 0", "'rot_2'", "out of float range"});
 }
 
+TEST(Ply, InfiniteOpacityIsFullyOpaqueOrTransparent) {
+  // splat-transform writes an SPZ opacity byte of 255 as +inf in a PLY: read as the logit our own 8-bit
+  // decoders give alpha 1 (and -inf as alpha 0); a NaN opacity stays an error.
+  const fs::path dir = scratch_dir("ply_inf_opacity");
+  const float limit = std::log(509.0f);  // alpha 1 - 0.5/255, half a byte step inside 1
+  GaussianPly g = random_ply(3, 0, false, 4);
+  const fs::path ok = dir / "ok.ply";
+  write_ply(ok, g);
+  std::string bytes = file_bytes(ok);
+  const size_t data = bytes.find("end_header\n") + 11;
+  const float inf = std::numeric_limits<float>::infinity(), minus_inf = -inf;
+  std::memcpy(&bytes[data + (0 * 17 + 9) * 4], &inf, 4);        // vertex 0, opacity
+  std::memcpy(&bytes[data + (2 * 17 + 9) * 4], &minus_inf, 4);  // vertex 2, opacity
+  const fs::path binary = dir / "binary.ply";
+  std::ofstream(binary, std::ios::binary) << bytes;
+  const GaussianPly b = read_ply(binary);
+  EXPECT_NEAR(b.opacity[0], limit, 1e-4f);
+  EXPECT_EQ(b.opacity[1], g.opacity[1]);
+  EXPECT_NEAR(b.opacity[2], -limit, 1e-4f);
+
+  const std::string h = float_header("ascii", 2, standard_names(0));
+  std::string rows;
+  for (const char* o : {"inf", "-inf"}) {
+    for (int k = 0; k < 17; ++k) rows += k == 9 ? std::string(o) + " " : "1 ";
+    rows += "\n";
+  }
+  const fs::path ascii = dir / "ascii.ply";
+  std::ofstream(ascii, std::ios::binary) << h + rows;
+  const GaussianPly a = read_ply(ascii);
+  EXPECT_NEAR(a.opacity[0], limit, 1e-4f);
+  EXPECT_NEAR(a.opacity[1], -limit, 1e-4f);
+
+  std::string row;
+  for (int k = 0; k < 17; ++k) row += (k == 9 ? "nan " : "1 ");
+  expect_read_error(dir, "nan_opacity.ply", float_header("ascii", 1, standard_names(0)) + row,
+                    {"vertex 0", "'opacity'", "not a finite"});
+}
+
 // --- summary -----------------------------------------------------------------------------------------
 
 TEST(Ply, SummaryNamesCountDegreeExtrasBoundsAndOpacity) {
