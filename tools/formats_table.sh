@@ -68,12 +68,16 @@ row "glb" "$work/theirs.glb" "splat-transform / goris"
 cat <<'TEXT'
 Notes:
 
-- A schedule shorter than the first SH degree step (1000 iterations) leaves the SH rest coefficients all
-  zero: SPZ stores 0 exactly, compressed PLY's `trunc` quantization cannot (it reads back as 1/64).
-  The SH rest errors on non-zero coefficients are measured on a random
-  model (SH rest in -0.9..0.9) by `crosscheck.splat_transform_check`: SPZ max 0.066 (4-bit buckets for
-  degrees 2 and 3), compressed PLY max 0.0156 (steps of 1/32); on those files our decoders
-  and splat-transform's give the same SH values.
+- The SH rest errors are the formats' quantization: SPZ stores degrees 2 and 3 in 4-bit buckets (up to about
+  0.066), compressed PLY in steps of 1/32 (up to 0.0156). `crosscheck.splat_transform_check` measures the
+  same on a random model (SH rest in -0.9..0.9), where our decoders and splat-transform's give the same
+  SH values. (A radiance demo shorter than the first SH degree step, 1000 iterations, has all-zero SH rest:
+  SPZ stores 0 exactly, compressed PLY's `trunc` quantization reads it back as 1/64.)
+- `.splat` keeps the colour as 8-bit RGB and no higher SH: a Gaussian brighter than white (a highlight
+  baked into the SH DC) is clamped, which is the large SH DC maximum of its rows.
+- An SPZ opacity byte of 255 (alpha 1) is an infinite logit in the PLY splat-transform writes from it; our
+  PLY reader takes an infinite opacity as the logit our own 8-bit decoders give alpha 1 (half a byte step
+  inside it), so the SPZ rows read by us and through splat-transform agree.
 - Our reading and splat-transform's of the same SPZ and compressed PLY files agree to float rounding
   (rows two and three of each format are equal). For `.splat` rotations they differ by up to about a
   degree: antimatter15's viewer decodes a byte v as (v - 128) / 128, as we do, splat-transform as
