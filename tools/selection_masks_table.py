@@ -16,9 +16,10 @@ ghost ratio in the changed region).
 
 Stage 1 runs go to DIR/<scene>/run (reused when finished: its point_cloud.ply exists), or, with --stage1,
 are the finished runs PATTERN names ({scene} replaced by the scene's folder name; e.g. a suite bench's
-OUT/runs/{scene}/medium/stage1_default/run). Such a run may have been trained with the object masks: they
-teach only the label channel, whose gradients never reach the geometry (ImageGradients::extras_detached), so
-its Gaussians are those of the same run without masks, and neither selection reads the label. The removals to
+OUT/runs/{scene}/medium/stage1_radiance/run, the radiance runs of its `baseline`). Such a run may have been
+trained with the object masks: in radiance mode they teach only the label channel, whose gradients never reach
+the geometry (ImageGradients::extras_detached), so its Gaussians are those of the same run without masks, and
+neither selection reads the label. The removals to
 DIR/<scene>/<method>/run (reused when evaluated: removal/metrics.json exists); the table is printed on stdout
 with paths relative to the current folder. Standard library only (PNG masks are decoded here).
 """
@@ -178,9 +179,9 @@ def main():
         f" --resolution {a.resolution}" if a.resolution != 128 and not a.stage1 else "") + (
         f" --stage1 {a.stage1}" if a.stage1 else "")
     stage1 = (f"stage 1: {a.iters} iterations at {a.resolution} px, trained without the object masks; " if not a.stage1
-              else "stage 1: the runs --stage1 names, whose object masks taught only the label (its gradients never "
-                   "reach the geometry, so the Gaussians are those of a run without masks; neither selection reads "
-                   "the label); ")
+              else "stage 1: the runs --stage1 names (radiance runs: in radiance mode the object masks teach only the "
+                   "label, whose gradients never reach the geometry, so the Gaussians are those of a run without "
+                   "masks; neither selection reads the label); ")
     print("Written by `tools/selection_masks_table.py --work DIR" + opts + " " + " ".join(a.scenes) +
           " > docs/results/selection_masks.md` (SUITE: the generalization suite's rendered scenes, "
           "`goris bench pipeline --suite generalization --out BENCH`; " + stage1 +
