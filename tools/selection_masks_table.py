@@ -12,14 +12,14 @@ Each removal runs on a copy of the same stage-1 run (`goris remove`, then `goris
 ghost ratio in the changed region).
 
   tools/selection_masks_table.py --work DIR [--goris build/bin/goris] [--iters 2000] [--resolution 128]
-                                 [--stage1 PATTERN] SCENE...
+                                 [--stage1 PATTERN] [--doc FILE] SCENE...
 
 Stage 1 runs go to DIR/<scene>/run (reused when finished: its point_cloud.ply exists), or, with --stage1,
 are the finished runs PATTERN names ({scene} replaced by the scene's folder name; e.g. a suite bench's
-OUT/runs/{scene}/medium/stage1_radiance/run, the radiance runs of its `baseline`). Such a run may have been
-trained with the object masks: in radiance mode they teach only the label channel, whose gradients never reach
-the geometry (ImageGradients::extras_detached), so its Gaussians are those of the same run without masks, and
-neither selection reads the label. The removals to
+OUT/runs/{scene}/medium/stage1_default/run, what `goris train` gives by default, or stage1_radiance, the
+radiance runs of its `baseline`). Such a run may have been trained with the object masks: in either mode they
+teach only the label channel, whose gradients never reach the geometry (ImageGradients::extras_detached), so
+its Gaussians are those of the same run without masks, and neither selection reads the label. The removals to
 DIR/<scene>/<method>/run (reused when evaluated: removal/metrics.json exists); the table is printed on stdout
 with paths relative to the current folder. Standard library only (PNG masks are decoded here).
 """
@@ -113,6 +113,8 @@ def main():
     ap.add_argument("--resolution", type=int, default=128)
     ap.add_argument("--device", default="cpu")
     ap.add_argument("--stage1", help="finished stage-1 runs to use instead of training: a path with {scene}")
+    ap.add_argument("--doc", default="docs/results/selection_masks.md",
+                    help="the file the table is written for, named in its command line")
     a = ap.parse_args()
     rows = []
     for scene in a.scenes:
@@ -177,13 +179,14 @@ def main():
     print("# Object masks from a selection: IoU against the exact masks, and the removal they drive\n")
     opts = (f" --iters {a.iters}" if a.iters != 2000 and not a.stage1 else "") + (
         f" --resolution {a.resolution}" if a.resolution != 128 and not a.stage1 else "") + (
-        f" --stage1 {a.stage1}" if a.stage1 else "")
+        f" --stage1 {a.stage1}" if a.stage1 else "") + (
+        f" --doc {a.doc}" if a.doc != "docs/results/selection_masks.md" else "")
     stage1 = (f"stage 1: {a.iters} iterations at {a.resolution} px, trained without the object masks; " if not a.stage1
-              else "stage 1: the runs --stage1 names (radiance runs: in radiance mode the object masks teach only the "
-                   "label, whose gradients never reach the geometry, so the Gaussians are those of a run without "
-                   "masks; neither selection reads the label); ")
+              else "stage 1: the runs --stage1 names, whose object masks teach only the label in either mode (its "
+                   "gradients never reach the geometry, so the Gaussians are those of a run without masks; neither "
+                   "selection reads the label); ")
     print("Written by `tools/selection_masks_table.py --work DIR" + opts + " " + " ".join(a.scenes) +
-          " > docs/results/selection_masks.md` (SUITE: the generalization suite's rendered scenes, "
+          " > " + a.doc + "` (SUITE: the generalization suite's rendered scenes, "
           "`goris bench pipeline --suite generalization --out BENCH`; " + stage1 +
           "`goris select ... --write-masks DIR --masks-iou` on every training view; the removal: "
           "`goris select RUN --masks [DIR]`, `goris remove`, `goris eval --split test` on a copy of the same run).\n")
