@@ -98,7 +98,9 @@ def run(cmd, log):
     with open(log, "w") as f:
         r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT)
     if r.returncode != 0:
-        tail = open(log).read().strip().splitlines()[-1:]
+        lines = open(log).read().strip().splitlines()
+        # The error line (stderr, unbuffered) can come before the last of stdout's buffered lines.
+        tail = [l for l in lines if l.startswith("error:")][-1:] or lines[-1:]
         print(f"{' '.join(cmd[:3])}... failed ({r.returncode}): {tail} (log {log})", file=sys.stderr)
         return False
     return True
