@@ -43,7 +43,7 @@ void run_remove(const Options& o) {
   ro.view_fill_weight = float(o.view_fill);
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
-  ro.device = o.device;
+  ro.device = enum_from_name<DeviceChoice>(o.device).value();  // --device's check accepts only the names
   ro.data = o.data;
   const bool tty = isatty(STDERR_FILENO);
   int last_step = -1;

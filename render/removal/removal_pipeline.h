@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "core/compute/device_choice.h"
 #include "core/removal/mirror_twins.h"
 
 namespace goris {
@@ -68,7 +69,7 @@ struct RemovalOptions {
   // The fine-tune inside the lighting-aware mask (render/removal/dereflect.h): true trains on the photo
   // minus stage 1's own estimate of the target's reflection; false leaves the pixels out (the paper).
   bool dereflect_lighting = true;
-  std::string device = "auto";
+  DeviceChoice device = DeviceChoice::Auto;
   // The stage-1 data set's folder when it moved after training (`goris remove --data`, core/train/run_data.h);
   // empty = RUN/config.json's. Not an input of the outputs (made_from.json): a moved data set reuses them.
   std::string data;

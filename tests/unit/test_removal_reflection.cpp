@@ -79,7 +79,7 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
     write_selection(selection_json_path(run), record, sel.mask);
   }
   RemovalOptions o;
-  o.device = "cpu";
+  o.device = DeviceChoice::CPU;
   o.finetune_iterations = 20;
   const RemovalReport rep = run_removal(run, o);
   ASSERT_GT(rep.selected, 0u);

@@ -198,7 +198,7 @@ TEST(StudioExportJob, WritesEveryPartAndTheFilesLoad) {
   rq.renders = out / "frames";
   rq.render_path = RenderPath::Orbit;
   rq.frames = 3;
-  rq.device = "cpu";
+  rq.device = DeviceChoice::CPU;
   ExportJob job;
   job.start(rq);
   EXPECT_THROW(job.start(rq), Error);  // one at a time
@@ -249,7 +249,7 @@ TEST(StudioExportJob, TheBakedModelAlsoInTheStandardFormats) {
   rq.baked = out / "baked.ply";
   rq.baked_iterations = 2;
   rq.baked_formats = {SplatFormat::Spz, SplatFormat::CompressedPly, SplatFormat::Antimatter, SplatFormat::Glb};
-  rq.device = "cpu";
+  rq.device = DeviceChoice::CPU;
   ExportJob job;
   job.start(rq);
   ASSERT_EQ(job.wait(std::chrono::seconds(120)), JobState::Done) << job.status();
@@ -281,7 +281,7 @@ TEST(StudioExportJob, AnUnwritablePathFailsBeforeAnyWork) {
   rq.run_dir = run;
   rq.ply = out / "model.ply";
   rq.baked = out / "blocker.txt" / "baked.ply";
-  rq.device = "cpu";
+  rq.device = DeviceChoice::CPU;
   ExportJob job;
   job.start(rq);
   ASSERT_EQ(job.wait(std::chrono::seconds(60)), JobState::Error);
@@ -303,7 +303,7 @@ TEST(StudioExportJob, AnUnwritablePathFailsBeforeAnyWork) {
   ExportRequest not_run;
   not_run.run_dir = out;
   not_run.ply = out / "y.ply";
-  not_run.device = "cpu";
+  not_run.device = DeviceChoice::CPU;
   job.start(not_run);
   ASSERT_EQ(job.wait(std::chrono::seconds(60)), JobState::Error);
   EXPECT_NE(job.status().find("load the run: "), std::string::npos) << job.status();
@@ -318,7 +318,7 @@ TEST(StudioExportJob, CancelWritesNothingFinishEarlyWritesTheModelSoFar) {
   rq.run_dir = run;
   rq.baked = out / "baked.ply";
   rq.baked_iterations = 1000000;
-  rq.device = "cpu";
+  rq.device = DeviceChoice::CPU;
   auto wait_distilling = [](const ExportJob& job) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(300);  // generous: CI machines may be loaded
     while (!job.distilling() && job.active() && std::chrono::steady_clock::now() < end)

@@ -103,7 +103,7 @@ TEST(StudioRemovalSession, FailsCancelsResumesAndCompletes) {
   const fs::path run = tiny_run_with_selection();
   RemovalOptions o;
   o.finetune_iterations = 5;
-  o.device = "cpu";
+  o.device = DeviceChoice::CPU;
   s.start(run, o);
   EXPECT_THROW(s.start(run, o), Error);  // one at a time
   s.cancel();

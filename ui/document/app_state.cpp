@@ -443,7 +443,7 @@ void AppState::start_removal(int iterations) {
   if (settings_.removal_ablate_shadows) o.ablate.insert("shadows");
   o.lighting_relative_fresnel = !settings_.removal_absolute_fresnel;
   o.dereflect_lighting = !settings_.removal_exclude_reflections;
-  o.device = settings_.train_device;
+  o.device = enum_from_name<DeviceChoice>(settings_.train_device).value_or(DeviceChoice::Auto);  // checked when read
   removal_.start(run, o);
   message("removing in " + (run / "removal").string() +
           (sel.mask ? " (the selection: " + std::to_string(sel.selected) + " Gaussians)"
@@ -478,7 +478,7 @@ ExportRequest AppState::export_request() const {
   }
   r.render_path = parse_render_path(s.export_render_path);
   r.frames = s.export_frames;
-  r.device = s.train_device;
+  r.device = enum_from_name<DeviceChoice>(s.train_device).value_or(DeviceChoice::Auto);  // checked when read
   return r;
 }
 

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/compute/device_choice.h"
 #include "core/io/splat_formats.h"
 #include "render/export/run_export.h"
 #include "ui/document/background_job.h"
@@ -37,7 +38,7 @@ struct ExportRequest {
   std::filesystem::path renders;  // a folder of PNG frames, contact_sheet.png, cameras.json (empty: none)
   RenderPath render_path = RenderPath::Test;
   int frames = 0;               // orbit: frame count (0 = 36); test / train: evenly spaced views (0 = all)
-  std::string device = "auto";  // auto | cpu | cuda
+  DeviceChoice device = DeviceChoice::Auto;
 };
 
 // Where the baked model goes in `format`: baked's folder and stem with the format's extension
