@@ -69,7 +69,7 @@ void AppState::open(const fs::path& path) {
   if (removal_.active()) throw Error(path.string(), "cannot open while the removal runs: cancel it first");
   Device device = Device::CPU;
   try {
-    device = resolve_device(settings_.train_device);
+    device = resolve_device(train_device_choice(settings_));
   } catch (const Error&) {
     device = Device::CPU;  // "cuda" asked for but absent: still show the scene
   }
@@ -443,7 +443,7 @@ void AppState::start_removal(int iterations) {
   if (settings_.removal_ablate_shadows) o.ablate.insert("shadows");
   o.lighting_relative_fresnel = !settings_.removal_absolute_fresnel;
   o.dereflect_lighting = !settings_.removal_exclude_reflections;
-  o.device = enum_from_name<DeviceChoice>(settings_.train_device).value_or(DeviceChoice::Auto);  // checked when read
+  o.device = train_device_choice(settings_);
   removal_.start(run, o);
   message("removing in " + (run / "removal").string() +
           (sel.mask ? " (the selection: " + std::to_string(sel.selected) + " Gaussians)"
@@ -478,7 +478,7 @@ ExportRequest AppState::export_request() const {
   }
   r.render_path = parse_render_path(s.export_render_path);
   r.frames = s.export_frames;
-  r.device = enum_from_name<DeviceChoice>(s.train_device).value_or(DeviceChoice::Auto);  // checked when read
+  r.device = train_device_choice(s);
   return r;
 }
 

@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/compute/device_choice.h"
 #include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "render/maps/channels.h"
@@ -60,6 +59,12 @@ void check_member(const std::string& v, std::initializer_list<const char*> allow
   for (const char* a : allowed)
     if (v == a) return;
   throw Error(file.string(), std::string("'") + key + "': unknown value '" + v + "'");
+}
+
+// A value that names one of a named enumeration's values (core/util/named_enum.h).
+template <class E>
+void check_name(const std::string& v, const char* key, const fs::path& file) {
+  if (!enum_from_name<E>(v)) throw Error(file.string(), std::string("'") + key + "': unknown value '" + v + "'");
 }
 
 }  // namespace
@@ -129,10 +134,8 @@ StudioSettings load_settings(const fs::path& path) {
   check_channel(s.main_channel, "main_channel", path);
   for (const std::string& c : s.grid_channels) check_channel(c, "grid_channels", path);
   check_member(s.compare_mode, {"off", "side_by_side", "slider"}, "compare_mode", path);
-  if (!enum_from_name<DeviceChoice>(s.train_device))
-    throw Error(path.string(), "'train_device': unknown value '" + s.train_device + "'");
-  if (!enum_from_name<TrainMode>(s.train_mode))
-    throw Error(path.string(), "'train_mode': unknown value '" + s.train_mode + "'");
+  check_name<DeviceChoice>(s.train_device, "train_device", path);
+  check_name<TrainMode>(s.train_mode, "train_mode", path);
   // A preset's name must be one of the presets folder's; a preset file (a path) is read when a run starts.
   const std::vector<std::string> presets = config_preset_names();
   if (!s.train_preset.empty() && s.train_preset.find('/') == std::string::npos && !s.train_preset.ends_with(".json") &&

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/compute/device_choice.h"
+
 namespace goris::ui {
 
 struct StudioSettings {
@@ -21,7 +23,7 @@ struct StudioSettings {
   int train_iterations = 3000;
   int train_resolution = 0;       // 0 = the data set's size
   int train_init_points = 20000;  // random initial points when the data has no SfM points
-  std::string train_device = "auto";
+  std::string train_device = "auto";  // auto | cpu | cuda (as `goris train --device`)
   bool train_white_background = false;  // composite RGBA photos on white instead of black
   // Removal options of the panel (as `goris remove`).
   std::string removal_inpainter = "telea";  // telea | ns | harmonic | fsr | cmd:COMMAND
@@ -49,6 +51,11 @@ struct StudioSettings {
   // Moves `path` to the front of the recent list (no duplicates, at most kMaxRecent).
   void add_recent(const std::string& path);
 };
+
+// The training device the settings name (checked when they are read, so never an unknown name).
+inline DeviceChoice train_device_choice(const StudioSettings& s) {
+  return enum_from_name<DeviceChoice>(s.train_device).value_or(DeviceChoice::Auto);
+}
 
 // $XDG_CONFIG_HOME/goris-studio, or $HOME/.config/goris-studio.
 std::filesystem::path settings_dir();

@@ -32,7 +32,7 @@ TrainConfig new_run_config(const StudioSettings& s, const std::vector<std::pair<
   c.iterations = s.train_iterations;
   c.resolution = s.train_resolution;
   c.random_init_points = s.train_init_points;
-  c.device = enum_from_name<DeviceChoice>(s.train_device).value_or(DeviceChoice::Auto);  // checked when read
+  c.device = train_device_choice(s);
   c.background = s.train_white_background ? glm::vec3(1.0f) : glm::vec3(0.0f);
   if (!s.train_preset.empty()) apply_config_preset(load_config_preset(s.train_preset), c);  // as --preset: before
   for (const auto& [k, v] : overrides) apply_config_override(c, k, v);
