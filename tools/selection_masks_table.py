@@ -220,11 +220,13 @@ def main():
 `exact masks` is the selection voted by the exact masks (`goris select --masks`): what the mask writer loses
 on a selection that is about right. `two-click` is the default `--click-by region`: each click's region of
 its view (median depth and photo colour on a tolerance ladder), lifted to the Gaussians by their rendered
-weight in the clicked views, closed, then voted once more by every view's coverage mask. The removal columns
+weight in the clicked views, closed, then voted once more by every view's silhouette of the selection (the
+selected Gaussians rendered alone, less the view's glossy pixels); with glossy masks, what lies beyond the
+glossy surface the target stands on (its reflection) is left out at each step. The removal columns
 drive `goris remove` with each set of masks on copies of the same stage-1 run (changed region: the pixels
 where the test views with and without the target differ; ghost: what is left of the target there, 0 is
-none). The variants that lost: docs/lab/2026-12-04-click-regions-and-mask-edges.md and
-docs/lab/2026-12-05-intrinsic-suite-and-two-click-masks.md.""")
+none). The variants that lost: docs/lab/2026-12-04-click-regions-and-mask-edges.md,
+docs/lab/2026-12-05-intrinsic-suite-and-two-click-masks.md and docs/lab/2026-12-05-click-silhouettes-and-support-plane.md.""")
 
 if __name__ == "__main__":
     main()

@@ -40,6 +40,7 @@
 #include "core/util/error.h"
 #include "render/removal/selection.h"
 #include "render/removal/selection_click_flow.h"
+#include "render/train/auto_mode.h"
 #include "render/train/raster_renderer.h"
 
 namespace {
@@ -324,11 +325,20 @@ void run_select(const Options& o, int n_methods) {
     }
     if (by_region) {
       // The clicked views' regions take the Gaussians that draw their pixels (by rendered weight, in every
-      // clicked view that shows the Gaussian), then the hull adds the object's interior and the side no
-      // clicked view saw, and every view's coverage mask votes once more.
+      // clicked view that shows the Gaussian), then the hull adds the object's interior, and every view's
+      // silhouette of the selection votes once more (it adds the side no clicked view saw).
       record.parameters["click_by"] = "region";
-      const ClickSelection cs = select_by_click_regions(model, pts, regions_2d, ds.train, raster, close);
+      // The glossy masks the run trained with: the surface the target stands on, whose far side holds its
+      // reflection and whose pixels are never the target.
+      const std::vector<std::vector<float>> gloss_store = run_glossy_masks(config, ds.train);
+      std::vector<const std::vector<float>*> gloss;
+      for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
+      const ClickSelection cs = select_by_click_regions(model, pts, regions_2d, ds.train, raster, close, gloss);
       result = cs.result;
+      if (cs.support.found)
+        std::printf("  the glossy surface it stands on: normal (%.3f, %.3f, %.3f), %zu Gaussians beyond it left out "
+                    "(the target's reflection)\n",
+                    cs.support.normal.x, cs.support.normal.y, cs.support.normal.z, cs.beyond_support);
       if (cs.revoted)
         std::printf("  %zu Gaussians from the clicked views, %zu after every training view's vote\n",
                     cs.from_clicked_views, result.summary.selected);

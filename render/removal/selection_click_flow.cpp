@@ -1,7 +1,9 @@
 #include "render/removal/selection_click_flow.h"
 
 #include <cstdio>
+#include <algorithm>
 
+#include "core/removal/plane_from_masks.h"
 #include "core/util/error.h"
 #include "render/removal/selection_view_masks.h"
 
@@ -25,17 +27,50 @@ ClickOutcome click_in_view(const GaussianModel& model, const View& view, const I
   return o;
 }
 
+MirrorPlane support_plane_of_click_selection(const SelectionPoints& pts, const SelectionMask& seeds,
+                                             const std::vector<View>& views,
+                                             const std::vector<const std::vector<float>*>& glossy_masks) {
+  if (std::none_of(glossy_masks.begin(), glossy_masks.end(), [](const auto* m) { return m != nullptr; })) return {};
+  std::vector<Camera> cameras;
+  for (const View& v : views) cameras.push_back(v.camera);
+  return plane_from_glossy_masks(cameras, glossy_masks, {},
+                                 target_rest_heights(cameras, glossy_masks, pts.position, seeds))
+      .plane;
+}
+
+std::size_t drop_beyond_plane(const SelectionPoints& pts, const MirrorPlane& plane, SelectionMask& selection) {
+  if (!plane.found) return 0;
+  std::size_t dropped = 0;
+  for (std::size_t i = 0; i < selection.size(); ++i)
+    if (selection[i] && plane.signed_distance(glm::dvec3(pts.position[i])) < -plane.tolerance) {
+      selection[i] = 0;
+      ++dropped;
+    }
+  return dropped;
+}
+
 ClickSelection select_by_click_regions(const GaussianModel& model, const SelectionPoints& pts,
                                        const std::vector<ClickView>& regions, const std::vector<View>& views,
-                                       const RasterSettings& raster, const CloseSettings& close) {
+                                       const RasterSettings& raster, const CloseSettings& close,
+                                       const std::vector<const std::vector<float>*>& glossy_masks) {
   ClickSelection s;
-  const SelectionMask voted = select_from_click_regions(model, regions, raster);
-  s.result = close_selection(pts, voted, close);
+  SelectionMask voted = select_from_click_regions(model, regions, raster);
+  s.support = support_plane_of_click_selection(pts, voted, views, glossy_masks);
+  // Each step can bring the reflection back (the hull of a selection that reaches below the surface, a
+  // silhouette that covers the mirror world), so it is dropped after each.
+  auto close_above = [&](SelectionMask m) {
+    s.beyond_support += drop_beyond_plane(pts, s.support, m);
+    SelectionResult r = close_selection(pts, m, close);
+    s.beyond_support += drop_beyond_plane(pts, s.support, r.mask);
+    r.summary.selected = count_selected(r.mask);
+    return r;
+  };
+  s.result = close_above(std::move(voted));
   s.from_clicked_views = s.result.summary.selected;
   if (s.result.summary.seeds > 0 && regions.size() > 1) {
-    const SelectionMask revoted = revote_with_view_masks(model, s.result.mask, views, raster);
+    const SelectionMask revoted = revote_with_view_masks(model, s.result.mask, views, raster, glossy_masks);
     if (count_selected(revoted) > 0) {
-      s.result = close_selection(pts, revoted, close);
+      s.result = close_above(revoted);
       s.revoted = true;
     }
   }

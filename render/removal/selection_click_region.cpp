@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/scene/gaussians.h"
 #include "core/util/error.h"
 #include "render/raster/rasterizer.h"
 #include "render/removal/gaussian_pixel_weights.h"
@@ -121,14 +122,41 @@ SelectionMask select_from_click_regions(const GaussianModel& model, const std::v
   return sel;
 }
 
+Mask selection_silhouette_mask(const GaussianModel& model, const SelectionMask& selection, const Camera& camera,
+                               const RasterSettings& raster) {
+  if (selection.size() != model.count())
+    throw Error("selection", "mask has " + std::to_string(selection.size()) + " entries for " +
+                                 std::to_string(model.count()) + " Gaussians");
+  std::vector<float> opacity = model.tensor(Param::OpacityLogit).value.to_host();
+  for (std::size_t i = 0; i < opacity.size(); ++i)
+    if (!selection[i]) opacity[i] = -40.0f;  // sigmoid(-40) ~ 4e-18: transparent
+  const Buffer<float> opacity_buf(opacity, model.device());
+  GaussianView gv = plain_gaussian_view(model);
+  gv.opacity_logits = opacity_buf.data();
+  const std::vector<float> alpha = rasterize(gv, camera, raster, model.device()).gbuffer.alpha.to_host();
+  const ViewMaskSettings vm;
+  Mask m(camera.width, camera.height);
+  for (std::size_t p = 0; p < m.data.size(); ++p) m.data[p] = alpha[p] > vm.threshold ? 255 : 0;
+  return open_mask(close_mask(m, vm.close_radius), vm.open_radius);
+}
+
 SelectionMask revote_with_view_masks(const GaussianModel& model, const SelectionMask& selection,
-                                     const std::vector<View>& views, const RasterSettings& raster) {
+                                     const std::vector<View>& views, const RasterSettings& raster,
+                                     const std::vector<const std::vector<float>*>& glossy) {
   std::vector<MaskedView> masked;
   for (std::size_t k = 0; k < views.size(); ++k) {
+    Mask m = selection_silhouette_mask(model, selection, views[k].camera, raster);
+    const std::vector<float>* g = k < glossy.size() ? glossy[k] : nullptr;
+    if (g && g->size() != m.data.size())
+      throw Error("selection", "the glossy mask of view " + views[k].name + " has " + std::to_string(g->size()) +
+                                   " pixels, its camera " + std::to_string(m.data.size()));
+    if (g)
+      for (std::size_t p = 0; p < m.data.size(); ++p)
+        if ((*g)[p] > 0.5f) m.data[p] = 0;
     MaskedView mv;
     mv.name = views[k].name;
     mv.camera = views[k].camera;
-    mv.mask = mask_to_image(selection_view_mask(model, selection, views[k].camera, raster));
+    mv.mask = mask_to_image(m);
     masked.push_back(std::move(mv));
   }
   return labels_from_masks(model, masked, {}, raster).selected;

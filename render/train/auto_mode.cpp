@@ -156,6 +156,20 @@ void load_glossy_mask_folder(const fs::path& dir, std::vector<TrainView>& views)
   }
 }
 
+std::vector<std::vector<float>> run_glossy_masks(const TrainConfig& config, const std::vector<View>& views) {
+  std::vector<TrainView> tv;
+  for (const View& v : views) {
+    tv.emplace_back().name = v.name;
+    tv.back().camera = v.camera;
+    if (v.glossy_mask && config.use_glossy_masks && config.glossy_mask_dir.empty())
+      tv.back().glossy_mask = load_view_glossy_mask(v).pixels.to_host();
+  }
+  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, tv);
+  std::vector<std::vector<float>> out;
+  for (TrainView& v : tv) out.push_back(std::move(v.glossy_mask));
+  return out;
+}
+
 void save_glossy_mask_folder(const fs::path& dir, const std::vector<TrainView>& views) {
   fs::create_directories(dir);
   for (const TrainView& v : views) {

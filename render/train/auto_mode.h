@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/dataset.h"
 #include "core/train/train_config.h"
 #include "core/train/trainer.h"
 
@@ -69,6 +70,10 @@ TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_
 // Glossy masks of a folder written by the detection: gloss_<view name>.png at each view's size, into the
 // views' glossy_mask. Throws goris::Error naming the file when one is missing or has another size.
 void load_glossy_mask_folder(const std::filesystem::path& dir, std::vector<TrainView>& views);
+// The glossy masks a run trained with, one per view of `views` (its training views) at the camera's size, in
+// [0, 1]; empty for a view without one: the folder's (glossy_mask_dir: --mode auto's detected masks) when
+// the config names one, else the data set's, none with use_glossy_masks off. Errors as the loaders throw them.
+std::vector<std::vector<float>> run_glossy_masks(const TrainConfig& config, const std::vector<View>& views);
 // The views' glossy masks as such a folder (8-bit PNG). Throws goris::Error when a view has none.
 void save_glossy_mask_folder(const std::filesystem::path& dir, const std::vector<TrainView>& views);
 

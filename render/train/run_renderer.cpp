@@ -20,16 +20,10 @@ namespace {
 std::vector<GlossyMaskView> training_glossy_masks(const TrainConfig& config) {
   Dataset dataset = load_dataset(config.data, dataset_options(config));
   select_training_data(config, dataset);
-  std::vector<TrainView> views;
-  for (const View& v : dataset.train) {
-    views.emplace_back().name = v.name;
-    views.back().camera = v.camera;
-    if (v.glossy_mask) views.back().glossy_mask = load_view_glossy_mask(v).pixels.to_host();
-  }
-  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);
+  std::vector<std::vector<float>> masks = run_glossy_masks(config, dataset.train);
   std::vector<GlossyMaskView> out;
-  for (TrainView& v : views)
-    if (!v.glossy_mask.empty()) out.push_back({v.camera, std::move(v.glossy_mask)});
+  for (std::size_t k = 0; k < masks.size(); ++k)
+    if (!masks[k].empty()) out.push_back({dataset.train[k].camera, std::move(masks[k])});
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/util/error.h"
+#include "render/train/auto_mode.h"
 #include "ui/document/app_state.h"
 
 namespace goris::ui {
@@ -134,7 +135,11 @@ std::uint64_t TwoClickFlow::evaluate(AppState& st, std::vector<FlowClick> clicks
   progress_->done = 0;
   progress_->total = 0;
   progress_->set_stage("queued");
-  const std::uint64_t job = st.selection().click_regions(views, st.scene()->dataset_options, result, progress_);
+  std::function<std::vector<std::vector<float>>()> glossy;
+  if (const std::optional<TrainConfig>& config = st.scene()->run_config)
+    glossy = [config = *config, views] { return run_glossy_masks(config, views); };
+  const std::uint64_t job =
+      st.selection().click_regions(views, st.scene()->dataset_options, result, progress_, std::move(glossy));
   pending_ = {Pending::Evaluate, job, std::move(clicks), std::move(result)};
   return job;
 }

@@ -99,8 +99,9 @@ void check_cancel(const FlowProgress& p) {
 }  // namespace
 
 std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOptions photos,
-                                              std::shared_ptr<FlowResult> out, std::shared_ptr<FlowProgress> progress) {
-  return submit([this, views = std::move(views), photos, out, progress](const Job& job) {
+                                              std::shared_ptr<FlowResult> out, std::shared_ptr<FlowProgress> progress,
+                                              std::function<std::vector<std::vector<float>>()> glossy_masks) {
+  return submit([this, views = std::move(views), photos, out, progress, glossy_masks](const Job& job) {
     if (out->clicks.empty()) throw Error("two-click: no click to select from");
     Context& c = prepared(job.model);
     const SelectionState cur = current_state();
@@ -131,7 +132,10 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
     }
     progress->set_stage(n_clicks > 1 ? "lifting the regions, every view's vote" : "lifting the region");
     check_cancel(*progress);
-    const ClickSelection cs = select_by_click_regions(model, c.selection.points, regions, views, raster);
+    const std::vector<std::vector<float>> gloss_store = glossy_masks ? glossy_masks() : std::vector<std::vector<float>>{};
+    std::vector<const std::vector<float>*> gloss;
+    for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
+    const ClickSelection cs = select_by_click_regions(model, c.selection.points, regions, views, raster, {}, gloss);
     if (cs.result.summary.seeds == 0)
       throw Error("two-click: no Gaussian lies inside the clicked region of every clicked view that sees it: are the "
                   "clicks on the same object?");
