@@ -216,13 +216,18 @@ def main():
         d = [r["two-click-removal"][0] - r["masks-removal"][0] for r in both]
         print(f"Removal: two-click minus exact masks, changed-region PSNR: mean {sum(d) / len(d):+.2f} dB, worst "
               f"{min(d):+.2f} dB; within 0.5 dB on {sum(x >= -0.5 for x in d)} of {len(both)} scenes.")
+        good = [r["scene"] for r in both
+                if r["two-click"][0] >= 0.9 and r["two-click-removal"][0] - r["masks-removal"][0] >= -0.5]
+        print(f"Both (IoU >= 0.9 and the removal within 0.5 dB) on {len(good)} of {len(rows)} scenes"
+              + (f": {', '.join(good)}." if good else "."))
     print("""
 `exact masks` is the selection voted by the exact masks (`goris select --masks`): what the mask writer loses
 on a selection that is about right. `two-click` is the default `--click-by region`: each click's region of
 its view (median depth and photo colour on a tolerance ladder), lifted to the Gaussians by their rendered
 weight in the clicked views, closed, then voted once more by every view's silhouette of the selection (the
-selected Gaussians rendered alone, less the view's glossy pixels); with glossy masks, what lies beyond the
-glossy surface the target stands on (its reflection) is left out at each step. The removal columns
+selected Gaussians rendered alone, less the view's glossy pixels); with glossy masks, the clicks' regions
+never enter glossy pixels and what lies beyond the glossy surface the target stands on (its reflection) is
+left out at each step. The removal columns
 drive `goris remove` with each set of masks on copies of the same stage-1 run (changed region: the pixels
 where the test views with and without the target differ; ghost: what is left of the target there, 0 is
 none). The variants that lost: docs/lab/2026-12-04-click-regions-and-mask-edges.md,

@@ -285,6 +285,12 @@ void run_select(const Options& o, int n_methods) {
       throw Error("--grow", "grows a click over similar Gaussians (--click-by grow); --click-by region takes the "
                             "clicked views' regions instead");
     std::vector<ClickView> regions_2d;
+    // The glossy masks the run trained with: the surface the target stands on, whose far side holds its
+    // reflection and whose pixels are never the target.
+    const std::vector<std::vector<float>> gloss_store =
+        by_region ? run_glossy_masks(config, ds.train) : std::vector<std::vector<float>>(ds.train.size());
+    std::vector<const std::vector<float>*> gloss;
+    for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
     for (std::size_t c = 0; c + 2 < o.click.size(); c += 3) {
       const std::size_t vi = find_view(ds.train, o.click[c]);
       const View& view = ds.train[vi];
@@ -292,7 +298,7 @@ void run_select(const Options& o, int n_methods) {
       ClickOutcome click;
       if (by_region) {
         const Image photo = load_view_image(view, dataset_options(config), Device::CPU);
-        click = click_in_view(model, view, photo, x, y, raster);
+        click = click_in_view(model, view, photo, x, y, raster, true, gloss[vi]);
       } else {
         click = click_in_view(model, view, Image(), x, y, raster, /*region=*/false);
       }
@@ -328,11 +334,6 @@ void run_select(const Options& o, int n_methods) {
       // clicked view that shows the Gaussian), then the hull adds the object's interior, and every view's
       // silhouette of the selection votes once more (it adds the side no clicked view saw).
       record.parameters["click_by"] = "region";
-      // The glossy masks the run trained with: the surface the target stands on, whose far side holds its
-      // reflection and whose pixels are never the target.
-      const std::vector<std::vector<float>> gloss_store = run_glossy_masks(config, ds.train);
-      std::vector<const std::vector<float>*> gloss;
-      for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
       const ClickSelection cs = select_by_click_regions(model, pts, regions_2d, ds.train, raster, close, gloss);
       result = cs.result;
       if (cs.support.found)

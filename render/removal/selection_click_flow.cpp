@@ -10,7 +10,7 @@
 namespace goris {
 
 ClickOutcome click_in_view(const GaussianModel& model, const View& view, const Image& photo, int x, int y,
-                           const RasterSettings& raster, bool region) {
+                           const RasterSettings& raster, bool region, const std::vector<float>* glossy) {
   const std::string at = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
   if (x < 0 || y < 0 || x >= view.camera.width || y >= view.camera.height)
     throw Error("--click", at + " is outside view " + view.name + " (" + std::to_string(view.camera.width) + "x" +
@@ -23,7 +23,8 @@ ClickOutcome click_in_view(const GaussianModel& model, const View& view, const I
     throw Error("--click", at + " of view " + view.name + " shows background (the ray's opacity is " + alpha +
                                "): click on the object");
   }
-  if (region) o.region = grow_click_region(photo, render_median_depth(model, view.camera, raster), x, y);
+  if (region)
+    o.region = grow_click_region(photo, render_median_depth(model, view.camera, raster), x, y, {}, glossy);
   return o;
 }
 

@@ -26,10 +26,12 @@ struct ClickOutcome {
 };
 
 // The click at pixel (x, y) of `view` (at the model's training resolution; `photo` is the view's photo at
-// the camera's size, unused without `region`: the pick alone). Throws goris::Error for a pixel outside the
-// view or one that shows background.
+// the camera's size, unused without `region`: the pick alone). `glossy`: the view's glossy mask at the
+// camera's size (null: none), whose pixels the region never enters (grow_click_region's barrier). Throws
+// goris::Error for a pixel outside the view or one that shows background.
 ClickOutcome click_in_view(const GaussianModel& model, const View& view, const Image& photo, int x, int y,
-                           const RasterSettings& raster, bool region = true);
+                           const RasterSettings& raster, bool region = true,
+                           const std::vector<float>* glossy = nullptr);
 
 struct ClickSelection {
   SelectionResult result;              // the selection (result.summary.seeds == 0: nothing found)

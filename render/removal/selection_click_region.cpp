@@ -18,7 +18,7 @@ namespace {
 
 // The flood fill at one colour tolerance.
 Mask flood(const Image& photo, const std::vector<float>& depth, int x0, int y0, const float ref[3], float tol,
-           float depth_step) {
+           float depth_step, const std::vector<float>* barrier) {
   const int w = photo.width, h = photo.height;
   const float* px = photo.pixels.data();
   Mask m(w, h);
@@ -38,6 +38,7 @@ Mask flood(const Image& photo, const std::vector<float>& depth, int x0, int y0, 
       if (nx[k] < 0 || ny[k] < 0 || nx[k] >= w || ny[k] >= h) continue;
       const std::size_t q = std::size_t(ny[k]) * std::size_t(w) + std::size_t(nx[k]);
       if (m.data[q] || depth[q] <= 0.0f) continue;
+      if (barrier && (*barrier)[q] > 0.5f) continue;
       if (std::abs(depth[q] - depth[p]) > depth_step * std::min(depth[p], depth[q])) continue;
       if (!colour_ok(q)) continue;
       m.data[q] = 255;
@@ -50,10 +51,12 @@ Mask flood(const Image& photo, const std::vector<float>& depth, int x0, int y0, 
 }  // namespace
 
 ClickRegion grow_click_region(const Image& photo, const std::vector<float>& depth, int x, int y,
-                              const ClickRegionSettings& s) {
+                              const ClickRegionSettings& s, const std::vector<float>* barrier) {
   const int w = photo.width, h = photo.height;
   if (photo.channels != 3 || photo.pixels.device() != Device::CPU || depth.size() != photo.pixel_count())
     throw Error("click", "the photo (RGB on the CPU) and the depth of the clicked view differ in size");
+  if (barrier && barrier->size() != photo.pixel_count())
+    throw Error("click", "the glossy mask and the photo of the clicked view differ in size");
   if (x < 0 || y < 0 || x >= w || y >= h) throw Error("click", "pixel outside the view");
   if (s.colour_ladder.empty() || !(s.leak_ratio > 1.0f) || !(s.depth_step > 0.0f))
     throw Error("click", "bad click region settings");
@@ -77,7 +80,7 @@ ClickRegion grow_click_region(const Image& photo, const std::vector<float>& dept
   const std::size_t max_area = std::size_t(s.max_area_fraction * float(photo.pixel_count()));
   std::vector<Mask> rungs;
   for (float tol : s.colour_ladder) {
-    rungs.push_back(flood(photo, depth, x, y, ref, tol, s.depth_step));
+    rungs.push_back(flood(photo, depth, x, y, ref, tol, s.depth_step, barrier));
     r.rung_areas.push_back(count_set(rungs.back()));
   }
   std::size_t pick = 0, prev_area = 0;

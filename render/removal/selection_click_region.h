@@ -5,7 +5,8 @@
 // Per click (view V, pixel p): the region is flood-filled from p over 4-neighbours that continue the
 // surface in the run's median depth (a step of at most depth_step of the depth: occluding contours stop
 // it) and whose photo colour lies within a tolerance of the click's colour (the 5x5 median around p in the
-// training photo: contact lines between touching surfaces of different colour stop it). The tolerance is
+// training photo: contact lines between touching surfaces of different colour stop it); it never enters the
+// view's glossy pixels where the run has glossy masks (the surface the target stands on). The tolerance is
 // not a user setting: it climbs a ladder, and the region is the last one before the area jumps by more
 // than leak_ratio from one rung to the next (the fill has crossed a weak edge into the surroundings) or
 // exceeds max_area_fraction of the view (the ladder reaches 0.80: a metal object's reflections span a wide
@@ -54,10 +55,13 @@ struct ClickRegion {
 };
 
 // The region grown from pixel (x, y) of an RGB photo (values in [0, 1]) and the render's median depth of
-// the same view (0 = nothing rendered there: never part of the region). Throws goris::Error on mismatched
-// sizes or a pixel outside the image.
+// the same view (0 = nothing rendered there: never part of the region). `barrier` (optional, [H][W] in
+// [0, 1]): pixels above one half are never part of it; the view's glossy mask, which marks the surface the
+// target stands on and never the target: the fill cannot leave the target across its foot, where the depth
+// runs on into the surface, so the ladder climbs to the tolerance a textured target needs. Throws
+// goris::Error on mismatched sizes or a pixel outside the image.
 ClickRegion grow_click_region(const Image& photo, const std::vector<float>& median_depth, int x, int y,
-                              const ClickRegionSettings& settings = {});
+                              const ClickRegionSettings& settings = {}, const std::vector<float>* barrier = nullptr);
 
 // The median depth of the model's render of `camera` (CPU vector, [H][W]).
 std::vector<float> render_median_depth(const GaussianModel& model, const Camera& camera, const RasterSettings& raster);

@@ -71,6 +71,30 @@ TEST(ClickRegion, StopsAtAColourEdgeOnOneSurface) {
   EXPECT_FALSE(f.mask(15, 20));
 }
 
+TEST(ClickRegion, AGlossyBarrierKeepsTheFillOnATexturedTargetStandingOnTheSurface) {
+  // A two-colour target (R 0.3 on three quarters, 0.6 on the rest) on a floor of R 0.45 at the same depth
+  // (its foot runs on into the floor): from the darker part the fill reaches the floor (0.15 away) before
+  // the lighter part (0.3 away), and the ladder stops at the darker part.
+  Image photo(kW, kH, 3);
+  float* p = photo.pixels.data();
+  std::vector<float> glossy(kW * kH, 0.0f);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool target = in_square(x, y, 20, 20, 44, 44);
+      float* c = p + 3 * (std::size_t(y) * kW + std::size_t(x));
+      c[0] = target ? (x < 38 ? 0.3f : 0.6f) : 0.45f, c[1] = 0.5f, c[2] = 0.4f;
+      glossy[std::size_t(y) * kW + std::size_t(x)] = target ? 0.0f : 1.0f;
+    }
+  const std::vector<float> depth(kW * kH, 5.0f);
+  const ClickRegion plain = grow_click_region(photo, depth, 25, 30);
+  EXPECT_DOUBLE_EQ(iou_with_square(plain.mask, 20, 20, 38, 44), 1.0);
+  // With the floor as the barrier (its glossy mask) the ladder climbs on and takes the whole target.
+  const ClickRegion barred = grow_click_region(photo, depth, 25, 30, {}, &glossy);
+  EXPECT_DOUBLE_EQ(iou_with_square(barred.mask, 20, 20, 44, 44), 1.0);
+  const std::vector<float> wrong_size(10, 0.0f);
+  EXPECT_THROW(grow_click_region(photo, depth, 25, 30, {}, &wrong_size), Error);
+}
+
 TEST(ClickRegion, NoDepthUnderTheClickIsAnEmptyRegionAndBadInputsThrow) {
   const Image photo = photo_with_square(0.9f, 0.3f, 10, 12, 30, 28);
   std::vector<float> depth(kW * kH, 0.0f);

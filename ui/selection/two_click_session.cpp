@@ -112,6 +112,10 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
     progress->done = 0;
     progress->total = n_clicks + 1 + int(views.size());
 
+    // The glossy masks the run trained with (select_by_click_regions): one per view or none.
+    const std::vector<std::vector<float>> gloss_store = glossy_masks ? glossy_masks() : std::vector<std::vector<float>>{};
+    std::vector<const std::vector<float>*> gloss;
+    for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
     std::vector<ClickView> regions;
     std::string what = "two-click:";
     for (const FlowClick& k : out->clicks) {
@@ -120,7 +124,8 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
       progress->set_stage("region of the click in " + view.name);
       check_cancel(*progress);
       const Image photo = load_view_image(view, photos, Device::CPU);
-      const ClickOutcome o = click_in_view(model, view, photo, k.x, k.y, raster);
+      const ClickOutcome o =
+          click_in_view(model, view, photo, k.x, k.y, raster, true, k.view < gloss.size() ? gloss[k.view] : nullptr);
       char b[200];
       std::snprintf(b, sizeof b, "two-click: %s (%d, %d): picked Gaussian %u, region %zu pixels at colour tolerance %.2f",
                     view.name.c_str(), k.x, k.y, o.pick.gaussian, o.region.area, double(o.region.tolerance));
@@ -132,9 +137,6 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
     }
     progress->set_stage(n_clicks > 1 ? "lifting the regions, every view's vote" : "lifting the region");
     check_cancel(*progress);
-    const std::vector<std::vector<float>> gloss_store = glossy_masks ? glossy_masks() : std::vector<std::vector<float>>{};
-    std::vector<const std::vector<float>*> gloss;
-    for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
     const ClickSelection cs = select_by_click_regions(model, c.selection.points, regions, views, raster, {}, gloss);
     if (cs.result.summary.seeds == 0)
       throw Error("two-click: no Gaussian lies inside the clicked region of every clicked view that sees it: are the "
