@@ -286,9 +286,14 @@ void run_select(const Options& o, int n_methods) {
                             "clicked views' regions instead");
     std::vector<ClickView> regions_2d;
     // The glossy masks the run trained with: the surface the target stands on, whose far side holds its
-    // reflection and whose pixels are never the target.
-    const std::vector<std::vector<float>> gloss_store =
-        by_region ? run_glossy_masks(config, ds.train) : std::vector<std::vector<float>>(ds.train.size());
+    // reflection and whose pixels are never the target. They help and are not needed: a run whose detected
+    // masks are gone selects without them, and says so.
+    std::vector<std::vector<float>> gloss_store(ds.train.size());
+    if (by_region) try {
+        gloss_store = run_glossy_masks(config, ds.train);
+      } catch (const Error& e) {
+        std::fprintf(stderr, "warning: selecting without the run's glossy masks: %s\n", e.what());
+      }
     std::vector<const std::vector<float>*> gloss;
     for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
     for (std::size_t c = 0; c + 2 < o.click.size(); c += 3) {
@@ -336,10 +341,14 @@ void run_select(const Options& o, int n_methods) {
       record.parameters["click_by"] = "region";
       const ClickSelection cs = select_by_click_regions(model, pts, regions_2d, ds.train, raster, close, gloss);
       result = cs.result;
-      if (cs.support.found)
+      if (cs.support.found) {
+        record.parameters["glossy_surface"] = {{"normal", {cs.support.normal.x, cs.support.normal.y, cs.support.normal.z}},
+                                               {"offset", cs.support.offset},
+                                               {"left_out_beyond", cs.beyond_support}};
         std::printf("  the glossy surface it stands on: normal (%.3f, %.3f, %.3f), %zu Gaussians beyond it left out "
                     "(the target's reflection)\n",
                     cs.support.normal.x, cs.support.normal.y, cs.support.normal.z, cs.beyond_support);
+      }
       if (cs.revoted)
         std::printf("  %zu Gaussians from the clicked views, %zu after every training view's vote\n",
                     cs.from_clicked_views, result.summary.selected);

@@ -1,7 +1,7 @@
 #include "render/removal/selection_click_flow.h"
 
-#include <cstdio>
 #include <algorithm>
+#include <cstdio>
 
 #include "core/removal/plane_from_masks.h"
 #include "core/util/error.h"

@@ -137,7 +137,15 @@ std::uint64_t TwoClickFlow::evaluate(AppState& st, std::vector<FlowClick> clicks
   progress_->set_stage("queued");
   std::function<std::vector<std::vector<float>>()> glossy;
   if (const std::optional<TrainConfig>& config = st.scene()->run_config)
-    glossy = [config = *config, views] { return run_glossy_masks(config, views); };
+    glossy = [config = *config, views] {
+      // They help and are not needed: a run whose detected masks are gone selects without them.
+      try {
+        return run_glossy_masks(config, views);
+      } catch (const Error& e) {
+        std::fprintf(stderr, "two-click: selecting without the run's glossy masks: %s\n", e.what());
+        return std::vector<std::vector<float>>{};
+      }
+    };
   const std::uint64_t job =
       st.selection().click_regions(views, st.scene()->dataset_options, result, progress_, std::move(glossy));
   pending_ = {Pending::Evaluate, job, std::move(clicks), std::move(result)};
