@@ -127,9 +127,9 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
   const Device device = resolve_device(dev);
   DatasetOptions dopt = dataset_options(config);
   if (resolution > 0) dopt.target_width = resolution;
-  const Dataset ds = load_dataset(config.data, dopt);
+  const Dataset ds = load_dataset(config.input.data, dopt);
   if (view_index < 0 || size_t(view_index) >= ds.train.size())
-    throw Error(config.data, "has " + std::to_string(ds.train.size()) + " training views; --view " +
+    throw Error(config.input.data, "has " + std::to_string(ds.train.size()) + " training views; --view " +
                                  std::to_string(view_index) + " does not exist");
   const std::vector<TrainView> views = load_train_views({ds.train[size_t(view_index)]}, dopt);
   const TrainView& v = views[0];

@@ -40,10 +40,10 @@ void run_detect(const Options& o) {
   const Device device = resolve_device(o.device);
   Checkpoint c = read_checkpoint(ck, device);
   TrainConfig config = c.config;
-  config.use_glossy_masks = true;  // the data set's own masks, when it has them, are the reference
-  config.glossy_mask_dir.clear();
+  config.input.use_glossy_masks = true;  // the data set's own masks, when it has them, are the reference
+  config.input.glossy_mask_dir.clear();
   apply_config_overrides(o.sets, config);
-  Dataset ds = load_dataset(config.data, dataset_options(config));
+  Dataset ds = load_dataset(config.input.data, dataset_options(config));
   select_training_data(config, ds);
   const std::vector<TrainView> views = load_train_views(ds.train, dataset_options(config));
   const GlossyDetectionSettings s = GlossyDetectionSettings::from_config(config);

@@ -155,7 +155,7 @@ std::vector<TrainView> glossy_train_views(const Dataset& ds) {
 
 std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& config, const Dataset& ds,
                                                         GaussianModel& model, Device device, nlohmann::json& j) {
-  const auto gt_dir = ground_truth_normal_dir(config.data);
+  const auto gt_dir = ground_truth_normal_dir(config.input.data);
   if (!gt_dir) return std::nullopt;
   std::vector<TrainView> tv = glossy_train_views(ds);
   if (tv.empty()) return std::nullopt;
@@ -163,7 +163,7 @@ std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& confi
   IntrinsicAccuracy acc;
   try {
     acc = measure_intrinsic_accuracy(model.view(true), tv, RasterRenderer::settings_for(config), device,
-                                     glossy_reference_from_scene(fs::path(config.data) / "scene.json"));
+                                     glossy_reference_from_scene(fs::path(config.input.data) / "scene.json"));
   } catch (const Error& e) {  // e.g. a scene whose glossy masks are empty (a Lambertian room): nothing to measure
     j["intrinsic_ground_truth"] = {{"not_measured", e.what()}};
     std::printf("intrinsic ground truth: not measured (%s)\n", e.what());
@@ -224,9 +224,9 @@ void run_eval(const Options& o) {
   check_output_file(out, run_output_guard(run_dir, config));  // never into the data set or over the run's files
   const Device device = resolve_device(o.device);
   const DatasetOptions dopt = dataset_options(config);
-  const Dataset ds = load_dataset(config.data, dopt);
+  const Dataset ds = load_dataset(config.input.data, dopt);
   const std::vector<View>& views = o.split == "test" ? ds.test : ds.train;
-  if (views.empty()) throw Error(config.data, "the data set has no " + o.split + " views");
+  if (views.empty()) throw Error(config.input.data, "the data set has no " + o.split + " views");
   std::string source;
   GaussianModel model = load_run_model(run_dir, device, &source);
   const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
@@ -301,7 +301,7 @@ void run_eval(const Options& o) {
   nlohmann::json j;
   j["run"] = run_dir.string();
   j["model"] = source;
-  j["data"] = config.data;
+  j["data"] = config.input.data;
   j["split"] = o.split;
   j["gt"] = o.gt == "full" ? "full: test views with the target (full_XXX.png)" : "after: the views' images (r_XXX.png)";
   j["views"] = views.size();

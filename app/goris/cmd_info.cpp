@@ -144,8 +144,8 @@ void print_run(const fs::path& run, bool nested = false) {
   const char* in = nested ? "  " : "";
   if (!nested) {
     std::printf("run:         %s\n", run.string().c_str());
-    std::printf("data set:    %s%s\n", c.data.c_str(),
-                c.data.empty() || fs::exists(c.data)
+    std::printf("data set:    %s%s\n", c.input.data.c_str(),
+                c.input.data.empty() || fs::exists(c.input.data)
                     ? ""
                     : "  (not found: moved? other commands read it from config.json; --data NEW_FOLDER points them "
                       "at its new place)");

@@ -50,9 +50,9 @@ void run_render(const Options& o) {
   const fs::path out = fs::absolute(o.out);
   check_output_dir(out, run_output_guard(run_dir, config));  // never into the data set or over the run's files
   const Device device = resolve_device(o.device);
-  const Dataset ds = load_dataset(config.data, dataset_options(config));
+  const Dataset ds = load_dataset(config.input.data, dataset_options(config));
   const std::vector<View>& views = o.split == "test" ? ds.test : ds.train;
-  if (views.empty()) throw Error(config.data, "the data set has no " + o.split + " views");
+  if (views.empty()) throw Error(config.input.data, "the data set has no " + o.split + " views");
   std::string source = o.model;
   GaussianModel model = o.model.empty() ? load_run_model(run_dir, device, &source)
                                         : GaussianModel::from_ply(read_gaussians(o.model), device);

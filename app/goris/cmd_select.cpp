@@ -207,8 +207,8 @@ void run_select(const Options& o, int n_methods) {
   check_output_file(json_path, guard);
   check_output_file(json_path.parent_path() / (json_path.stem().string() + ".npy"), guard);
   const Device device = resolve_device(o.device);
-  const Dataset ds = load_dataset(config.data, dataset_options(config));
-  if (ds.train.empty()) throw Error(config.data, "the data set has no training views");
+  const Dataset ds = load_dataset(config.input.data, dataset_options(config));
+  if (ds.train.empty()) throw Error(config.input.data, "the data set has no training views");
   std::string source;
   const GaussianModel model = load_run_model(run_dir, device, &source);
   std::printf("selecting in %s: %zu Gaussians from %s\n", run_dir.string().c_str(), model.count(), source.c_str());
@@ -271,7 +271,7 @@ void run_select(const Options& o, int n_methods) {
     result = close_selection(pts, votes.selected, close);
     seed_rule = "by mask votes";
     if (result.summary.seeds == 0)
-      throw Error(dir ? dir->string() : config.data,
+      throw Error(dir ? dir->string() : config.input.data,
                   "no Gaussian falls inside the object masks in at least " + percent(o.min_fraction) +
                       " of the views where it is visible (" + std::to_string(ever_visible) +
                       " Gaussians are visible at all): are the masks white on the object? Lower --min-fraction, "

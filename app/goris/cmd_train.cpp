@@ -64,8 +64,8 @@ void apply_settings(const Options& o, TrainConfig& config) {
   if (o.mode) config.mode = *enum_from_name<TrainMode>(*o.mode);  // a name, checked by the option
   if (!o.normals.empty()) config.intrinsic.normals = fs::weakly_canonical(fs::absolute(o.normals)).string();
   if (o.seed) config.seed = *o.seed;
-  if (o.resolution) config.resolution = *o.resolution;
-  if (o.downscale) config.downscale = *o.downscale;
+  if (o.resolution) config.input.resolution = *o.resolution;
+  if (o.downscale) config.input.downscale = *o.downscale;
   if (o.init_points) config.random_init_points = *o.init_points;
   if (!o.init.empty()) {  // read by prepare_training; a missing file fails now, before the images load
     const fs::path init = fs::weakly_canonical(fs::absolute(o.init));
@@ -138,7 +138,7 @@ void run_train(const Options& o) {
       throw Error(run_dir.string(), "holds a training run that stopped before its first checkpoint (config.json, no "
                                     "checkpoints/): add --restart to start it over, or choose another --out");
     }
-    config.data = data.string();
+    config.input.data = data.string();
     apply_settings(o, config);
   }
   // Never a run inside the data set (or any data set); only the run folder itself is created, and removed

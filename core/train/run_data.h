@@ -16,11 +16,12 @@ namespace goris {
 std::string training_views_fingerprint(const Dataset& dataset);
 
 // Points `config` (a run's, read from RUN/config.json or a checkpoint) at its data set for one command.
-// `data` empty: config.data must exist; when it does not, the error says that the path comes from
+// `data` empty: config.input.data must exist; when it does not, the error says that the path comes from
 // RUN/config.json and how to point the run at the data set's new place (`how`, e.g. "--data DIR").
-// `data` given: it must load and hold the training views the run records (config.data_views); a run that
-// records none is taken on trust only when config.data no longer exists, with a warning. config.data
-// becomes `data`, and a note on stderr says so. Throws goris::Error naming the folder and the problem.
+// `data` given: it must load and hold the training views the run records (config.input.data_views); a run
+// that records none is taken on trust only when config.input.data no longer exists, with a warning.
+// config.input.data becomes `data`, and a note on stderr says so. Throws goris::Error naming the folder and
+// the problem.
 void use_run_data(const std::filesystem::path& run_dir, TrainConfig& config, const std::string& data,
                   const std::string& how = "--data DIR");
 

@@ -41,22 +41,22 @@ void visit_fields(Config& c, F&& visit) {
   f("device", c.device,
     {"Run", "Where to train: `auto` (CUDA when a device is usable, else the CPU), `cpu` or `cuda`. Also "
             "`--device`."});
-  f("data", c.data);
-  f("data_views", c.data_views);
-  f("downscale", c.downscale,
+  f("data", c.input.data);
+  f("data_views", c.input.data_views);
+  f("downscale", c.input.downscale,
     {"Data", "Divide the image size by this factor (>= 1). Also `--downscale`."});
-  f("resolution", c.resolution,
+  f("resolution", c.input.resolution,
     {"Data", "Train at this image width in pixels, the height keeping the aspect (0 = use `downscale`). Also "
              "`--resolution`."});
-  f("background", c.background,
+  f("background", c.input.background,
     {"Data", "Colour [r, g, b] that RGBA images are composited on; also the renders' background."});
-  f("use_glossy_masks", c.use_glossy_masks,
+  f("use_glossy_masks", c.input.use_glossy_masks,
     {"Data", "Use the data set's glossy masks; without them `--mode auto` detects glossy regions from the photos."});
-  f("use_object_masks", c.use_object_masks);
-  f("max_train_views", c.max_train_views,
+  f("use_object_masks", c.input.use_object_masks);
+  f("max_train_views", c.input.max_train_views,
     {"Data", "Train on at most this many views, spread evenly over the data set (0 = all)."});
-  f("glossy_mask_dir", c.glossy_mask_dir);
-  f("auto_detect_glossy", c.auto_detect_glossy);
+  f("glossy_mask_dir", c.input.glossy_mask_dir);
+  f("auto_detect_glossy", c.input.auto_detect_glossy);
   f("random_init_points", c.random_init_points,
     {"Initialisation", "Random initial points when the data set has no SfM points. Also `--init-points`."});
   f("init_model", c.init_model,
@@ -199,9 +199,9 @@ nlohmann::json vec_json(const glm::vec3& v) { return nlohmann::json::array({v.x,
 void TrainConfig::validate(const std::string& what) const {
   auto fail = [&](const std::string& p) { throw Error(what, p); };
   if (iterations < 1) fail("iterations must be at least 1");
-  if (!(downscale >= 1.0f)) fail("downscale must be >= 1");
-  if (resolution < 0) fail("resolution must be positive (or 0 for none)");
-  if (max_train_views < 0) fail("max_train_views must be >= 0 (0 = all views)");
+  if (!(input.downscale >= 1.0f)) fail("downscale must be >= 1");
+  if (input.resolution < 0) fail("resolution must be positive (or 0 for none)");
+  if (input.max_train_views < 0) fail("max_train_views must be >= 0 (0 = all views)");
   if (random_init_points < 1 || random_init_points > kMaxRandomInitPoints)
     fail("random_init_points must be from 1 to " + std::to_string(kMaxRandomInitPoints) +
          " (each point is a Gaussian with its optimiser state, about 1 KB)");

@@ -162,18 +162,8 @@ struct IntrinsicSettings {
 // workstation's memory (each is a Gaussian with its optimiser state).
 constexpr int kMaxRandomInitPoints = 20000000;
 
-struct TrainConfig {
-  // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
-  // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
-  // a glossy scene, radiance otherwise (render/train/auto_mode.h), resolved before training starts, so a run's
-  // config.json names the mode it trained in. The default: on the generalization suite it removes more of
-  // the target's reflection than radiance on the mean and the worst glossy scene (docs/results).
-  TrainMode mode = TrainMode::Auto;
-  int iterations = 30000;
-  std::uint64_t seed = 0;
-  DeviceChoice device = DeviceChoice::Auto;
-
-  // Data.
+// The training data and what of it a run uses (TrainConfig::input; config.json keys as the fields' names).
+struct InputSettings {
   std::string data;             // data set path (as given, made absolute)
   // What the run was trained on, recorded when training starts (core/train/run_data.h): the training views'
   // count and a hash of their names and image sizes, so that a moved data set given with --data is checked
@@ -195,6 +185,20 @@ struct TrainConfig {
   // then detects glossy regions and switches to intrinsic (mode "intrinsic", glossy_mask_dir = the
   // detected masks) or stays radiance; the decision clears it, so a resumed run never detects twice.
   bool auto_detect_glossy = false;
+};
+
+struct TrainConfig {
+  // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
+  // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
+  // a glossy scene, radiance otherwise (render/train/auto_mode.h), resolved before training starts, so a run's
+  // config.json names the mode it trained in. The default: on the generalization suite it removes more of
+  // the target's reflection than radiance on the mean and the worst glossy scene (docs/results).
+  TrainMode mode = TrainMode::Auto;
+  int iterations = 30000;
+  std::uint64_t seed = 0;
+  DeviceChoice device = DeviceChoice::Auto;
+
+  InputSettings input;
 
   // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
   int random_init_points = 100000;  // at most kMaxRandomInitPoints

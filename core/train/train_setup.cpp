@@ -8,9 +8,9 @@ namespace goris {
 
 DatasetOptions dataset_options(const TrainConfig& config) {
   DatasetOptions o;
-  o.background = config.background;
-  o.downscale = config.downscale;
-  o.target_width = config.resolution;
+  o.background = config.input.background;
+  o.downscale = config.input.downscale;
+  o.target_width = config.input.resolution;
   o.undistort = true;
   return o;
 }
@@ -69,7 +69,7 @@ void resolve_environment_sphere(const Dataset& dataset, TrainConfig& config) {
   IntrinsicSettings& in = config.intrinsic;
   if (!(in.env_distance > 0) || in.env_radius > 0 || dataset.train.empty()) return;
   const CameraFocus f = camera_focus(cameras_of(dataset.train));
-  if (!(f.mean_distance > 0)) throw Error(config.data, "the training cameras all sit at the point they look at");
+  if (!(f.mean_distance > 0)) throw Error(config.input.data, "the training cameras all sit at the point they look at");
   in.env_center = f.center;
   in.env_radius = in.env_distance * f.mean_distance;
 }

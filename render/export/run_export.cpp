@@ -67,8 +67,8 @@ fs::path baked_json_path(const fs::path& ply) {
 
 RunExport::RunExport(const fs::path& run_dir, Device device, const std::string& data)
     : run_dir_(fs::absolute(run_dir)), device_(device), config_(read_run_config_with_data(run_dir_, data)) {
-  dataset_ = load_dataset(config_.data, dataset_options(config_));
-  if (dataset_.train.empty()) throw Error(config_.data, "the data set has no training views");
+  dataset_ = load_dataset(config_.input.data, dataset_options(config_));
+  if (dataset_.train.empty()) throw Error(config_.input.data, "the data set has no training views");
   extent_ = scene_extent(dataset_);
   model_ = load_run_model(run_dir_, device_, &model_source_);
   renderer_ = load_run_renderer(run_dir_, config_, extent_, device_);
@@ -145,7 +145,7 @@ std::vector<Camera> RunExport::path_cameras(RenderPath path, int frames, std::ve
   }
   const std::vector<View>& views = path == RenderPath::Test ? dataset_.test : dataset_.train;
   if (views.empty())
-    throw Error(config_.data, std::string("the data set has no ") + render_path_name(path) +
+    throw Error(config_.input.data, std::string("the data set has no ") + render_path_name(path) +
                                   " views; use --path train or --path orbit");
   for (size_t i : evenly_spaced(views.size(), frames)) {
     cams.push_back(views[i].camera);

@@ -202,8 +202,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   const TrainConfig config = read_run_config_with_data(run_dir, o.data);
   const Device device = resolve_device(o.device);
   const DatasetOptions dopt = dataset_options(config);
-  Dataset ds = load_dataset(config.data, dopt);
-  if (ds.train.empty()) throw Error(config.data, "the data set has no training views");
+  Dataset ds = load_dataset(config.input.data, dopt);
+  if (ds.train.empty()) throw Error(config.input.data, "the data set has no training views");
   select_training_data(config, ds);  // stage 2 sees the views and masks stage 1 trained with
   const float extent = scene_extent(ds);
   const std::vector<Camera> cameras = cameras_of(ds.train);
@@ -234,7 +234,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   auto cancelled = [&] { return stop && stop->load(); };
   // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
   std::vector<TrainView> views = load_train_views(ds.train, dopt);
-  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);  // --mode auto's
+  if (!config.input.glossy_mask_dir.empty())  // --mode auto's
+    load_glossy_mask_folder(config.input.glossy_mask_dir, views);
   const bool glossy_masks = any_glossy_mask(views);
 
   // 1. Selection.
@@ -538,7 +539,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       // A glossy_mask_dir must hold every view's mask (load_glossy_mask_folder), so only a complete set is written.
       if (std::all_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); })) {
         save_glossy_mask_folder(out / "glossy_masks", views);
-        ft.glossy_mask_dir = (out / "glossy_masks").string();
+        ft.input.glossy_mask_dir = (out / "glossy_masks").string();
       }
     }
     std::vector<Mask> exclude(views.size());

@@ -95,7 +95,7 @@ std::string resolve_auto_mode(TrainConfig& config, const std::vector<TrainView>&
                   : "the glossy masks are empty: " + percent(*f) + " of the pixels, threshold " + percent(threshold);
   }
   config.mode = TrainMode::Radiance;
-  config.auto_detect_glossy = true;
+  config.input.auto_detect_glossy = true;
   const int at = auto_detection_iteration(config);
   std::string why = "no glossy masks: radiance through the warm-up, then glossy regions are detected from the photos after "
                     "iteration " + std::to_string(at);
@@ -161,10 +161,10 @@ std::vector<std::vector<float>> run_glossy_masks(const TrainConfig& config, cons
   for (const View& v : views) {
     tv.emplace_back().name = v.name;
     tv.back().camera = v.camera;
-    if (v.glossy_mask && config.use_glossy_masks && config.glossy_mask_dir.empty())
+    if (v.glossy_mask && config.input.use_glossy_masks && config.input.glossy_mask_dir.empty())
       tv.back().glossy_mask = load_view_glossy_mask(v).pixels.to_host();
   }
-  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, tv);
+  if (!config.input.glossy_mask_dir.empty()) load_glossy_mask_folder(config.input.glossy_mask_dir, tv);
   std::vector<std::vector<float>> out;
   for (TrainView& v : tv) out.push_back(std::move(v.glossy_mask));
   return out;
@@ -200,7 +200,8 @@ std::string AutoDecision::message() const {
 
 std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& run_dir) {
   const TrainConfig& config = trainer.config();
-  if (!config.auto_detect_glossy || trainer.state().iteration < auto_detection_iteration(config)) return std::nullopt;
+  if (!config.input.auto_detect_glossy || trainer.state().iteration < auto_detection_iteration(config))
+    return std::nullopt;
   if (run_dir.empty()) throw Error("--mode auto: the glossy detection needs a run folder for its masks");
   const auto t0 = std::chrono::steady_clock::now();
   const GlossyDetectionSettings s = GlossyDetectionSettings::from_config(config);
@@ -221,12 +222,12 @@ std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& ru
   write_masks(d.mask_dir, trainer.views(), det);
 
   TrainConfig next = config;
-  next.auto_detect_glossy = false;
+  next.input.auto_detect_glossy = false;
   if (det.glossy) {
     next = lengthened_for_late_decision(next, d.iteration);
     d.extended_by = next.iterations - config.iterations;
     next.mode = TrainMode::Intrinsic;
-    next.glossy_mask_dir = d.mask_dir.string();
+    next.input.glossy_mask_dir = d.mask_dir.string();
     next.intrinsic.warmup = warmup_ending_at(next, d.iteration);
     trainer.switch_mode(next, make_renderer(next, trainer.extent(), trainer.device()), [&](std::vector<TrainView>& views) {
       for (size_t i = 0; i < views.size(); ++i) views[i].glossy_mask.assign(det.masks[i].begin(), det.masks[i].end());

@@ -4,7 +4,7 @@
 //
 //  - Data with glossy masks: intrinsic when the masks mark a glossy region (at least
 //    intrinsic_auto_mask_fraction of their pixels > 0.5), otherwise radiance ("the glossy masks are empty").
-//  - Data without glossy masks (or use_glossy_masks false): radiance with config.auto_detect_glossy set.
+//  - Data without glossy masks (or use_glossy_masks false): radiance with config.input.auto_detect_glossy set.
 //    Once the geometry has settled (auto_detection_iteration: the end of the warm-up, TrainConfig::
 //    shading_from, but not before intrinsic_detect_after iterations or half the run, whichever comes first,
 //    nor before intrinsic_detect_settled iterations - on a Lambertian room (lambert_room) a 4K-iteration

@@ -6,7 +6,7 @@ namespace goris {
 
 RasterSettings RasterRenderer::settings_for(const TrainConfig& config) {
   RasterSettings s = config.filter_2d ? RasterSettings::mip_splatting() : RasterSettings::classic_3dgs();
-  s.background = config.background;
+  s.background = config.input.background;
   return s;
 }
 

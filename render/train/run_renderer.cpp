@@ -16,9 +16,9 @@ namespace goris {
 namespace {
 
 // The training views' glossy masks as the run trained with them (the data set's, a subset, or
-// config.glossy_mask_dir's detected ones); the photos are not read.
+// config.input.glossy_mask_dir's detected ones); the photos are not read.
 std::vector<GlossyMaskView> training_glossy_masks(const TrainConfig& config) {
-  Dataset dataset = load_dataset(config.data, dataset_options(config));
+  Dataset dataset = load_dataset(config.input.data, dataset_options(config));
   select_training_data(config, dataset);
   std::vector<std::vector<float>> masks = run_glossy_masks(config, dataset.train);
   std::vector<GlossyMaskView> out;

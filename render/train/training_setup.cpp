@@ -26,16 +26,16 @@ std::optional<ResumePoint> read_latest_checkpoint(const fs::path& run_dir) {
 
 void select_training_data(const TrainConfig& config, Dataset& dataset) {
   std::vector<View>& train = dataset.train;
-  if (config.max_train_views > 0 && std::size_t(config.max_train_views) < train.size()) {
+  if (config.input.max_train_views > 0 && std::size_t(config.input.max_train_views) < train.size()) {
     std::vector<View> kept;  // evenly spread: view round(i * n / k)
-    const std::size_t n = train.size(), k = std::size_t(config.max_train_views);
+    const std::size_t n = train.size(), k = std::size_t(config.input.max_train_views);
     for (std::size_t i = 0; i < k; ++i) kept.push_back(train[(i * n) / k]);
     train = std::move(kept);
   }
   for (View& v : train) {
     // glossy_mask_dir replaces the data set's masks (prepare_training loads them).
-    if (!config.use_glossy_masks || !config.glossy_mask_dir.empty()) v.glossy_mask.reset();
-    if (!config.use_object_masks) v.object_mask.reset();
+    if (!config.input.use_glossy_masks || !config.input.glossy_mask_dir.empty()) v.glossy_mask.reset();
+    if (!config.input.use_object_masks) v.object_mask.reset();
   }
 }
 
@@ -45,19 +45,19 @@ PreparedTraining prepare_training(const fs::path& run_dir, TrainConfig config, s
   const Device device = resolve_device(config.device);
   PreparedTraining p;
   const DatasetOptions dopt = dataset_options(config);
-  p.dataset = load_dataset(config.data, dopt);
-  if (p.dataset.train.empty()) throw Error(config.data, "the data set has no training views");
+  p.dataset = load_dataset(config.input.data, dopt);
+  if (p.dataset.train.empty()) throw Error(config.input.data, "the data set has no training views");
   // The record that lets a moved data set be checked (core/train/run_data.h); a resumed run's must match.
   const std::string fingerprint = training_views_fingerprint(p.dataset);
-  if (!config.data_views.empty() && fingerprint != config.data_views)
-    throw Error(config.data, "holds other training views than the run was trained on: " + fingerprint +
-                                 " (names and image sizes), the run " + config.data_views);
-  config.data_views = fingerprint;
+  if (!config.input.data_views.empty() && fingerprint != config.input.data_views)
+    throw Error(config.input.data, "holds other training views than the run was trained on: " + fingerprint +
+                                 " (names and image sizes), the run " + config.input.data_views);
+  config.input.data_views = fingerprint;
   select_training_data(config, p.dataset);
   p.extent = scene_extent(p.dataset);
   resolve_environment_sphere(p.dataset, config);
   std::vector<TrainView> views = load_train_views(p.dataset.train, dopt, on_view);
-  if (!config.glossy_mask_dir.empty()) load_glossy_mask_folder(config.glossy_mask_dir, views);
+  if (!config.input.glossy_mask_dir.empty()) load_glossy_mask_folder(config.input.glossy_mask_dir, views);
   // "auto": from the glossy masks, or radiance until the detection after the warm-up (auto_mode.h).
   p.auto_mode_reason = resolve_auto_mode(config, views);
   config.validate("training options");

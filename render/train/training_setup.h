@@ -43,9 +43,9 @@ struct PreparedTraining {
   std::string initial_model;
 };
 
-// Applies config.use_glossy_masks / use_object_masks / max_train_views to the loaded data set's training
+// Applies config.input.use_glossy_masks / use_object_masks / max_train_views to the loaded data set's training
 // views (prepare_training calls it; the views' mask paths are dropped, the subset is spread evenly). With
-// config.glossy_mask_dir the data set's glossy masks are dropped too (prepare_training reads that folder).
+// config.input.glossy_mask_dir the data set's glossy masks are dropped too (prepare_training reads that folder).
 void select_training_data(const TrainConfig& config, Dataset& dataset);
 
 // `config` names the data set and the iteration target (it is validated here); `resumed` continues from a

@@ -49,7 +49,7 @@ TEST(AutoMode, MaskFractionRule) {
   c.mode = TrainMode::Auto;
   EXPECT_NE(resolve_auto_mode(c, views_with_masks(4, 0)).find("empty"), std::string::npos);
   EXPECT_EQ(c.mode, TrainMode::Radiance);
-  EXPECT_FALSE(c.auto_detect_glossy);
+  EXPECT_FALSE(c.input.auto_detect_glossy);
 
   c.mode = TrainMode::Auto;  // 1 % of the pixels: above the 0.5 % default
   EXPECT_NE(resolve_auto_mode(c, views_with_masks(4, 1)).find("mark"), std::string::npos);
@@ -67,7 +67,7 @@ TEST(AutoMode, MaskFractionRule) {
   EXPECT_NE(long_run.find("no glossy masks"), std::string::npos);
   EXPECT_EQ(long_run.find("caution"), std::string::npos);
   EXPECT_EQ(c.mode, TrainMode::Radiance);
-  EXPECT_TRUE(c.auto_detect_glossy);
+  EXPECT_TRUE(c.input.auto_detect_glossy);
   c.mode = TrainMode::Auto;  // a run that ends before the geometry has settled decides anyway, with a caution
   c.iterations = 500;
   EXPECT_NE(resolve_auto_mode(c, views_with_masks(4, 0, false)).find("caution"), std::string::npos);
@@ -151,12 +151,12 @@ TEST(AutoMode, MaskFolderErrorsNameTheFile) {
 TrainConfig tiny_auto_config() {
   TrainConfig c;
   c.mode = TrainMode::Auto;
-  c.data = (test::resource_dir() / "default_scene").string();
+  c.input.data = (test::resource_dir() / "default_scene").string();
   c.device = DeviceChoice::CPU;
-  c.resolution = 32;
+  c.input.resolution = 32;
   c.iterations = 40;
   c.random_init_points = 4000;
-  c.use_glossy_masks = false;
+  c.input.use_glossy_masks = false;
   c.intrinsic.warmup = 15000;
   c.intrinsic.env_resolution = 8;
   c.intrinsic.net_hidden_layers = 1;
@@ -179,7 +179,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   PreparedTraining p = prepare_training(run, c, std::nullopt);
   Trainer& t = *p.trainer;
   EXPECT_EQ(p.config.mode, TrainMode::Radiance);
-  EXPECT_TRUE(p.config.auto_detect_glossy);
+  EXPECT_TRUE(p.config.input.auto_detect_glossy);
   EXPECT_NE(p.auto_mode_reason.find("no glossy masks"), std::string::npos);
   EXPECT_EQ(auto_detection_iteration(p.config), 20);
   for (const TrainView& v : t.views()) EXPECT_TRUE(v.glossy_mask.empty());
@@ -203,8 +203,8 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   EXPECT_EQ(d->iteration, 20);
   EXPECT_TRUE(t.intrinsic());
   EXPECT_NE(as_intrinsic(t.renderer().get()), nullptr);
-  EXPECT_FALSE(t.config().auto_detect_glossy);
-  EXPECT_EQ(fs::path(t.config().glossy_mask_dir), run / "detected_gloss");
+  EXPECT_FALSE(t.config().input.auto_detect_glossy);
+  EXPECT_EQ(fs::path(t.config().input.glossy_mask_dir), run / "detected_gloss");
   EXPECT_EQ(t.config().shading_from(), 20) << "shading starts at the switch";
   EXPECT_FALSE(apply_auto_mode(t, run).has_value()) << "decided twice";
   // Masks: files at the training size, the views' glossy masks, the summary, config.json.
@@ -256,7 +256,7 @@ TEST(AutoMode, SwitchesToIntrinsicWithTheDetectedMasksAndResumes) {
   // A checkpoint written before the decision resumes in radiance mode with the detection still to come.
   const Checkpoint early = read_checkpoint(checkpoint_path(run, 10), Device::CPU);
   EXPECT_EQ(early.config.mode, TrainMode::Radiance);
-  EXPECT_TRUE(early.config.auto_detect_glossy);
+  EXPECT_TRUE(early.config.input.auto_detect_glossy);
 }
 
 TEST(AutoMode, StaysRadianceWhenNothingIsGlossy) {
@@ -281,8 +281,8 @@ TEST(AutoMode, StaysRadianceWhenNothingIsGlossy) {
   EXPECT_NE(decisions[0].message().find("radiance to the end"), std::string::npos);
   EXPECT_FALSE(t.intrinsic());
   EXPECT_EQ(t.renderer(), renderer_before);
-  EXPECT_FALSE(t.config().auto_detect_glossy);
-  EXPECT_TRUE(t.config().glossy_mask_dir.empty());
+  EXPECT_FALSE(t.config().input.auto_detect_glossy);
+  EXPECT_TRUE(t.config().input.glossy_mask_dir.empty());
   for (ParamGroup g : {ParamGroup::Materials, ParamGroup::Region, ParamGroup::Label})
     EXPECT_EQ(t.state().adam.steps[size_t(g)], 0) << group_name(g);
   write_trained_run(run, t, *t.renderer());
@@ -290,9 +290,9 @@ TEST(AutoMode, StaysRadianceWhenNothingIsGlossy) {
   EXPECT_EQ(read_json(run / "detected_gloss" / "summary.json")["decision"], "radiance");
   const TrainConfig saved = read_run_config(run);
   EXPECT_EQ(saved.mode, TrainMode::Radiance);
-  EXPECT_FALSE(saved.auto_detect_glossy);
+  EXPECT_FALSE(saved.input.auto_detect_glossy);
   const Checkpoint last = read_checkpoint(checkpoint_path(run, 24), Device::CPU);
-  EXPECT_FALSE(last.config.auto_detect_glossy);
+  EXPECT_FALSE(last.config.input.auto_detect_glossy);
 }
 
 TEST(AutoMode, ALateGlossyDecisionAtTheEndLengthensTheRun) {
@@ -348,11 +348,11 @@ TEST(AutoMode, ALateGlossyDecisionAtTheEndLengthensTheRun) {
 
 TEST(AutoMode, EmbeddedSceneMasksChooseIntrinsic) {
   TrainConfig c = tiny_auto_config();
-  c.use_glossy_masks = true;
+  c.input.use_glossy_masks = true;
   c.iterations = 1;
   PreparedTraining p = prepare_training(test::scratch_dir("auto_mode_masks"), c, std::nullopt);
   EXPECT_EQ(p.config.mode, TrainMode::Intrinsic);
-  EXPECT_FALSE(p.config.auto_detect_glossy);
+  EXPECT_FALSE(p.config.input.auto_detect_glossy);
   EXPECT_NE(p.auto_mode_reason.find("mark"), std::string::npos) << p.auto_mode_reason;
 }
 

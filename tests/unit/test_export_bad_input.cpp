@@ -61,12 +61,12 @@ TEST(ExportBadInput, MissingOrBrokenRunFolder) {
   const fs::path run = dir / "run";
   fs::create_directories(run);
   TrainConfig c;
-  c.data = (dir / "missing_dataset").string();
+  c.input.data = (dir / "missing_dataset").string();
   write_run_config(run, c);
   e = error_of([&] { RunExport(run, Device::CPU); });
   EXPECT_NE(e.find("missing_dataset"), std::string::npos) << e;
   // A run with a data set but no model.
-  c.data = (test::resource_dir() / "default_scene").string();
+  c.input.data = (test::resource_dir() / "default_scene").string();
   write_run_config(run, c);
   e = error_of([&] { RunExport(run, Device::CPU); });
   EXPECT_NE(e.find("no trained model"), std::string::npos) << e;

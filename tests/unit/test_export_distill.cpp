@@ -75,7 +75,7 @@ GaussianModel scene(bool view_dependent) {
 TrainConfig run_config() {
   TrainConfig c;
   c.device = DeviceChoice::CPU;
-  c.background = glm::vec3(0.1f, 0.1f, 0.1f);
+  c.input.background = glm::vec3(0.1f, 0.1f, 0.1f);
   return c;
 }
 

@@ -48,9 +48,9 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   const fs::path run = test::scratch_dir("removal_reflection") / "run";
   TrainConfig c;
   c.mode = TrainMode::Intrinsic;
-  c.data = (test::resource_dir() / "default_scene").string();
+  c.input.data = (test::resource_dir() / "default_scene").string();
   c.device = DeviceChoice::CPU;
-  c.resolution = 64;
+  c.input.resolution = 64;
   // Radiance until 1000, then shading. Shorter runs (600 iterations, or 3000 points in a small box) leave the
   // geometry too blurred for any reflection ray to reach the torus: no lighting-aware mask at all.
   c.iterations = 2000;
@@ -65,7 +65,7 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
     ASSERT_EQ(p.trainer->run(ro), Trainer::RunResult::Finished);
     write_trained_run(run, *p.trainer, *p.trainer->renderer());
   }
-  const Dataset ds = load_dataset(c.data, dataset_options(read_run_config(run)));
+  const Dataset ds = load_dataset(c.input.data, dataset_options(read_run_config(run)));
   {  // goris select RUN --masks: votes of the training views' object masks, closed by the hull
     const GaussianModel model = load_run_model(run, Device::CPU);
     const MaskVotes votes = labels_from_masks(model, load_masked_views(ds.train, std::nullopt), MaskVoteSettings{},
@@ -89,7 +89,7 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   // By default the fine-tune trains the mask's pixels on dereflected photos (dereflect.h), written per view.
   EXPECT_EQ(rep.dereflected_pixels, rep.lighting_pixels);
   std::size_t dereflected_images = 0;
-  for (const View& v : load_dataset(c.data, dataset_options(read_run_config(run))).train)
+  for (const View& v : load_dataset(c.input.data, dataset_options(read_run_config(run))).train)
     dereflected_images += fs::exists(rep.out_dir / "dereflected" / (v.name + ".png"));
   EXPECT_GT(dereflected_images, 0u);
   EXPECT_LT(rep.gaussians_after, rep.gaussians_before + rep.added);

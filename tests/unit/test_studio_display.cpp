@@ -243,8 +243,8 @@ TEST(StudioDisplay, OpensDataSetsAndRuns) {
   // A run folder: config.json naming the data set, and the final model.
   const fs::path run = test::scratch_dir("studio_open_run");
   TrainConfig cfg;
-  cfg.data = fs::absolute(data).string();
-  cfg.background = glm::vec3(1.0f);
+  cfg.input.data = fs::absolute(data).string();
+  cfg.input.background = glm::vec3(1.0f);
   write_run_config(run, cfg);
   write_ply(run_ply_path(run), wall(50).to_ply());
   const OpenedScene r = open_scene(run, Device::CPU);
@@ -257,7 +257,7 @@ TEST(StudioDisplay, OpensDataSetsAndRuns) {
   EXPECT_TRUE(r.warnings.empty());
 
   // The run's data set moved away: the model still opens, with a warning, framed by its points.
-  cfg.data = (run / "gone").string();
+  cfg.input.data = (run / "gone").string();
   write_run_config(run, cfg);
   const OpenedScene lonely = open_scene(run, Device::CPU);
   EXPECT_FALSE(lonely.dataset.has_value());

@@ -39,7 +39,7 @@ const fs::path& tiny_intrinsic_run() {
     rq.data = test::resource_dir() / "default_scene";
     rq.run_dir = r;
     rq.config.mode = TrainMode::Intrinsic;
-    rq.config.resolution = 32;
+    rq.config.input.resolution = 32;
     rq.config.random_init_points = 300;
     rq.config.random_init_box_ratio = 0.15f;
     rq.config.intrinsic.env_resolution = 8;

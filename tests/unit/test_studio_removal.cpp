@@ -65,7 +65,7 @@ fs::path tiny_run_with_selection() {
   TrainRequest rq;
   rq.data = test::resource_dir() / "default_scene";
   rq.run_dir = run;
-  rq.config.resolution = 32;
+  rq.config.input.resolution = 32;
   rq.config.random_init_points = 300;
   rq.config.random_init_box_ratio = 0.15f;
   rq.config.device = DeviceChoice::CPU;

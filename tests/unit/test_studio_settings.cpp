@@ -166,14 +166,14 @@ TEST(StudioSettings, TrainingOptionsOfANewRun) {
   TrainConfig c = new_run_config(s, {{"seed", "5"}, {"lambda_ssim", "0.5"}, {"random_init_points", "123"}});
   EXPECT_EQ(c.mode, TrainMode::Auto);
   EXPECT_EQ(c.iterations, 77);
-  EXPECT_EQ(c.resolution, 48);
+  EXPECT_EQ(c.input.resolution, 48);
   EXPECT_EQ(c.random_init_points, 123);  // the override wins over the panel
   EXPECT_EQ(c.device, DeviceChoice::CPU);
   EXPECT_EQ(c.seed, 5u);
   EXPECT_FLOAT_EQ(c.lambda_ssim, 0.5f);
-  EXPECT_EQ(c.background, glm::vec3(1.0f));
+  EXPECT_EQ(c.input.background, glm::vec3(1.0f));
   apply_config_override(c, "background", "[0.5, 0.25, 0]");
-  EXPECT_EQ(c.background, glm::vec3(0.5f, 0.25f, 0.0f));
+  EXPECT_EQ(c.input.background, glm::vec3(0.5f, 0.25f, 0.0f));
   EXPECT_THROW(apply_config_override(c, "no_such_key", "1"), Error);
   EXPECT_THROW(apply_config_override(c, "iterations", "\"many\""), Error);
   EXPECT_THROW(apply_config_override(c, "iterations", "-5"), Error);  // validate() rejects it

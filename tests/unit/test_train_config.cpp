@@ -132,7 +132,7 @@ TEST(ConfigMigration, RunFolderOfAnOlderVersionOpens) {
   const TrainConfig c = read_run_config(run);
   EXPECT_EQ(c.mode, TrainMode::Intrinsic);
   EXPECT_EQ(c.iterations, 2000);
-  EXPECT_EQ(c.data, "/data/steel_snowman");
+  EXPECT_EQ(c.input.data, "/data/steel_snowman");
   EXPECT_EQ(c.intrinsic.emit, EmitSource::Region);  // that version's default, written in the file
   EXPECT_EQ(c.intrinsic.detect_settled, 4000);
   nlohmann::json j = nlohmann::json::parse(read_text_file(old_config("46a5b55")));

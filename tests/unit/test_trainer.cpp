@@ -386,7 +386,7 @@ TEST(TrainConfig, ShortRunsKeepHalfOfThemselvesInTheWarmUp) {
 TEST(TrainConfig, JsonRoundTripAndValidation) {
   TrainConfig c;
   c.iterations = 1234;
-  c.background = glm::vec3(1, 0.5f, 0);
+  c.input.background = glm::vec3(1, 0.5f, 0);
   c.densify.grad_threshold = 3e-4f;
   c.lr.label = 0.5f;
   c.device = DeviceChoice::CPU;
@@ -394,7 +394,7 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   TrainConfig back;
   from_json(j, back);
   EXPECT_EQ(nlohmann::json(back), j);
-  EXPECT_EQ(back.background, c.background);
+  EXPECT_EQ(back.input.background, c.input.background);
   nlohmann::json bad = j;
   bad["iteratoins"] = 5;
   EXPECT_THROW(from_json(bad, back), Error);
@@ -411,7 +411,7 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
   bad["device"] = "gpu";
   test::expect_error([&] { from_json(bad, back); }, "'device' must be auto, cpu or cuda, got \"gpu\"");
   TrainConfig invalid;
-  invalid.downscale = 0.5f;
+  invalid.input.downscale = 0.5f;
   EXPECT_THROW(invalid.validate("cfg"), Error);
   invalid = TrainConfig{};
   invalid.intrinsic.init_roughness = 1.0f;  // sigmoid-activated: the logit would be infinite

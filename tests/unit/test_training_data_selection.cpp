@@ -28,8 +28,8 @@ TEST(TrainingDataSelection, DropsMasksAndSpreadsTheSubset) {
   Dataset d = scene();
   const std::vector<View> all = d.train;
   TrainConfig c;
-  c.use_glossy_masks = false;
-  c.max_train_views = 4;
+  c.input.use_glossy_masks = false;
+  c.input.max_train_views = 4;
   select_training_data(c, d);
   ASSERT_EQ(d.train.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
@@ -38,8 +38,8 @@ TEST(TrainingDataSelection, DropsMasksAndSpreadsTheSubset) {
     EXPECT_TRUE(d.train[i].object_mask.has_value());
   }
   c = TrainConfig{};
-  c.use_object_masks = false;
-  c.max_train_views = 1;
+  c.input.use_object_masks = false;
+  c.input.max_train_views = 1;
   d = scene();
   select_training_data(c, d);
   ASSERT_EQ(d.train.size(), 1u);
@@ -50,7 +50,7 @@ TEST(TrainingDataSelection, DropsMasksAndSpreadsTheSubset) {
 
 TEST(TrainingDataSelection, NegativeViewCountIsAnError) {
   TrainConfig c;
-  c.max_train_views = -1;
+  c.input.max_train_views = -1;
   EXPECT_THROW(c.validate("test"), Error);
 }
 

@@ -256,7 +256,7 @@ void AppState::start_training(int iterations, bool more) {
   rq.config = new_run_config(settings_, overrides_);
   if (scene_->kind == OpenedScene::Kind::Run) {
     rq.run_dir = run_folder.empty() ? scene_->path : run_folder;
-    rq.data = scene_->run_config->data;
+    rq.data = scene_->run_config->input.data;
   } else {
     if (run_folder.empty()) run_folder = default_run_folder(scene_->path);
     rq.run_dir = run_folder;

@@ -39,7 +39,7 @@ std::string RemovalSession::work(const fs::path& run_dir, const RemovalOptions& 
   {
     // The cost model of the ETA: views, fine-tune length and the optional steps of this run.
     const TrainConfig config = read_run_config(run_dir);
-    const Dataset ds = load_dataset(config.data, dataset_options(config));
+    const Dataset ds = load_dataset(config.input.data, dataset_options(config));
     const int iters =
         options.finetune_iterations > 0 ? options.finetune_iterations : std::max(100, config.scaled_iteration(4000));
     const bool intrinsic = config.mode == TrainMode::Intrinsic;

@@ -111,7 +111,7 @@ OpenedScene open_scene(const fs::path& input, Device device) {
     s.run_config = read_run_config(path);
     s.dataset_options = dataset_options(*s.run_config);
     try {
-      s.dataset = load_dataset(s.run_config->data, s.dataset_options);
+      s.dataset = load_dataset(s.run_config->input.data, s.dataset_options);
     } catch (const Error& e) {
       s.warnings.push_back(std::string("the run's data set cannot be opened (") + e.what() +
                            "): no cameras or photos to compare with");

@@ -99,7 +99,8 @@ std::uint64_t AppState::use_as_target_masks(fs::path dir) {
   }
   dir = fs::absolute(dir).lexically_normal();
   // Never into the data set: its own object masks have the same names.
-  const fs::path data = scene_->kind == OpenedScene::Kind::Run ? fs::path(scene_->run_config->data) : scene_->path;
+  const fs::path data =
+      scene_->kind == OpenedScene::Kind::Run ? fs::path(scene_->run_config->input.data) : scene_->path;
   check_output_dir(dir, OutputGuard{{fs::absolute(data)}, {}});
   return selection_.target_masks(scene_->dataset->train, dir);
 }

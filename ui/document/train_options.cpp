@@ -30,10 +30,10 @@ TrainConfig new_run_config(const StudioSettings& s, const std::vector<std::pair<
   if (!mode) throw Error("train_mode '" + s.train_mode + "' must be " + enum_choices<TrainMode>());
   c.mode = *mode;
   c.iterations = s.train_iterations;
-  c.resolution = s.train_resolution;
+  c.input.resolution = s.train_resolution;
   c.random_init_points = s.train_init_points;
   c.device = train_device_choice(s);
-  c.background = s.train_white_background ? glm::vec3(1.0f) : glm::vec3(0.0f);
+  c.input.background = s.train_white_background ? glm::vec3(1.0f) : glm::vec3(0.0f);
   if (!s.train_preset.empty()) apply_config_preset(load_config_preset(s.train_preset), c);  // as --preset: before
   for (const auto& [k, v] : overrides) apply_config_override(c, k, v);
   return c;

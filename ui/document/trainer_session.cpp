@@ -74,14 +74,14 @@ void TrainerSession::prepare_trainer(const TrainRequest& rq) {
     resumed = read_latest_checkpoint(run_dir);
     config = resumed->checkpoint.config;
     config.device = rq.config.device;  // where to train is this machine's choice, as `goris train --device`
-    if (!data.empty() && fs::weakly_canonical(fs::path(config.data)) != data)
-      throw Error(run_dir.string(), "this run was trained on " + config.data + ", not " + data.string());
+    if (!data.empty() && fs::weakly_canonical(fs::path(config.input.data)) != data)
+      throw Error(run_dir.string(), "this run was trained on " + config.input.data + ", not " + data.string());
   } else {
     if (fs::exists(run_config_path(run_dir)))
       throw Error(run_dir.string(),
                   "holds a run (config.json) but no checkpoint to resume from; choose another run folder");
     if (data.empty()) throw Error(run_dir.string(), "no data set to train on");
-    config.data = data.string();
+    config.input.data = data.string();
   }
   const int done = resumed ? resumed->checkpoint.state.iteration : 0;
   config.iterations = rq.more ? done + rq.iterations : rq.iterations;
@@ -92,7 +92,7 @@ void TrainerSession::prepare_trainer(const TrainRequest& rq) {
       throw Error(run_dir.string(), "already trained for " + std::to_string(done) + " iterations; ask for more");
     config.iterations = done;
   }
-  job_.set_status("loading " + config.data);
+  job_.set_status("loading " + config.input.data);
   PreparedTraining prep = prepare_training(run_dir, config, std::move(resumed), [this](size_t i, size_t n) {
     job_.set_status("loading images " + std::to_string(i + 1) + "/" + std::to_string(n));
   });

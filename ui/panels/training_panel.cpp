@@ -48,8 +48,8 @@ void TrainingPanel::draw(AppState& st) {
     // A run keeps its own settings; only where it trains is this machine's choice.
     const TrainConfig& c = *scene->run_config;
     ImGui::TextDisabled("mode %s, %s, background (%.2g, %.2g, %.2g)", enum_name(c.mode),
-                        c.resolution > 0 ? ("width " + std::to_string(c.resolution)).c_str() : "full size",
-                        double(c.background.x), double(c.background.y), double(c.background.z));
+                        c.input.resolution > 0 ? ("width " + std::to_string(c.input.resolution)).c_str() : "full size",
+                        double(c.input.background.x), double(c.input.background.y), double(c.input.background.z));
   } else {
     // The fields show the settings in effect: the panel's own, with a script's `set` overrides on top; editing
     // a field drops the override of its key.
@@ -109,7 +109,7 @@ void TrainingPanel::draw(AppState& st) {
       }
       ImGui::SetTooltip("%s", tip.c_str());
     }
-    int resolution = eff.resolution, points = eff.random_init_points;
+    int resolution = eff.input.resolution, points = eff.random_init_points;
     ImGui::SetNextItemWidth(120);
     if (ImGui::InputInt("resolution (0 = full)", &resolution, 0)) {
       set.train_resolution = std::max(resolution, 0);
@@ -122,7 +122,7 @@ void TrainingPanel::draw(AppState& st) {
       st.drop_override("random_init_points");
     }
     overridden("random_init_points");
-    bool white = eff.background == glm::vec3(1.0f);
+    bool white = eff.input.background == glm::vec3(1.0f);
     if (ImGui::Checkbox("white background", &white)) {
       set.train_white_background = white;
       st.drop_override("background");
