@@ -66,12 +66,12 @@ void apply_settings(const Options& o, TrainConfig& config) {
   if (o.seed) config.seed = *o.seed;
   if (o.resolution) config.input.resolution = *o.resolution;
   if (o.downscale) config.input.downscale = *o.downscale;
-  if (o.init_points) config.random_init_points = *o.init_points;
+  if (o.init_points) config.init.random_points = *o.init_points;
   if (!o.init.empty()) {  // read by prepare_training; a missing file fails now, before the images load
     const fs::path init = fs::weakly_canonical(fs::absolute(o.init));
     if (const std::string problem = regular_file_problem(init, "model file"); !problem.empty())
       throw Error(init.string(), "--init: " + problem);  // missing, a folder, a FIFO (never opened), ...
-    config.init_model = init.string();
+    config.init.model = init.string();
   }
   if (!o.preset.empty()) apply_config_preset(load_config_preset(o.preset), config);
   apply_config_overrides(o.sets, config);

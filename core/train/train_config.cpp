@@ -57,12 +57,12 @@ void visit_fields(Config& c, F&& visit) {
     {"Data", "Train on at most this many views, spread evenly over the data set (0 = all)."});
   f("glossy_mask_dir", c.input.glossy_mask_dir);
   f("auto_detect_glossy", c.input.auto_detect_glossy);
-  f("random_init_points", c.random_init_points,
+  f("random_init_points", c.init.random_points,
     {"Initialisation", "Random initial points when the data set has no SfM points. Also `--init-points`."});
-  f("init_model", c.init_model,
+  f("init_model", c.init.model,
     {"Initialisation", "Model file to start from (3DGS PLY, compressed PLY, SPZ, .splat, GLB) instead of SfM or "
                        "random points (empty = none). Also `--init`."});
-  f("random_init_box_ratio", c.random_init_box_ratio);
+  f("random_init_box_ratio", c.init.random_box_ratio);
   f("lr_position_init", c.lr.position_init);
   f("lr_position_final", c.lr.position_final);
   f("lr_position_max_steps", c.lr.position_max_steps);
@@ -202,10 +202,10 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(input.downscale >= 1.0f)) fail("downscale must be >= 1");
   if (input.resolution < 0) fail("resolution must be positive (or 0 for none)");
   if (input.max_train_views < 0) fail("max_train_views must be >= 0 (0 = all views)");
-  if (random_init_points < 1 || random_init_points > kMaxRandomInitPoints)
+  if (init.random_points < 1 || init.random_points > kMaxRandomInitPoints)
     fail("random_init_points must be from 1 to " + std::to_string(kMaxRandomInitPoints) +
          " (each point is a Gaussian with its optimiser state, about 1 KB)");
-  if (!(random_init_box_ratio > 0)) fail("random_init_box_ratio must be positive");
+  if (!(init.random_box_ratio > 0)) fail("random_init_box_ratio must be positive");
   if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
   if (!(depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
   if (!(alpha_weight >= 0) || !std::isfinite(alpha_weight)) fail("alpha_weight must be finite and >= 0 (0 = off)");

@@ -187,6 +187,19 @@ struct InputSettings {
   bool auto_detect_glossy = false;
 };
 
+// The model training starts from (TrainConfig::init; config.json keys random_init_points,
+// random_init_box_ratio and init_model).
+struct InitSettings {
+  // When the data set has no SfM points: random points in a box around the cameras' focus.
+  int random_points = 100000;  // at most kMaxRandomInitPoints
+  float random_box_ratio = 0.33f;
+  // A model file to start from instead (`goris train --init`: 3DGS PLY, compressed PLY, SPZ, .splat or GLB,
+  // core/io/splat_formats.h), in the data set's world frame: say, a scene made by another tool, refined here,
+  // or trained further in intrinsic mode. Its Gaussians start as they are (materials at the intrinsic start
+  // values unless the file has them); the SH degree grows from 0 as for any start. "" = SfM or random points.
+  std::string model;
+};
+
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -200,14 +213,7 @@ struct TrainConfig {
 
   InputSettings input;
 
-  // Initialisation when the data set has no SfM points: random points in a box around the cameras' focus.
-  int random_init_points = 100000;  // at most kMaxRandomInitPoints
-  float random_init_box_ratio = 0.33f;
-  // A model file to start from instead (`goris train --init`: 3DGS PLY, compressed PLY, SPZ, .splat or GLB,
-  // core/io/splat_formats.h), in the data set's world frame: say, a scene made by another tool, refined here,
-  // or trained further in intrinsic mode. Its Gaussians start as they are (materials at the intrinsic start
-  // values unless the file has them); the SH degree grows from 0 as for any start. "" = SfM or random points.
-  std::string init_model;
+  InitSettings init;
 
   // Optimisation.
   LearningRates lr;

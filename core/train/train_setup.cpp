@@ -78,23 +78,23 @@ GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, D
   GaussianInit init;
   init.roughness = config.intrinsic.init_roughness;
   init.fresnel = config.intrinsic.init_fresnel;
-  if (!config.init_model.empty()) {
-    const GaussianPly ply = read_gaussians(config.init_model);
-    if (ply.count == 0) throw Error(config.init_model, "the model to start from holds no Gaussians");
-    if (how) *how = std::to_string(ply.count) + " Gaussians from " + config.init_model;
+  if (!config.init.model.empty()) {
+    const GaussianPly ply = read_gaussians(config.init.model);
+    if (ply.count == 0) throw Error(config.init.model, "the model to start from holds no Gaussians");
+    if (how) *how = std::to_string(ply.count) + " Gaussians from " + config.init.model;
     return GaussianModel::from_ply(ply, device, init);
   }
   if (!dataset.points.xyz.empty()) {
     if (how) *how = std::to_string(dataset.points.size()) + " SfM points";
     return init_from_points(dataset.points.xyz, dataset.points.rgb, device, init);
   }
-  const Box box = box_from_cameras(cameras_of(dataset.train), config.random_init_box_ratio);
+  const Box box = box_from_cameras(cameras_of(dataset.train), config.init.random_box_ratio);
   std::vector<glm::vec3> pts, cols;
-  random_points(box, size_t(config.random_init_points), config.seed, pts, cols);
+  random_points(box, size_t(config.init.random_points), config.seed, pts, cols);
   if (how) {
     char buf[256];
     std::snprintf(buf, sizeof buf, "%d random points in the box [%.2f, %.2f] x [%.2f, %.2f] x [%.2f, %.2f]",
-                  config.random_init_points, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
+                  config.init.random_points, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z, box.hi.z);
     *how = buf;
   }
   return init_from_points(pts, cols, device, init);

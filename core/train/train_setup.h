@@ -31,9 +31,9 @@ float scene_extent(const Dataset& dataset);
 // point the training cameras look at, radius env_distance x their mean distance to it (IntrinsicSettings).
 void resolve_environment_sphere(const Dataset& dataset, TrainConfig& config);
 
-// The initial model on `device`: config.init_model when given (throws goris::Error naming the file when it
+// The initial model on `device`: config.init.model when given (throws goris::Error naming the file when it
 // cannot be read or is empty), else the data set's SfM points when it has some, otherwise
-// config.random_init_points random points in the box the training cameras look at (seeded by config.seed).
+// config.init.random_points random points in the box the training cameras look at (seeded by config.seed).
 // `how` receives a one-line description for the user.
 GaussianModel initial_model(const Dataset& dataset, const TrainConfig& config, Device device, std::string* how = nullptr);
 

@@ -155,7 +155,7 @@ TrainConfig tiny_auto_config() {
   c.device = DeviceChoice::CPU;
   c.input.resolution = 32;
   c.iterations = 40;
-  c.random_init_points = 4000;
+  c.init.random_points = 4000;
   c.input.use_glossy_masks = false;
   c.intrinsic.warmup = 15000;
   c.intrinsic.env_resolution = 8;

@@ -52,7 +52,7 @@ TEST(NumberText, SettingsAreRangeChecked) {
   test::expect_error([&] { apply_config_overrides({"iterations=2.5"}, c); }, "whole number");
   test::expect_error([&] { apply_config_overrides({"lambda_ssim=abc"}, c); }, "must be a number");
   apply_config_overrides({"random_init_points=5000", "seed=7"}, c);
-  EXPECT_EQ(c.random_init_points, 5000);
+  EXPECT_EQ(c.init.random_points, 5000);
   EXPECT_EQ(c.seed, 7u);
 }
 

@@ -54,7 +54,7 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   // Radiance until 1000, then shading. Shorter runs (600 iterations, or 3000 points in a small box) leave the
   // geometry too blurred for any reflection ray to reach the torus: no lighting-aware mask at all.
   c.iterations = 2000;
-  c.random_init_points = 10000;
+  c.init.random_points = 10000;
   c.intrinsic.env_resolution = 8;
   c.checkpoint_interval = 0;
   {

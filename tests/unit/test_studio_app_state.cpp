@@ -165,7 +165,7 @@ TEST(StudioAppState, ScriptRunsTrainingAndReportsErrors) {
   EXPECT_TRUE(host.quitted);
   EXPECT_EQ(st.session().progress().iteration, 10);
   EXPECT_EQ(read_run_config(dir / "run").iterations, 10);
-  EXPECT_EQ(read_run_config(dir / "run").random_init_points, 300);
+  EXPECT_EQ(read_run_config(dir / "run").init.random_points, 300);
   ASSERT_EQ(host.shots.size(), 1u);
   EXPECT_EQ(host.shots[0], dir / "a.png");
   ASSERT_NE(st.model(), nullptr);
@@ -180,7 +180,7 @@ TEST(StudioAppState, ScriptRunsTrainingAndReportsErrors) {
                                                 "\nset random_init_points 200\ntrain 3\n"),
               ScriptRunner::Status::Failed);
     EXPECT_NE(last_error().find("already holds a training run"), std::string::npos) << last_error();
-    EXPECT_EQ(read_run_config(dir / "run").random_init_points, 300);
+    EXPECT_EQ(read_run_config(dir / "run").init.random_points, 300);
     // A missing parent folder is refused, not created.
     EXPECT_EQ(run_script(other, other_host, "out " + (dir / "missing" / "run").string() + "\ntrain 3\n"),
               ScriptRunner::Status::Failed);

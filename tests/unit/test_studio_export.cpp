@@ -40,8 +40,8 @@ const fs::path& tiny_intrinsic_run() {
     rq.run_dir = r;
     rq.config.mode = TrainMode::Intrinsic;
     rq.config.input.resolution = 32;
-    rq.config.random_init_points = 300;
-    rq.config.random_init_box_ratio = 0.15f;
+    rq.config.init.random_points = 300;
+    rq.config.init.random_box_ratio = 0.15f;
     rq.config.intrinsic.env_resolution = 8;
     rq.config.device = DeviceChoice::CPU;
     rq.config.checkpoint_interval = 0;

@@ -66,8 +66,8 @@ fs::path tiny_run_with_selection() {
   rq.data = test::resource_dir() / "default_scene";
   rq.run_dir = run;
   rq.config.input.resolution = 32;
-  rq.config.random_init_points = 300;
-  rq.config.random_init_box_ratio = 0.15f;
+  rq.config.init.random_points = 300;
+  rq.config.init.random_box_ratio = 0.15f;
   rq.config.device = DeviceChoice::CPU;
   rq.config.checkpoint_interval = 0;
   rq.iterations = 10;

@@ -22,7 +22,7 @@ TrainRequest tiny_request(const fs::path& run, int iterations) {
   rq.data = test::resource_dir() / "default_scene";
   rq.run_dir = run;
   rq.config.input.resolution = 32;
-  rq.config.random_init_points = 400;
+  rq.config.init.random_points = 400;
   rq.config.device = DeviceChoice::CPU;
   rq.config.checkpoint_interval = 0;
   rq.iterations = iterations;

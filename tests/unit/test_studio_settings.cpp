@@ -167,7 +167,7 @@ TEST(StudioSettings, TrainingOptionsOfANewRun) {
   EXPECT_EQ(c.mode, TrainMode::Auto);
   EXPECT_EQ(c.iterations, 77);
   EXPECT_EQ(c.input.resolution, 48);
-  EXPECT_EQ(c.random_init_points, 123);  // the override wins over the panel
+  EXPECT_EQ(c.init.random_points, 123);  // the override wins over the panel
   EXPECT_EQ(c.device, DeviceChoice::CPU);
   EXPECT_EQ(c.seed, 5u);
   EXPECT_FLOAT_EQ(c.lambda_ssim, 0.5f);

@@ -31,7 +31,7 @@ TrainConfig new_run_config(const StudioSettings& s, const std::vector<std::pair<
   c.mode = *mode;
   c.iterations = s.train_iterations;
   c.input.resolution = s.train_resolution;
-  c.random_init_points = s.train_init_points;
+  c.init.random_points = s.train_init_points;
   c.device = train_device_choice(s);
   c.input.background = s.train_white_background ? glm::vec3(1.0f) : glm::vec3(0.0f);
   if (!s.train_preset.empty()) apply_config_preset(load_config_preset(s.train_preset), c);  // as --preset: before

@@ -109,7 +109,7 @@ void TrainingPanel::draw(AppState& st) {
       }
       ImGui::SetTooltip("%s", tip.c_str());
     }
-    int resolution = eff.input.resolution, points = eff.random_init_points;
+    int resolution = eff.input.resolution, points = eff.init.random_points;
     ImGui::SetNextItemWidth(120);
     if (ImGui::InputInt("resolution (0 = full)", &resolution, 0)) {
       set.train_resolution = std::max(resolution, 0);
