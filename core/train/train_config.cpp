@@ -74,19 +74,19 @@ void visit_fields(Config& c, F&& visit) {
   f("lr_materials", c.lr.materials);
   f("lr_region", c.lr.region);
   f("lr_label", c.lr.label);
-  f("lambda_ssim", c.lambda_ssim,
+  f("lambda_ssim", c.loss.lambda_ssim,
     {"Losses", "Weight l of the colour loss (1 - l) L1 + l (1 - SSIM)."});
-  f("alpha_weight", c.alpha_weight,
+  f("alpha_weight", c.loss.alpha_weight,
     {"Losses", "L1 between the rendered alpha and the images' alpha channel (0 = off)."});
-  f("depth_normal_weight", c.depth_normal_weight,
+  f("depth_normal_weight", c.loss.depth_normal_weight,
     {"Losses", "RaDe-GS depth-normal consistency, from iteration `depth_normal_from` (0 = off)."});
-  f("depth_normal_from", c.depth_normal_from);
-  f("depth_normal_median_ratio", c.depth_normal_median_ratio);
-  f("depth_distortion_weight", c.depth_distortion_weight,
+  f("depth_normal_from", c.loss.depth_normal_from);
+  f("depth_normal_median_ratio", c.loss.depth_normal_median_ratio);
+  f("depth_distortion_weight", c.loss.depth_distortion_weight,
     {"Losses", "2DGS depth distortion (0 = off)."});
-  f("depth_distortion_from", c.depth_distortion_from);
-  f("depth_distortion_until", c.depth_distortion_until);
-  f("depth_distortion_glossy", c.depth_distortion_glossy);
+  f("depth_distortion_from", c.loss.depth_distortion_from);
+  f("depth_distortion_until", c.loss.depth_distortion_until);
+  f("depth_distortion_glossy", c.loss.depth_distortion_glossy);
   f("sh_degree_interval", c.sh_degree_interval);
   f("max_sh_degree", c.max_sh_degree,
     {"Losses", "Highest spherical-harmonics degree of the colour, 0 to 3."});
@@ -206,16 +206,19 @@ void TrainConfig::validate(const std::string& what) const {
     fail("random_init_points must be from 1 to " + std::to_string(kMaxRandomInitPoints) +
          " (each point is a Gaussian with its optimiser state, about 1 KB)");
   if (!(init.random_box_ratio > 0)) fail("random_init_box_ratio must be positive");
-  if (!(lambda_ssim >= 0 && lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
-  if (!(depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
-  if (!(alpha_weight >= 0) || !std::isfinite(alpha_weight)) fail("alpha_weight must be finite and >= 0 (0 = off)");
-  if (!(depth_distortion_weight >= 0 && std::isfinite(depth_distortion_weight)))
+  if (!(loss.lambda_ssim >= 0 && loss.lambda_ssim <= 1)) fail("lambda_ssim must lie in [0, 1]");
+  if (!(loss.depth_normal_weight >= 0)) fail("depth_normal_weight must be >= 0");
+  if (!(loss.alpha_weight >= 0) || !std::isfinite(loss.alpha_weight))
+    fail("alpha_weight must be finite and >= 0 (0 = off)");
+  if (!(loss.depth_distortion_weight >= 0 && std::isfinite(loss.depth_distortion_weight)))
     fail("depth_distortion_weight must be finite and >= 0");
-  if (depth_distortion_from < 0) fail("depth_distortion_from must be >= 0");
-  if (depth_distortion_until < 0 || (depth_distortion_until > 0 && depth_distortion_until <= depth_distortion_from))
+  if (loss.depth_distortion_from < 0) fail("depth_distortion_from must be >= 0");
+  if (loss.depth_distortion_until < 0 ||
+      (loss.depth_distortion_until > 0 && loss.depth_distortion_until <= loss.depth_distortion_from))
     fail("depth_distortion_until must be 0 (to the end) or after depth_distortion_from");
-  if (!(depth_distortion_glossy >= 0 && depth_distortion_glossy <= 1)) fail("depth_distortion_glossy must lie in [0, 1]");
-  if (!(depth_normal_median_ratio >= 0 && depth_normal_median_ratio <= 1))
+  if (!(loss.depth_distortion_glossy >= 0 && loss.depth_distortion_glossy <= 1))
+    fail("depth_distortion_glossy must lie in [0, 1]");
+  if (!(loss.depth_normal_median_ratio >= 0 && loss.depth_normal_median_ratio <= 1))
     fail("depth_normal_median_ratio must lie in [0, 1]");
   if (sh_degree_interval < 1) fail("sh_degree_interval must be at least 1");
   if (max_sh_degree < 0 || max_sh_degree > 3) fail("max_sh_degree must lie in 0..3");
@@ -306,8 +309,8 @@ bool TrainConfig::prunes_mirror_world_after(int it, bool densified) const {
 }
 
 bool TrainConfig::depth_distortion_at(int it) const {
-  return depth_distortion_weight > 0 && it > scaled_iteration(depth_distortion_from) &&
-         (depth_distortion_until == 0 || it <= scaled_iteration(depth_distortion_until));
+  return loss.depth_distortion_weight > 0 && it > scaled_iteration(loss.depth_distortion_from) &&
+         (loss.depth_distortion_until == 0 || it <= scaled_iteration(loss.depth_distortion_until));
 }
 
 int TrainConfig::shading_phase_iteration(int full) const {

@@ -200,23 +200,9 @@ struct InitSettings {
   std::string model;
 };
 
-struct TrainConfig {
-  // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
-  // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
-  // a glossy scene, radiance otherwise (render/train/auto_mode.h), resolved before training starts, so a run's
-  // config.json names the mode it trained in. The default: on the generalization suite it removes more of
-  // the target's reflection than radiance on the mean and the worst glossy scene (docs/results).
-  TrainMode mode = TrainMode::Auto;
-  int iterations = 30000;
-  std::uint64_t seed = 0;
-  DeviceChoice device = DeviceChoice::Auto;
-
-  InputSettings input;
-
-  InitSettings init;
-
-  // Optimisation.
-  LearningRates lr;
+// The loss terms of stage 1 beside the intrinsic ones (TrainConfig::loss; config.json keys as the fields'
+// names).
+struct LossSettings {
   float lambda_ssim = 0.2f;            // colour loss (1 - l) L1 + l (1 - SSIM)
   // L1 between the rendered alpha and the images' alpha channel (views without one are skipped). Over a
   // black background a dark surface can be half transparent and still match the colour; steel_snowman's
@@ -239,6 +225,26 @@ struct TrainConfig {
   // distortion off by default).
   float depth_distortion_glossy = 1.0f;
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
+};
+
+struct TrainConfig {
+  // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
+  // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
+  // a glossy scene, radiance otherwise (render/train/auto_mode.h), resolved before training starts, so a run's
+  // config.json names the mode it trained in. The default: on the generalization suite it removes more of
+  // the target's reflection than radiance on the mean and the worst glossy scene (docs/results).
+  TrainMode mode = TrainMode::Auto;
+  int iterations = 30000;
+  std::uint64_t seed = 0;
+  DeviceChoice device = DeviceChoice::Auto;
+
+  InputSettings input;
+
+  InitSettings init;
+
+  // Optimisation.
+  LearningRates lr;
+  LossSettings loss;
   int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
   int max_sh_degree = 3;
   DensifySettings densify;
@@ -287,7 +293,7 @@ struct TrainConfig {
   // densification of the shading phase. Never with intrinsic.prune_mirror_world = 0.
   bool prunes_mirror_world_after(int it, bool densified) const;
   // Whether iteration `it` (1-based) trains with the depth distortion: after its scaled start, up to its scaled
-  // end (depth_distortion_until; 0 = to the end) and only with a positive weight.
+  // end (loss.depth_distortion_until; 0 = to the end) and only with a positive weight.
   bool depth_distortion_at(int it) const;
   // A full-schedule iteration of the shading phase (>= the warm-up) mapped onto this run's shading phase,
   // [shading_from(), iterations]; earlier ones map to shading_from().

@@ -20,16 +20,17 @@ Trainer::LossGradients Trainer::losses(const TrainView& view, const RenderedImag
   LossGradients g;
   const HostView color(fwd.color, 3 * hw, device_);
   g.color.assign(3 * hw, 0.0f);
+  const float lambda_ssim = config_.loss.lambda_ssim;
   const ColorLossParts cl = view.loss_weight.empty()
-                                ? color_loss<float>(color.data(), view.image.data(), 3, w, h, g.color.data(), config_.lambda_ssim)
+                                ? color_loss<float>(color.data(), view.image.data(), 3, w, h, g.color.data(), lambda_ssim)
                                 : weighted_color_loss(color.data(), view.image.data(), view.loss_weight.data(), w, h,
-                                                      g.color.data(), config_.lambda_ssim, 1.0f);
+                                                      g.color.data(), lambda_ssim, 1.0f);
   out.l1 = cl.l1;
   out.ssim = cl.ssim;
   out.loss = cl.total;
   out.psnr = psnr_from_mse(mse<float>(color.data(), view.image.data(), 3 * hw));
 
-  if (config_.depth_normal_weight > 0 && it > config_.depth_normal_from) {
+  if (config_.loss.depth_normal_weight > 0 && it > config_.loss.depth_normal_from) {
     const HostView depth(fwd.depth, hw, device_), alpha(fwd.alpha, hw, device_),
         median(fwd.median_depth, hw, device_), normal(fwd.normal, 3 * hw, device_);
     g.depth.assign(hw, 0.0f);
@@ -38,17 +39,17 @@ Trainer::LossGradients Trainer::losses(const TrainView& view, const RenderedImag
     g.normal.assign(3 * hw, 0.0f);
     out.depth_normal = rendered_depth_normal_loss<float>(
         depth.data(), alpha.data(), median.data(), normal.data(), w, h, cam.fx, cam.fy, cam.cx, cam.cy,
-        config_.depth_normal_median_ratio, g.depth.data(), g.alpha.data(), g.median.data(), g.normal.data(),
-        config_.depth_normal_weight);
-    out.loss += config_.depth_normal_weight * out.depth_normal;
+        config_.loss.depth_normal_median_ratio, g.depth.data(), g.alpha.data(), g.median.data(), g.normal.data(),
+        config_.loss.depth_normal_weight);
+    out.loss += config_.loss.depth_normal_weight * out.depth_normal;
   }
-  if (config_.alpha_weight > 0 && view.alpha.size() == hw) {
+  if (config_.loss.alpha_weight > 0 && view.alpha.size() == hw) {
     const HostView alpha(fwd.alpha, hw, device_);
     if (g.alpha.empty()) g.alpha.assign(hw, 0.0f);
     // Stage 2 leaves the pixels under the target and its reflections to the inpainting (loss_weight 0).
-    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g.alpha.data(), config_.alpha_weight,
+    out.alpha = l1_loss(alpha.data(), view.alpha.data(), hw, g.alpha.data(), config_.loss.alpha_weight,
                         view.loss_weight.empty() ? nullptr : view.loss_weight.data());
-    out.loss += config_.alpha_weight * out.alpha;
+    out.loss += config_.loss.alpha_weight * out.alpha;
   }
   if (intrinsic()) out.loss += intrinsic_losses(view, fwd, it, g.normal, g.extras, g.detached, out);
   if (view.inpaint) out.loss += inpaint_losses(view, fwd, g.color, g.base, g.normal, g.detached, out);
@@ -142,7 +143,7 @@ double Trainer::inpaint_losses(const TrainView& view, const RenderedImages& fwd,
   if (wa > 0 && sized(t.appearance_weight, hw, "appearance weight") && sized(t.color, 3 * hw, "colour")) {
     const HostView color(fwd.color, 3 * hw, device_);
     out.appearance = weighted_color_loss(color.data(), t.color.data(), t.appearance_weight.data(), w, h, g_color.data(),
-                                         config_.lambda_ssim, wa).total;
+                                         config_.loss.lambda_ssim, wa).total;
     total += wa * out.appearance;
   }
   if (wm > 0 && sized(t.material_weight, hw, "material weight")) {

@@ -147,7 +147,7 @@ TrainConfig finetune_config(const TrainConfig& s1, int iterations) {
   c.intrinsic.smoothness = 0;  // the paper drops smoothness and the label BCE in stage 2
   c.intrinsic.label = 0;
   c.intrinsic.normal_prior = c.intrinsic.normal_prior_final;
-  c.depth_normal_from = s1.iterations > s1.depth_normal_from ? 0 : 1 << 30;
+  c.loss.depth_normal_from = s1.iterations > s1.loss.depth_normal_from ? 0 : 1 << 30;
   c.checkpoint_interval = std::max(100, iterations / 4);
   c.log_interval = std::max(10, std::min(100, iterations / 20));
   return c;

@@ -356,7 +356,7 @@ TEST(IntrinsicRenderer, TrainsTowardsShadedTargetsWithMaskLosses) {
   cfg.densify.from_iter = 1 << 30;
   cfg.densify.until_iter = 0;
   cfg.densify.opacity_reset_interval = 1 << 30;
-  cfg.depth_normal_weight = 0;
+  cfg.loss.depth_normal_weight = 0;
   const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
   GaussianModel start = perturbed_start();
   auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);

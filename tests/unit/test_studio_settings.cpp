@@ -170,7 +170,7 @@ TEST(StudioSettings, TrainingOptionsOfANewRun) {
   EXPECT_EQ(c.init.random_points, 123);  // the override wins over the panel
   EXPECT_EQ(c.device, DeviceChoice::CPU);
   EXPECT_EQ(c.seed, 5u);
-  EXPECT_FLOAT_EQ(c.lambda_ssim, 0.5f);
+  EXPECT_FLOAT_EQ(c.loss.lambda_ssim, 0.5f);
   EXPECT_EQ(c.input.background, glm::vec3(1.0f));
   apply_config_override(c, "background", "[0.5, 0.25, 0]");
   EXPECT_EQ(c.input.background, glm::vec3(0.5f, 0.25f, 0.0f));
@@ -190,7 +190,7 @@ TEST(StudioSettings, PresetOfANewRun) {
   TrainConfig c = new_run_config(s, {{"intrinsic_env_distance", "1.2"}});
   EXPECT_EQ(c.mode, TrainMode::Intrinsic);
   EXPECT_TRUE(c.intrinsic.glossy_plane);
-  EXPECT_FLOAT_EQ(c.alpha_weight, 0.3f);
+  EXPECT_FLOAT_EQ(c.loss.alpha_weight, 0.3f);
   EXPECT_FLOAT_EQ(c.intrinsic.env_distance, 1.2f);  // the override wins over the preset
   // The same run as the panel's fields with `goris train --preset planar-glossy`.
   TrainConfig by_cli = new_run_config(StudioSettings{}, {});

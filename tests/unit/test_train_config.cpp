@@ -57,7 +57,7 @@ TEST(ConfigPresets, PlanarGlossySetsTheMeasuredSetting) {
   c.mode = TrainMode::Intrinsic;
   apply_config_preset(load_config_preset("planar-glossy"), c);
   EXPECT_FALSE(c.intrinsic.material_losses_in_warmup);
-  EXPECT_EQ(c.alpha_weight, 0.3f);
+  EXPECT_EQ(c.loss.alpha_weight, 0.3f);
   EXPECT_TRUE(c.intrinsic.glossy_plane);
   EXPECT_TRUE(c.intrinsic.glossy_plane_prune_sinkers);
   EXPECT_TRUE(c.intrinsic.glossy_plane_align);
@@ -89,7 +89,7 @@ TEST(ConfigPresets, FileByPathAndBadFiles) {
   EXPECT_EQ(p.name, "mine");
   TrainConfig c;
   apply_config_preset(p, c);
-  EXPECT_EQ(c.alpha_weight, 0.5f);
+  EXPECT_EQ(c.loss.alpha_weight, 0.5f);
   EXPECT_EQ(c.intrinsic.emit, EmitSource::Max);
 
   const auto refused = [&](const char* name, const std::string& text, const std::string& problem) {

@@ -76,7 +76,7 @@ TEST(TrainHooks, TheConfigurationCreatesOnlyTheHooksItNeedsInAFixedOrder) {
   in.intrinsic.emit = EmitSource::Max;
   in.intrinsic.prune_mirror_world = 0.05f;
   in.intrinsic.glossy_plane = true;
-  in.depth_distortion_weight = 100;
+  in.loss.depth_distortion_weight = 100;
   EXPECT_EQ(names(make_train_hooks(in, intrinsic_renderer)),
             (std::vector<std::string>{"emit_weights", "depth_distortion", "mirror_world", "glossy_plane"}));
   EXPECT_EQ(names(make_train_hooks(in, radiance)), (std::vector<std::string>{"depth_distortion", "mirror_world", "glossy_plane"}))

@@ -66,7 +66,7 @@ TrainConfig refit_config(int iterations) {
   c.densify.until_iter = 0;
   c.densify.opacity_reset_interval = 1 << 30;
   c.filter_3d = false;
-  c.depth_normal_weight = 0;
+  c.loss.depth_normal_weight = 0;
   c.log_interval = 50;
   c.checkpoint_interval = 0;
   return c;
@@ -481,8 +481,8 @@ TEST(PlyExport, BakedThreeDFilterRendersLikeTheFilteredModel) {
 TEST(Trainer, DepthNormalConsistencyTrainsWithoutHarm) {
   // The RaDe-GS regulariser switched on from the start: finite, positive, and the re-fit still converges.
   TrainConfig config = refit_config(400);
-  config.depth_normal_from = 0;
-  config.depth_normal_weight = 0.05f;
+  config.loss.depth_normal_from = 0;
+  config.loss.depth_normal_weight = 0.05f;
   Scene s = make_scene(config, 32);
   Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(10)));
   double first = 0, last = 0;
@@ -502,7 +502,7 @@ TEST(Trainer, AlphaLossMakesABlackSceneOverBlackOpaque) {
   // transparent start stays so; the images' alpha (alpha_weight) makes it opaque again.
   auto run = [](float alpha_weight) {
     TrainConfig config = refit_config(150);
-    config.alpha_weight = alpha_weight;
+    config.loss.alpha_weight = alpha_weight;
     Scene s = make_scene(config, 32);
     GaussianModel gt = ground_truth_scene(40, 11);
     for (size_t i = 0; i < gt.count(); ++i)
@@ -542,8 +542,8 @@ TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
   // 2DGS's depth distortion from its scaled start (3000 of 30K -> 40 of 400): 0 before, finite and
   // positive after; the re-fit still converges and the term falls.
   TrainConfig config = refit_config(400);
-  config.depth_distortion_weight = 100.0f;
-  ASSERT_EQ(config.scaled_iteration(config.depth_distortion_from), 40);
+  config.loss.depth_distortion_weight = 100.0f;
+  ASSERT_EQ(config.scaled_iteration(config.loss.depth_distortion_from), 40);
   Scene s = make_scene(config, 32);
   Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(10)));
   double first = 0, last = 0;
@@ -563,7 +563,7 @@ TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
   // with the left half glossy it is less than the whole image's.
   auto distortion_after_start = [&](float glossy_weight, float glossy_left, float glossy_right) {
     TrainConfig c = config;
-    c.depth_distortion_glossy = glossy_weight;
+    c.loss.depth_distortion_glossy = glossy_weight;
     Scene sc = make_scene(c, 32);
     for (TrainView& v : sc.views) {
       const int w = v.camera.width;
@@ -580,25 +580,25 @@ TEST(Trainer, DepthDistortionStartsOnScheduleAndTrainsWithoutHarm) {
   const double half = distortion_after_start(0.0f, 1.0f, 0.0f), whole = distortion_after_start(1.0f, 1.0f, 0.0f);
   EXPECT_GT(half, 0.0);
   EXPECT_LT(half, whole);
-  config.depth_distortion_glossy = 1.5f;
+  config.loss.depth_distortion_glossy = 1.5f;
   EXPECT_THROW(config.validate("test"), Error);
-  config.depth_distortion_glossy = 1.0f;
-  config.depth_distortion_weight = -1.0f;
+  config.loss.depth_distortion_glossy = 1.0f;
+  config.loss.depth_distortion_weight = -1.0f;
   EXPECT_THROW(config.validate("test"), Error);
-  config.depth_distortion_weight = 100.0f;
-  config.depth_distortion_until = config.depth_distortion_from;  // must end after it starts
+  config.loss.depth_distortion_weight = 100.0f;
+  config.loss.depth_distortion_until = config.loss.depth_distortion_from;  // must end after it starts
   EXPECT_THROW(config.validate("test"), Error);
-  config.depth_distortion_until = -1;
+  config.loss.depth_distortion_until = -1;
   EXPECT_THROW(config.validate("test"), Error);
 }
 
 TEST(Trainer, DepthDistortionStopsAtItsScaledEnd) {
   // depth_distortion_until = 15000 of 30K -> 200 of 400: on in (40, 200], 0 after.
   TrainConfig config = refit_config(400);
-  config.depth_distortion_weight = 100.0f;
-  config.depth_distortion_until = 15000;
+  config.loss.depth_distortion_weight = 100.0f;
+  config.loss.depth_distortion_until = 15000;
   ASSERT_NO_THROW(config.validate("test"));
-  ASSERT_EQ(config.scaled_iteration(config.depth_distortion_until), 200);
+  ASSERT_EQ(config.scaled_iteration(config.loss.depth_distortion_until), 200);
   Scene s = make_scene(config, 32);
   Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(10)));
   double during = 0;

@@ -18,7 +18,7 @@ TrainHooks make_train_hooks(const TrainConfig& config, const DifferentiableRende
   TrainHooks hooks;
   const bool intrinsic = config.mode == TrainMode::Intrinsic;
   if (renderer.wants_extras() && config.intrinsic.emit != EmitSource::Region) hooks.push_back(std::make_unique<EmitWeightsHook>());
-  if (config.depth_distortion_weight > 0) hooks.push_back(std::make_unique<DepthDistortionHook>());
+  if (config.loss.depth_distortion_weight > 0) hooks.push_back(std::make_unique<DepthDistortionHook>());
   if (intrinsic && config.intrinsic.prune_mirror_world > 0) hooks.push_back(std::make_unique<MirrorWorldHook>());
   if (intrinsic && config.intrinsic.glossy_plane) hooks.push_back(std::make_unique<GlossyPlaneHook>());
   return hooks;
@@ -52,7 +52,7 @@ void EmitWeightsHook::deserialize(const std::string& bytes, const std::string& s
 }
 
 const float* DepthDistortionHook::pixel_weights(const HookStep& s) {
-  const float glossy = s.config.depth_distortion_glossy;
+  const float glossy = s.config.loss.depth_distortion_glossy;
   if (glossy == 1.0f || s.view.glossy_mask.empty()) return nullptr;
   pixel_weights_.resize(s.view.glossy_mask.size());
   for (std::size_t p = 0; p < pixel_weights_.size(); ++p)
@@ -62,7 +62,7 @@ const float* DepthDistortionHook::pixel_weights(const HookStep& s) {
 
 void DepthDistortionHook::after_backward(HookStep& s) {
   if (!s.config.depth_distortion_at(s.iteration)) return;
-  const float weight = s.config.depth_distortion_weight;
+  const float weight = s.config.loss.depth_distortion_weight;
   s.out.distortion = s.renderer.depth_distortion(*s.gaussians, s.view.camera, DistortionDepthRange::for_extent(s.extent),
                                                  weight, pixel_weights(s), *s.grads);
   s.out.loss += weight * s.out.distortion;
