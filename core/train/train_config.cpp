@@ -177,8 +177,8 @@ void visit_fields(Config& c, F&& visit) {
   f("intrinsic_detect_after", c.intrinsic.detect_after);
   f("intrinsic_detect_settled", c.intrinsic.detect_settled);
   f("intrinsic_detect_plane_tolerance", c.intrinsic.detect_plane_tolerance);
-  f("inpaint_appearance_weight", c.inpaint_appearance_weight);
-  f("inpaint_material_weight", c.inpaint_material_weight);
+  f("inpaint_appearance_weight", c.inpaint.appearance_weight);
+  f("inpaint_material_weight", c.inpaint.material_weight);
   f("nan_policy", c.nan_policy,
     {"Bookkeeping", "On a non-finite loss or gradient: `recover` (skip the step, lower the learning rates) or "
                     "`stop`."});
@@ -232,7 +232,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (log_interval < 1) fail("log_interval must be at least 1");
   if (checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
   if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
-  if (!(inpaint_appearance_weight >= 0) || !(inpaint_material_weight >= 0))
+  if (!(inpaint.appearance_weight >= 0) || !(inpaint.material_weight >= 0))
     fail("inpaint_appearance_weight and inpaint_material_weight must be >= 0");
   if (!(nan_lr_factor > 0 && nan_lr_factor <= 1)) fail("nan_lr_factor must lie in (0, 1]");
   if (nan_max_skips < 1) fail("nan_max_skips must be at least 1");

@@ -227,6 +227,14 @@ struct LossSettings {
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
 };
 
+// Stage-2 fine-tune (views with InpaintTargets): appearance loss (L1 + SSIM instead of the paper's LPIPS,
+// which needs network weights) on the rough part of the hole, material L1 on the glossy part
+// (TrainConfig::inpaint; `inpaint_<field>` in config.json).
+struct InpaintWeights {
+  float appearance_weight = 1.0f;
+  float material_weight = 1.0f;
+};
+
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -259,10 +267,7 @@ struct TrainConfig {
 
   IntrinsicSettings intrinsic;
 
-  // Stage-2 fine-tune (views with InpaintTargets): appearance loss (L1 + SSIM instead of the paper's LPIPS,
-  // which needs network weights) on the rough part of the hole, material L1 on the glossy part.
-  float inpaint_appearance_weight = 1.0f;
-  float inpaint_material_weight = 1.0f;
+  InpaintWeights inpaint;
 
   // Non-finite losses or gradients: recover skips the step and multiplies every learning rate by
   // nan_lr_factor (stopping after nan_max_skips skipped steps in a row), stop stops at once. Either way

@@ -139,7 +139,7 @@ double Trainer::inpaint_losses(const TrainView& view, const RenderedImages& fwd,
     return !v.empty();
   };
   double total = 0;
-  const float wa = config_.inpaint_appearance_weight, wm = config_.inpaint_material_weight;
+  const float wa = config_.inpaint.appearance_weight, wm = config_.inpaint.material_weight;
   if (wa > 0 && sized(t.appearance_weight, hw, "appearance weight") && sized(t.color, 3 * hw, "colour")) {
     const HostView color(fwd.color, 3 * hw, device_);
     out.appearance = weighted_color_loss(color.data(), t.color.data(), t.appearance_weight.data(), w, h, g_color.data(),
