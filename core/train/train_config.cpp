@@ -179,11 +179,11 @@ void visit_fields(Config& c, F&& visit) {
   f("intrinsic_detect_plane_tolerance", c.intrinsic.detect_plane_tolerance);
   f("inpaint_appearance_weight", c.inpaint.appearance_weight);
   f("inpaint_material_weight", c.inpaint.material_weight);
-  f("nan_policy", c.nan_policy,
+  f("nan_policy", c.nan.policy,
     {"Bookkeeping", "On a non-finite loss or gradient: `recover` (skip the step, lower the learning rates) or "
                     "`stop`."});
-  f("nan_lr_factor", c.nan_lr_factor);
-  f("nan_max_skips", c.nan_max_skips);
+  f("nan_lr_factor", c.nan.lr_factor);
+  f("nan_max_skips", c.nan.max_skips);
   f("log_interval", c.log_interval);
   f("checkpoint_interval", c.checkpoint_interval,
     {"Bookkeeping", "Checkpoint every this many iterations (0 = only at the end or when stopped). Also "
@@ -234,8 +234,8 @@ void TrainConfig::validate(const std::string& what) const {
   if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
   if (!(inpaint.appearance_weight >= 0) || !(inpaint.material_weight >= 0))
     fail("inpaint_appearance_weight and inpaint_material_weight must be >= 0");
-  if (!(nan_lr_factor > 0 && nan_lr_factor <= 1)) fail("nan_lr_factor must lie in (0, 1]");
-  if (nan_max_skips < 1) fail("nan_max_skips must be at least 1");
+  if (!(nan.lr_factor > 0 && nan.lr_factor <= 1)) fail("nan_lr_factor must lie in (0, 1]");
+  if (nan.max_skips < 1) fail("nan_max_skips must be at least 1");
   const IntrinsicSettings& in = intrinsic;
   if (in.warmup < 0) fail("intrinsic_warmup must be >= 0");
   if (!(in.warmup_min_fraction >= 0 && in.warmup_min_fraction <= 1))

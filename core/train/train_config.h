@@ -17,7 +17,7 @@
 
 namespace goris {
 
-// What training does on a non-finite loss or gradient (TrainConfig::nan_policy).
+// What training does on a non-finite loss or gradient (NanSettings::policy; `nan_policy` in config.json).
 enum class NanPolicy { Recover, Stop };
 template <>
 struct EnumNames<NanPolicy> {
@@ -235,6 +235,16 @@ struct InpaintWeights {
   float material_weight = 1.0f;
 };
 
+// Non-finite losses or gradients (TrainConfig::nan; `nan_<field>` in config.json): recover skips the step and
+// multiplies every learning rate by lr_factor (stopping after max_skips skipped steps in a row), stop stops
+// at once. Either way the message names the iteration, the view, the loss term or parameter group;
+// checkpoints stay intact.
+struct NanSettings {
+  NanPolicy policy = NanPolicy::Recover;
+  float lr_factor = 0.5f;
+  int max_skips = 10;
+};
+
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -269,12 +279,7 @@ struct TrainConfig {
 
   InpaintWeights inpaint;
 
-  // Non-finite losses or gradients: recover skips the step and multiplies every learning rate by
-  // nan_lr_factor (stopping after nan_max_skips skipped steps in a row), stop stops at once. Either way
-  // the message names the iteration, the view, the loss term or parameter group; checkpoints stay intact.
-  NanPolicy nan_policy = NanPolicy::Recover;
-  float nan_lr_factor = 0.5f;
-  int nan_max_skips = 10;
+  NanSettings nan;
 
   // Bookkeeping.
   int log_interval = 100;         // log.csv line every this many iterations

@@ -329,16 +329,16 @@ std::string Trainer::non_finite_parameter() const {
 }
 
 void Trainer::skip_step(int it, const std::string& problem, StepStats& out) {
-  if (config_.nan_policy == NanPolicy::Stop)
+  if (config_.nan.policy == NanPolicy::Stop)
     throw Error(format_iteration_problem(it, problem + "; stopping (nan_policy stop), the checkpoints on disk are intact"));
   ++consecutive_skips_;
-  if (consecutive_skips_ > config_.nan_max_skips)
+  if (consecutive_skips_ > config_.nan.max_skips)
     throw Error(format_iteration_problem(
         it, problem + "; " + std::to_string(consecutive_skips_) +
                 " steps in a row were not finite even with the learning rates lowered to " +
                 std::to_string(state_.lr_scale) + "x; stopping, the checkpoints on disk are intact"));
   state_.model.zero_grad();
-  state_.lr_scale *= config_.nan_lr_factor;
+  state_.lr_scale *= config_.nan.lr_factor;
   ++state_.skipped_steps;
   out.skipped = true;
   out.problem = format_iteration_problem(it, problem) + "; step skipped, learning rates now " +

@@ -188,7 +188,7 @@ class Trainer {
   // when all are finite.
   std::string non_finite_gradient() const;
   std::string non_finite_parameter() const;
-  // Handles a non-finite loss or gradient at iteration `it` (see TrainConfig::nan_policy): throws, or marks
+  // Handles a non-finite loss or gradient at iteration `it` (see NanSettings): throws, or marks
   // `out` skipped, lowers the learning rates and completes the iteration without an update.
   void skip_step(int it, const std::string& problem, StepStats& out);
   int consecutive_skips_ = 0;

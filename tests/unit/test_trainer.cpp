@@ -297,7 +297,7 @@ TEST(Trainer, NonFiniteGradientIsSkippedNamingTheGroupOrStopsOnRequest) {
     EXPECT_NE(bad.problem.find("'position' (Gaussian 1)"), std::string::npos) << bad.problem;
     EXPECT_NE(bad.problem.find("l1="), std::string::npos) << "the loss terms are listed: " << bad.problem;
   }
-  config.nan_policy = NanPolicy::Stop;
+  config.nan.policy = NanPolicy::Stop;
   Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
   t.step();
   try {
@@ -311,7 +311,7 @@ TEST(Trainer, NonFiniteGradientIsSkippedNamingTheGroupOrStopsOnRequest) {
 
 TEST(Trainer, PersistentNonFiniteStepsStopAfterTheLimitAndTheScaleSurvivesACheckpoint) {
   TrainConfig config = refit_config(20);
-  config.nan_max_skips = 3;
+  config.nan.max_skips = 3;
   Scene s = make_scene(config, 32);
   auto r = std::make_shared<BreakingRenderer>(s.renderer, BreakingRenderer::Break::Image, std::set<int>{2, 3, 4, 5, 6});
   Trainer t(config, s.views, 4.0f, r, Trainer::initial_state(config, perturbed(8)));
