@@ -146,7 +146,7 @@ void run_train(const Options& o) {
   const RemoveIfLeftEmpty created(run_dir);
   check_output_dir(run_dir, OutputGuard{{data}, {}});
   if (o.iters) config.iterations = *o.iters;
-  if (o.checkpoint_every) config.checkpoint_interval = *o.checkpoint_every;
+  if (o.checkpoint_every) config.bookkeeping.checkpoint_interval = *o.checkpoint_every;
   config.device = enum_from_name<DeviceChoice>(o.device).value();  // --device's check accepts only the names
   config.validate("training options");
   // A run that reached its last iteration is finished once its outputs are written after that checkpoint:
@@ -195,7 +195,7 @@ void run_train(const Options& o) {
   const bool tty = isatty(STDERR_FILENO);
   Trainer::RunOptions ro;
   ro.run_dir = run_dir;
-  ro.progress_every = tty ? 10 : config.log_interval;
+  ro.progress_every = tty ? 10 : config.bookkeeping.log_interval;
   ro.before_step = [&](Trainer& t) {  // --mode auto's decision after the warm-up
     if (const auto d = apply_auto_mode(t, run_dir)) {
       std::printf("%s%s\n", tty ? "\n" : "", d->message().c_str());

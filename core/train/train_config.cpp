@@ -184,11 +184,11 @@ void visit_fields(Config& c, F&& visit) {
                     "`stop`."});
   f("nan_lr_factor", c.nan.lr_factor);
   f("nan_max_skips", c.nan.max_skips);
-  f("log_interval", c.log_interval);
-  f("checkpoint_interval", c.checkpoint_interval,
+  f("log_interval", c.bookkeeping.log_interval);
+  f("checkpoint_interval", c.bookkeeping.checkpoint_interval,
     {"Bookkeeping", "Checkpoint every this many iterations (0 = only at the end or when stopped). Also "
                     "`--checkpoint-every`."});
-  f("keep_checkpoints", c.keep_checkpoints,
+  f("keep_checkpoints", c.bookkeeping.keep_checkpoints,
     {"Bookkeeping", "Older checkpoint files beyond this many are deleted."});
 }
 
@@ -229,9 +229,9 @@ void TrainConfig::validate(const std::string& what) const {
   if (!(densify.min_opacity >= 0 && densify.min_opacity < 1)) fail("prune_min_opacity must lie in [0, 1)");
   if (!(densify.reset_opacity > 0 && densify.reset_opacity < 1)) fail("reset_opacity must lie in (0, 1)");
   if (filter_3d_interval < 1) fail("filter_3d_interval must be at least 1");
-  if (log_interval < 1) fail("log_interval must be at least 1");
-  if (checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
-  if (keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
+  if (bookkeeping.log_interval < 1) fail("log_interval must be at least 1");
+  if (bookkeeping.checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
+  if (bookkeeping.keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");
   if (!(inpaint.appearance_weight >= 0) || !(inpaint.material_weight >= 0))
     fail("inpaint_appearance_weight and inpaint_material_weight must be >= 0");
   if (!(nan.lr_factor > 0 && nan.lr_factor <= 1)) fail("nan_lr_factor must lie in (0, 1]");

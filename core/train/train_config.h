@@ -245,6 +245,14 @@ struct NanSettings {
   int max_skips = 10;
 };
 
+// What a run writes beside the model as it trains (TrainConfig::bookkeeping; config.json keys as the fields'
+// names).
+struct BookkeepingSettings {
+  int log_interval = 100;         // log.csv line every this many iterations
+  int checkpoint_interval = 2000; // 0 = only at the end / on interruption
+  int keep_checkpoints = 2;       // older checkpoint files are deleted
+};
+
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -281,10 +289,7 @@ struct TrainConfig {
 
   NanSettings nan;
 
-  // Bookkeeping.
-  int log_interval = 100;         // log.csv line every this many iterations
-  int checkpoint_interval = 2000; // 0 = only at the end / on interruption
-  int keep_checkpoints = 2;       // older checkpoint files are deleted
+  BookkeepingSettings bookkeeping;
 
   // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
   int scaled_iteration(int full_schedule_iteration) const;

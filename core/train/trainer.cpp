@@ -436,7 +436,7 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
   auto checkpoint = [&] {
     if (o.run_dir.empty()) return;
     save_checkpoint(checkpoint_path(o.run_dir, state_.iteration));
-    remove_old_checkpoints(o.run_dir, config_.keep_checkpoints);
+    remove_old_checkpoints(o.run_dir, config_.bookkeeping.keep_checkpoints);
   };
   // What the density control did, for the user.
   auto tell = [&](const std::string& note) {
@@ -487,12 +487,13 @@ Trainer::RunResult Trainer::run(const RunOptions& o) {
     sum_psnr += std::min(s.psnr, 99.0);
     ++n_sum;
     const int it = state_.iteration;
-    if (log && (it % config_.log_interval == 0 || finished())) {
+    if (log && (it % config_.bookkeeping.log_interval == 0 || finished())) {
       log->add(it, sum_loss / n_sum, sum_psnr / n_sum, state_.model.count(), state_.elapsed_s, it_per_s);
       sum_loss = sum_psnr = 0;
       n_sum = 0;
     }
-    if (config_.checkpoint_interval > 0 && it % config_.checkpoint_interval == 0 && !finished()) checkpoint();
+    const int checkpoint_every = config_.bookkeeping.checkpoint_interval;
+    if (checkpoint_every > 0 && it % checkpoint_every == 0 && !finished()) checkpoint();
     if (o.on_progress && (it % std::max(o.progress_every, 1) == 0 || finished())) o.on_progress(progress(it_per_s));
   }
   checkpoint();

@@ -122,8 +122,9 @@ class Trainer {
     // counts as training time but not as iteration time.
     std::function<void(Trainer&)> before_step;
   };
-  // Steps until config.iterations or until *stop. Writes a checkpoint every config.checkpoint_interval
-  // iterations, at the end and when stopped; appends to run_dir/log.csv every config.log_interval.
+  // Steps until config.iterations or until *stop. Writes a checkpoint every
+  // config.bookkeeping.checkpoint_interval iterations, at the end and when stopped; appends to run_dir/log.csv
+  // every config.bookkeeping.log_interval.
   RunResult run(const RunOptions& options);
 
   // Checkpoint file for the current state, written to a temporary file then renamed; the renderer's own

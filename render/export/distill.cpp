@@ -78,7 +78,7 @@ TrainConfig distill_config(const TrainConfig& run_config, const DistillSettings&
   c.lr.opacity *= g;
   c.lr.sh_dc *= s.sh_lr_scale;
   c.lr.sh_rest *= s.sh_lr_scale;
-  c.checkpoint_interval = 0;
+  c.bookkeeping.checkpoint_interval = 0;
   return c;
 }
 

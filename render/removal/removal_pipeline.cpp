@@ -148,8 +148,8 @@ TrainConfig finetune_config(const TrainConfig& s1, int iterations) {
   c.intrinsic.label = 0;
   c.intrinsic.normal_prior = c.intrinsic.normal_prior_final;
   c.loss.depth_normal_from = s1.iterations > s1.loss.depth_normal_from ? 0 : 1 << 30;
-  c.checkpoint_interval = std::max(100, iterations / 4);
-  c.log_interval = std::max(10, std::min(100, iterations / 20));
+  c.bookkeeping.checkpoint_interval = std::max(100, iterations / 4);
+  c.bookkeeping.log_interval = std::max(10, std::min(100, iterations / 20));
   return c;
 }
 

@@ -72,7 +72,7 @@ inline TrainConfig intrinsic_config(int iterations) {
   c.filter_3d = false;
   c.intrinsic.env_resolution = 8;
   c.intrinsic.warmup = 0;
-  c.checkpoint_interval = 0;
+  c.bookkeeping.checkpoint_interval = 0;
   return c;
 }
 

@@ -161,8 +161,8 @@ TrainConfig tiny_auto_config() {
   c.intrinsic.env_resolution = 8;
   c.intrinsic.net_hidden_layers = 1;
   c.intrinsic.detect_settled = 0;  // decide at the planned shading start (the late decision has its own test)
-  c.checkpoint_interval = 10;
-  c.keep_checkpoints = 10;
+  c.bookkeeping.checkpoint_interval = 10;
+  c.bookkeeping.keep_checkpoints = 10;
   return c;
 }
 
@@ -303,7 +303,7 @@ TEST(AutoMode, ALateGlossyDecisionAtTheEndLengthensTheRun) {
   c.intrinsic.detect_settled = 40;
   c.intrinsic.detect_threshold = 0.0f;  // forced "glossy"
   c.intrinsic.detect_fraction = 0.0f;
-  c.checkpoint_interval = 100;
+  c.bookkeeping.checkpoint_interval = 100;
   PreparedTraining p = prepare_training(run, c, std::nullopt);
   Trainer& t = *p.trainer;
   EXPECT_EQ(auto_detection_iteration(p.config), 40);

@@ -56,7 +56,7 @@ TEST(RemovalPipeline, EmbeddedSceneLosesTheTargetsReflection) {
   c.iterations = 2000;
   c.init.random_points = 10000;
   c.intrinsic.env_resolution = 8;
-  c.checkpoint_interval = 0;
+  c.bookkeeping.checkpoint_interval = 0;
   {
     PreparedTraining p = prepare_training(run, c, std::nullopt);
     write_run_config(run, p.config);

@@ -44,7 +44,7 @@ const fs::path& tiny_intrinsic_run() {
     rq.config.init.random_box_ratio = 0.15f;
     rq.config.intrinsic.env_resolution = 8;
     rq.config.device = DeviceChoice::CPU;
-    rq.config.checkpoint_interval = 0;
+    rq.config.bookkeeping.checkpoint_interval = 0;
     rq.iterations = 4;
     t.start(rq);
     EXPECT_EQ(t.wait(std::chrono::seconds(120)), JobState::Done) << t.status();

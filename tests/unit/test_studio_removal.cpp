@@ -69,7 +69,7 @@ fs::path tiny_run_with_selection() {
   rq.config.init.random_points = 300;
   rq.config.init.random_box_ratio = 0.15f;
   rq.config.device = DeviceChoice::CPU;
-  rq.config.checkpoint_interval = 0;
+  rq.config.bookkeeping.checkpoint_interval = 0;
   rq.iterations = 10;
   t.start(rq);
   EXPECT_EQ(t.wait(std::chrono::seconds(120)), JobState::Done) << t.status();

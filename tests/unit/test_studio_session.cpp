@@ -24,7 +24,7 @@ TrainRequest tiny_request(const fs::path& run, int iterations) {
   rq.config.input.resolution = 32;
   rq.config.init.random_points = 400;
   rq.config.device = DeviceChoice::CPU;
-  rq.config.checkpoint_interval = 0;
+  rq.config.bookkeeping.checkpoint_interval = 0;
   rq.iterations = iterations;
   return rq;
 }

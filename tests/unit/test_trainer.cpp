@@ -67,8 +67,8 @@ TrainConfig refit_config(int iterations) {
   c.densify.opacity_reset_interval = 1 << 30;
   c.filter_3d = false;
   c.loss.depth_normal_weight = 0;
-  c.log_interval = 50;
-  c.checkpoint_interval = 0;
+  c.bookkeeping.log_interval = 50;
+  c.bookkeeping.checkpoint_interval = 0;
   return c;
 }
 
@@ -176,7 +176,7 @@ TEST(Trainer, ResumeFromCheckpointIsBitExact) {
 
 TEST(Trainer, StopFlagWritesACheckpointAndLog) {
   TrainConfig config = refit_config(1000);
-  config.log_interval = 5;
+  config.bookkeeping.log_interval = 5;
   Scene s = make_scene(config, 32);
   Trainer t(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(7)));
   std::atomic<bool> stop{false};
