@@ -110,10 +110,10 @@ void visit_fields(Config& c, F&& visit) {
   f("reset_opacity", c.densify.reset_opacity);
   f("prune_max_screen_radius", c.densify.max_screen_radius);
   f("prune_max_world_scale", c.densify.max_world_scale);
-  f("filter_3d", c.filter_3d,
+  f("filter_3d", c.anti_aliasing.filter_3d,
     {"Anti-aliasing", "Mip-Splatting 3D filter."});
-  f("filter_3d_interval", c.filter_3d_interval);
-  f("filter_2d", c.filter_2d,
+  f("filter_3d_interval", c.anti_aliasing.filter_3d_interval);
+  f("filter_2d", c.anti_aliasing.filter_2d,
     {"Anti-aliasing", "Mip-Splatting 2D filter (off: the 3DGS 0.3-pixel dilation)."});
   f("intrinsic_warmup", c.intrinsic.warmup,
     {"Intrinsic mode", "Radiance-only iterations before shading starts (of the full schedule; a short run keeps "
@@ -228,7 +228,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (densify.split_count < 1 || densify.split_count > 8) fail("split_count must lie in 1..8");
   if (!(densify.min_opacity >= 0 && densify.min_opacity < 1)) fail("prune_min_opacity must lie in [0, 1)");
   if (!(densify.reset_opacity > 0 && densify.reset_opacity < 1)) fail("reset_opacity must lie in (0, 1)");
-  if (filter_3d_interval < 1) fail("filter_3d_interval must be at least 1");
+  if (anti_aliasing.filter_3d_interval < 1) fail("filter_3d_interval must be at least 1");
   if (bookkeeping.log_interval < 1) fail("log_interval must be at least 1");
   if (bookkeeping.checkpoint_interval < 0) fail("checkpoint_interval must be >= 0");
   if (bookkeeping.keep_checkpoints < 1) fail("keep_checkpoints must be at least 1");

@@ -253,6 +253,13 @@ struct BookkeepingSettings {
   int keep_checkpoints = 2;       // older checkpoint files are deleted
 };
 
+// Mip-Splatting's filters (TrainConfig::anti_aliasing; config.json keys as the fields' names).
+struct AntiAliasingSettings {
+  bool filter_3d = true;               // Mip-Splatting 3D filter
+  int filter_3d_interval = 100;        // recomputed this often after densification ends
+  bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
+};
+
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -279,9 +286,7 @@ struct TrainConfig {
   // both modes densify while they learn (docs/design/deviations.md, Densification window of short runs); full
   // runs stop at until_iter.
   float densify_until_fraction = 0.75f;
-  bool filter_3d = true;               // Mip-Splatting 3D filter
-  int filter_3d_interval = 100;        // recomputed this often after densification ends
-  bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
+  AntiAliasingSettings anti_aliasing;
 
   IntrinsicSettings intrinsic;
 

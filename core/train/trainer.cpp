@@ -76,7 +76,7 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
   for (const std::uint32_t v : state_.view_stack)
     if (v >= views_.size()) throw Error("training: the saved view order refers to a view that does not exist");
   if (state_.stats.grad_accum.size() != state_.model.count()) state_.stats.reset(state_.model.count(), device_);
-  if (config_.filter_3d && state_.model.filter3d_var.size() != state_.model.count())
+  if (config_.anti_aliasing.filter_3d && state_.model.filter3d_var.size() != state_.model.count())
     compute_filter3d(state_.model, cameras());
   make_hooks();
 }
@@ -288,8 +288,8 @@ DensifyCounts Trainer::densify(int it) {
       model_changed();
     }
     if (it % reset_every == 0 && it + ds.interval <= until) reset_opacity(m, ds.reset_opacity);
-  } else if (config_.filter_3d && it % config_.filter_3d_interval == 0 &&
-             it < config_.iterations - config_.filter_3d_interval) {
+  } else if (config_.anti_aliasing.filter_3d && it % config_.anti_aliasing.filter_3d_interval == 0 &&
+             it < config_.iterations - config_.anti_aliasing.filter_3d_interval) {
     compute_filter3d(m, cameras());
   }
   return counts;
@@ -297,7 +297,7 @@ DensifyCounts Trainer::densify(int it) {
 
 void Trainer::model_changed() {
   state_.stats.reset(state_.model.count(), device_);
-  if (config_.filter_3d) compute_filter3d(state_.model, cameras());
+  if (config_.anti_aliasing.filter_3d) compute_filter3d(state_.model, cameras());
 }
 
 std::string Trainer::non_finite_gradient() const {

@@ -68,7 +68,7 @@ TrainConfig distill_config(const TrainConfig& run_config, const DistillSettings&
   c.seed = s.seed;
   c.max_sh_degree = 3;
   c.densify.until_iter = 0;      // no densification, no opacity reset
-  c.filter_3d = false;           // keep the start's 3D filter as it is
+  c.anti_aliasing.filter_3d = false;  // keep the start's 3D filter as it is
   c.loss.depth_normal_weight = 0.0f;  // colour loss only (S1.6)
   const float g = s.geometry_lr_scale;
   c.lr.position_init *= g;

@@ -5,7 +5,8 @@
 namespace goris {
 
 RasterSettings RasterRenderer::settings_for(const TrainConfig& config) {
-  RasterSettings s = config.filter_2d ? RasterSettings::mip_splatting() : RasterSettings::classic_3dgs();
+  RasterSettings s =
+      config.anti_aliasing.filter_2d ? RasterSettings::mip_splatting() : RasterSettings::classic_3dgs();
   s.background = config.input.background;
   return s;
 }

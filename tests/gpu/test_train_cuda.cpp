@@ -112,7 +112,7 @@ TEST(TrainCuda, TrainingStepsFollowTheCpu) {
   config.iterations = 20;
   config.max_sh_degree = 1;
   config.sh_degree_interval = 10;
-  config.filter_3d = true;
+  config.anti_aliasing.filter_3d = true;
   config.densify.from_iter = 1 << 30;
   std::vector<TrainView> views;
   GaussianModel m = random_model(300, 2);

@@ -69,7 +69,7 @@ inline TrainConfig intrinsic_config(int iterations) {
   c.iterations = iterations;
   c.device = DeviceChoice::CPU;
   c.max_sh_degree = 0;
-  c.filter_3d = false;
+  c.anti_aliasing.filter_3d = false;
   c.intrinsic.env_resolution = 8;
   c.intrinsic.warmup = 0;
   c.bookkeeping.checkpoint_interval = 0;

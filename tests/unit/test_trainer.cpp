@@ -65,7 +65,7 @@ TrainConfig refit_config(int iterations) {
   c.densify.from_iter = 1 << 30;  // pure optimisation: no densification, no opacity reset
   c.densify.until_iter = 0;
   c.densify.opacity_reset_interval = 1 << 30;
-  c.filter_3d = false;
+  c.anti_aliasing.filter_3d = false;
   c.loss.depth_normal_weight = 0;
   c.bookkeeping.log_interval = 50;
   c.bookkeeping.checkpoint_interval = 0;
@@ -150,7 +150,7 @@ TEST(Trainer, ResumeFromCheckpointIsBitExact) {
   config.densify.grad_threshold = 1e-5f;
   config.max_sh_degree = 2;
   config.sh_degree_interval = 25;
-  config.filter_3d = true;
+  config.anti_aliasing.filter_3d = true;
   Scene s = make_scene(config, 32);
   Trainer straight(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(6)));
   while (!straight.finished()) straight.step();
