@@ -87,8 +87,8 @@ void visit_fields(Config& c, F&& visit) {
   f("depth_distortion_from", c.loss.depth_distortion_from);
   f("depth_distortion_until", c.loss.depth_distortion_until);
   f("depth_distortion_glossy", c.loss.depth_distortion_glossy);
-  f("sh_degree_interval", c.sh_degree_interval);
-  f("max_sh_degree", c.max_sh_degree,
+  f("sh_degree_interval", c.sh.degree_interval);
+  f("max_sh_degree", c.sh.max_degree,
     {"Losses", "Highest spherical-harmonics degree of the colour, 0 to 3."});
   f("densify_from_iter", c.densify.from_iter,
     {"Densification", "First densification (clone, split, prune) at this iteration."});
@@ -220,8 +220,8 @@ void TrainConfig::validate(const std::string& what) const {
     fail("depth_distortion_glossy must lie in [0, 1]");
   if (!(loss.depth_normal_median_ratio >= 0 && loss.depth_normal_median_ratio <= 1))
     fail("depth_normal_median_ratio must lie in [0, 1]");
-  if (sh_degree_interval < 1) fail("sh_degree_interval must be at least 1");
-  if (max_sh_degree < 0 || max_sh_degree > 3) fail("max_sh_degree must lie in 0..3");
+  if (sh.degree_interval < 1) fail("sh_degree_interval must be at least 1");
+  if (sh.max_degree < 0 || sh.max_degree > 3) fail("max_sh_degree must lie in 0..3");
   if (densify.interval < 1) fail("densify_interval must be at least 1");
   if (!(densify_until_fraction >= 0 && densify_until_fraction <= 1)) fail("densify_until_fraction must lie in [0, 1]");
   if (densify.opacity_reset_interval < 1) fail("opacity_reset_interval must be at least 1");

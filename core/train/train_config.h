@@ -260,6 +260,13 @@ struct AntiAliasingSettings {
   bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
 };
 
+// The degree of the colour's spherical harmonics (TrainConfig::sh; config.json keys sh_degree_interval and
+// max_sh_degree).
+struct ShSettings {
+  int degree_interval = 1000;  // SH degree +1 every this many iterations
+  int max_degree = 3;
+};
+
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -278,8 +285,7 @@ struct TrainConfig {
   // Optimisation.
   LearningRates lr;
   LossSettings loss;
-  int sh_degree_interval = 1000;       // SH degree +1 every this many iterations
-  int max_sh_degree = 3;
+  ShSettings sh;
   DensifySettings densify;
   // Density control also stops at this fraction of the run, so that a shortened schedule ends with pure
   // optimisation: see Trainer::densify_until. 3DGS's proportion (15K of 30K) is 0.5; 0.75 lets short runs of

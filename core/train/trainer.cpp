@@ -72,7 +72,7 @@ Trainer::Trainer(TrainConfig config, std::vector<TrainView> views, float extent,
   if (!(extent_ > 0) || !std::isfinite(extent_)) throw Error("training: the scene extent must be positive");
   if (state_.model.device() != device_) throw Error("training: the model lives on another device");
   if (state_.model.count() == 0) throw Error("training: the initial model has no Gaussians");
-  state_.model.max_sh_degree = config_.max_sh_degree;
+  state_.model.max_sh_degree = config_.sh.max_degree;
   for (const std::uint32_t v : state_.view_stack)
     if (v >= views_.size()) throw Error("training: the saved view order refers to a view that does not exist");
   if (state_.stats.grad_accum.size() != state_.model.count()) state_.stats.reset(state_.model.count(), device_);
@@ -85,7 +85,7 @@ TrainerState Trainer::initial_state(const TrainConfig& config, GaussianModel mod
   TrainerState s;
   s.model = std::move(model);
   s.model.sh_degree = 0;
-  s.model.max_sh_degree = config.max_sh_degree;
+  s.model.max_sh_degree = config.sh.max_degree;
   s.rng.seed(config.seed);
   return s;
 }
@@ -119,7 +119,7 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
   renderer_ = std::move(renderer);
   store_hook_states();  // the new configuration's hooks continue from them, as after a resume
   make_hooks();
-  state_.model.max_sh_degree = config_.max_sh_degree;
+  state_.model.max_sh_degree = config_.sh.max_degree;
   if (update_views) update_views(views_);
   if (views_.size() != n_views) throw Error("training: switching modes must keep the training views");
   for (const TrainView& v : views_) {
@@ -146,7 +146,7 @@ StepStats Trainer::step() {
   const int it = state_.iteration + 1;
   GaussianModel& m = state_.model;
   StepStats out;
-  if (it % config_.sh_degree_interval == 0) m.sh_degree = std::min(m.sh_degree + 1, m.max_sh_degree);
+  if (it % config_.sh.degree_interval == 0) m.sh_degree = std::min(m.sh_degree + 1, m.max_sh_degree);
   const TrainView& view = next_view(out);
   const Camera& cam = view.camera;
   HookStep hook{it, config_, m, views_, view, *renderer_, extent_, out};

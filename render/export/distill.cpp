@@ -66,7 +66,7 @@ TrainConfig distill_config(const TrainConfig& run_config, const DistillSettings&
   c.mode = TrainMode::Radiance;
   c.iterations = std::max(1, s.iterations);  // a valid configuration even when nothing is trained
   c.seed = s.seed;
-  c.max_sh_degree = 3;
+  c.sh.max_degree = 3;
   c.densify.until_iter = 0;      // no densification, no opacity reset
   c.anti_aliasing.filter_3d = false;  // keep the start's 3D filter as it is
   c.loss.depth_normal_weight = 0.0f;  // colour loss only (S1.6)

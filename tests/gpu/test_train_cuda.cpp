@@ -110,8 +110,8 @@ TEST(TrainCuda, TrainingStepsFollowTheCpu) {
   GORIS_REQUIRE_GPU();
   TrainConfig config;
   config.iterations = 20;
-  config.max_sh_degree = 1;
-  config.sh_degree_interval = 10;
+  config.sh.max_degree = 1;
+  config.sh.degree_interval = 10;
   config.anti_aliasing.filter_3d = true;
   config.densify.from_iter = 1 << 30;
   std::vector<TrainView> views;

@@ -68,7 +68,7 @@ inline TrainConfig intrinsic_config(int iterations) {
   c.mode = TrainMode::Intrinsic;
   c.iterations = iterations;
   c.device = DeviceChoice::CPU;
-  c.max_sh_degree = 0;
+  c.sh.max_degree = 0;
   c.anti_aliasing.filter_3d = false;
   c.intrinsic.env_resolution = 8;
   c.intrinsic.warmup = 0;

@@ -194,7 +194,7 @@ TEST(ExportDistill, GeometryLearnsOnlyWhenAsked) {
   EXPECT_EQ(frozen.lr.sh_dc, run_config().lr.sh_dc * DistillSettings{}.sh_lr_scale);
   EXPECT_EQ(frozen.lr.sh_rest, run_config().lr.sh_rest * DistillSettings{}.sh_lr_scale);
   EXPECT_EQ(frozen.mode, TrainMode::Radiance);
-  EXPECT_EQ(frozen.max_sh_degree, 3);
+  EXPECT_EQ(frozen.sh.max_degree, 3);
 }
 
 TEST(ExportDistill, BadInput) {

@@ -61,7 +61,7 @@ TrainConfig refit_config(int iterations) {
   c.mode = TrainMode::Radiance;
   c.iterations = iterations;
   c.device = DeviceChoice::CPU;
-  c.max_sh_degree = 0;
+  c.sh.max_degree = 0;
   c.densify.from_iter = 1 << 30;  // pure optimisation: no densification, no opacity reset
   c.densify.until_iter = 0;
   c.densify.opacity_reset_interval = 1 << 30;
@@ -148,8 +148,8 @@ TEST(Trainer, ResumeFromCheckpointIsBitExact) {
   config.densify.opacity_reset_interval = 20;
   config.densify.min_opacity = 0.005f;  // reset Gaussians have 10 iterations to recover
   config.densify.grad_threshold = 1e-5f;
-  config.max_sh_degree = 2;
-  config.sh_degree_interval = 25;
+  config.sh.max_degree = 2;
+  config.sh.degree_interval = 25;
   config.anti_aliasing.filter_3d = true;
   Scene s = make_scene(config, 32);
   Trainer straight(config, s.views, 4.0f, s.renderer, Trainer::initial_state(config, perturbed(6)));
