@@ -17,6 +17,11 @@ namespace goris {
 struct DensifySettings {
   int from_iter = 500;      // first densification at this iteration
   int until_iter = 12000;   // none after this iteration (the paper's 12K)
+  // Density control also stops at this fraction of the run, so that a shortened schedule ends with pure
+  // optimisation: see TrainConfig::densify_until. 3DGS's proportion (15K of 30K) is 0.5; 0.75 lets short runs
+  // of both modes densify while they learn (docs/design/deviations.md, Densification window of short runs);
+  // full runs stop at until_iter.
+  float until_fraction = 0.75f;
   int interval = 500;
   float grad_threshold = 2e-4f;  // on the view-averaged |dL/dmean2d| in 3DGS's NDC units
   float percent_dense = 0.01f;   // clone when max scale <= percent_dense * extent, else split

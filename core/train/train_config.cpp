@@ -96,7 +96,7 @@ void visit_fields(Config& c, F&& visit) {
     {"Densification", "No densification after this iteration (of the full schedule; see `densify_until_fraction`)."});
   f("densify_interval", c.densify.interval,
     {"Densification", "Densify every this many iterations."});
-  f("densify_until_fraction", c.densify_until_fraction,
+  f("densify_until_fraction", c.densify.until_fraction,
     {"Densification", "Densification also stops at this fraction of the run, so that a short run ends with pure "
                       "optimisation."});
   f("densify_grad_threshold", c.densify.grad_threshold,
@@ -223,7 +223,7 @@ void TrainConfig::validate(const std::string& what) const {
   if (sh.degree_interval < 1) fail("sh_degree_interval must be at least 1");
   if (sh.max_degree < 0 || sh.max_degree > 3) fail("max_sh_degree must lie in 0..3");
   if (densify.interval < 1) fail("densify_interval must be at least 1");
-  if (!(densify_until_fraction >= 0 && densify_until_fraction <= 1)) fail("densify_until_fraction must lie in [0, 1]");
+  if (!(densify.until_fraction >= 0 && densify.until_fraction <= 1)) fail("densify_until_fraction must lie in [0, 1]");
   if (densify.opacity_reset_interval < 1) fail("opacity_reset_interval must be at least 1");
   if (densify.split_count < 1 || densify.split_count > 8) fail("split_count must lie in 1..8");
   if (!(densify.min_opacity >= 0 && densify.min_opacity < 1)) fail("prune_min_opacity must lie in [0, 1)");
@@ -286,7 +286,7 @@ int TrainConfig::scaled_iteration(int full) const {
 }
 
 int TrainConfig::densify_until() const {
-  return std::min(densify.until_iter, int(double(densify_until_fraction) * iterations));
+  return std::min(densify.until_iter, int(double(densify.until_fraction) * iterations));
 }
 
 int TrainConfig::opacity_reset_every() const {

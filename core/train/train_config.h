@@ -287,11 +287,6 @@ struct TrainConfig {
   LossSettings loss;
   ShSettings sh;
   DensifySettings densify;
-  // Density control also stops at this fraction of the run, so that a shortened schedule ends with pure
-  // optimisation: see Trainer::densify_until. 3DGS's proportion (15K of 30K) is 0.5; 0.75 lets short runs of
-  // both modes densify while they learn (docs/design/deviations.md, Densification window of short runs); full
-  // runs stop at until_iter.
-  float densify_until_fraction = 0.75f;
   AntiAliasingSettings anti_aliasing;
 
   IntrinsicSettings intrinsic;
@@ -304,7 +299,7 @@ struct TrainConfig {
 
   // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
   int scaled_iteration(int full_schedule_iteration) const;
-  // Last iteration of adaptive density control: densify.until_iter, but at most densify_until_fraction of
+  // Last iteration of adaptive density control: densify.until_iter, but at most densify.until_fraction of
   // the run, so that a shortened schedule ends with a stretch of pure optimisation instead of adding
   // untrained Gaussians at the very end.
   int densify_until() const;

@@ -612,7 +612,7 @@ TEST(IntrinsicRenderer, MirrorWorldIsPrunedAgainAfterEachShadingDensification) {
   cfg.densify.from_iter = 4;
   cfg.densify.interval = 1;
   cfg.densify.until_iter = 5;
-  cfg.densify_until_fraction = 1.0f;
+  cfg.densify.until_fraction = 1.0f;
   const std::vector<TrainView> views = shaded_views(cfg, floor_and_blob(4));
   auto renderer = std::make_shared<IntrinsicRenderer>(cfg, 3.0f, Device::CPU);
   Trainer t(cfg, views, 3.0f, renderer, Trainer::initial_state(cfg, start_with_mirror_twin(12)));

@@ -615,7 +615,7 @@ TEST(Trainer, DensificationScheduleFitsShortRuns) {
   // until_iter beyond the run: density control stops at densify_until_fraction of the run (here half of
   // it), and a reset only happens when a pruning step follows it inside that window.
   TrainConfig config = refit_config(100);
-  config.densify_until_fraction = 0.5f;
+  config.densify.until_fraction = 0.5f;
   config.densify.from_iter = 10;
   config.densify.interval = 10;
   config.densify.until_iter = 100;
