@@ -158,10 +158,6 @@ struct IntrinsicSettings {
   float detect_plane_tolerance = 0.05f;  // masks grown over the detections' plane(s), x camera distance (0 = off)
 };
 
-// The largest random initialisation a configuration accepts: beyond it the points alone outgrow a
-// workstation's memory (each is a Gaussian with its optimiser state).
-constexpr int kMaxRandomInitPoints = 20000000;
-
 // The training data and what of it a run uses (TrainConfig::input; config.json keys as the fields' names).
 struct InputSettings {
   std::string data;             // data set path (as given, made absolute)
@@ -187,6 +183,10 @@ struct InputSettings {
   bool auto_detect_glossy = false;
 };
 
+// The largest random initialisation a configuration accepts: beyond it the points alone outgrow a
+// workstation's memory (each is a Gaussian with its optimiser state).
+constexpr int kMaxRandomInitPoints = 20000000;
+
 // The model training starts from (TrainConfig::init; config.json keys random_init_points,
 // random_init_box_ratio and init_model).
 struct InitSettings {
@@ -200,8 +200,8 @@ struct InitSettings {
   std::string model;
 };
 
-// The loss terms of stage 1 beside the intrinsic ones (TrainConfig::loss; config.json keys as the fields'
-// names).
+// The loss terms every mode trains with (the intrinsic mode's own are in IntrinsicSettings;
+// TrainConfig::loss; config.json keys as the fields' names).
 struct LossSettings {
   float lambda_ssim = 0.2f;            // colour loss (1 - l) L1 + l (1 - SSIM)
   // L1 between the rendered alpha and the images' alpha channel (views without one are skipped). Over a
@@ -225,6 +225,20 @@ struct LossSettings {
   // distortion off by default).
   float depth_distortion_glossy = 1.0f;
   float depth_normal_median_ratio = 0.6f;  // blend of the median- and expected-depth normals (RaDe-GS)
+};
+
+// The degree of the colour's spherical harmonics (TrainConfig::sh; config.json keys sh_degree_interval and
+// max_sh_degree).
+struct ShSettings {
+  int degree_interval = 1000;  // SH degree +1 every this many iterations
+  int max_degree = 3;
+};
+
+// Mip-Splatting's filters (TrainConfig::anti_aliasing; config.json keys as the fields' names).
+struct AntiAliasingSettings {
+  bool filter_3d = true;               // Mip-Splatting 3D filter
+  int filter_3d_interval = 100;        // recomputed this often after densification ends
+  bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
 };
 
 // Stage-2 fine-tune (views with InpaintTargets): appearance loss (L1 + SSIM instead of the paper's LPIPS,
@@ -253,20 +267,6 @@ struct BookkeepingSettings {
   int keep_checkpoints = 2;       // older checkpoint files are deleted
 };
 
-// Mip-Splatting's filters (TrainConfig::anti_aliasing; config.json keys as the fields' names).
-struct AntiAliasingSettings {
-  bool filter_3d = true;               // Mip-Splatting 3D filter
-  int filter_3d_interval = 100;        // recomputed this often after densification ends
-  bool filter_2d = true;               // Mip-Splatting 2D filter (else the 3DGS 0.3 px dilation)
-};
-
-// The degree of the colour's spherical harmonics (TrainConfig::sh; config.json keys sh_degree_interval and
-// max_sh_degree).
-struct ShSettings {
-  int degree_interval = 1000;  // SH degree +1 every this many iterations
-  int max_degree = 3;
-};
-
 struct TrainConfig {
   // Radiance: SH colour only (also the warm-up of intrinsic stage 1); Intrinsic: stage 1 with
   // materials, tracing and shading (the data set's glossy masks drive the region loss); Auto: intrinsic for
@@ -278,23 +278,18 @@ struct TrainConfig {
   std::uint64_t seed = 0;
   DeviceChoice device = DeviceChoice::Auto;
 
+  // The settings by group, in the order of their keys in config.json (each group's fields are documented in
+  // its struct; visit_fields in train_config.cpp maps the flat keys onto them).
   InputSettings input;
-
   InitSettings init;
-
-  // Optimisation.
   LearningRates lr;
   LossSettings loss;
   ShSettings sh;
   DensifySettings densify;
   AntiAliasingSettings anti_aliasing;
-
   IntrinsicSettings intrinsic;
-
   InpaintWeights inpaint;
-
   NanSettings nan;
-
   BookkeepingSettings bookkeeping;
 
   // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
