@@ -294,8 +294,7 @@ void run_select(const Options& o, int n_methods) {
       } catch (const Error& e) {
         std::fprintf(stderr, "warning: selecting without the run's glossy masks: %s\n", e.what());
       }
-    std::vector<const std::vector<float>*> gloss;
-    for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
+    const std::vector<const std::vector<float>*> gloss = glossy_mask_pointers(gloss_store);
     for (std::size_t c = 0; c + 2 < o.click.size(); c += 3) {
       const std::size_t vi = find_view(ds.train, o.click[c]);
       const View& view = ds.train[vi];

@@ -28,6 +28,12 @@ ClickOutcome click_in_view(const GaussianModel& model, const View& view, const I
   return o;
 }
 
+std::vector<const std::vector<float>*> glossy_mask_pointers(const std::vector<std::vector<float>>& masks) {
+  std::vector<const std::vector<float>*> out;
+  for (const std::vector<float>& m : masks) out.push_back(m.empty() ? nullptr : &m);
+  return out;
+}
+
 MirrorPlane support_plane_of_click_selection(const SelectionPoints& pts, const SelectionMask& seeds,
                                              const std::vector<View>& views,
                                              const std::vector<const std::vector<float>*>& glossy_masks) {

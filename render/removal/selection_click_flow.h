@@ -53,6 +53,9 @@ ClickSelection select_by_click_regions(const GaussianModel& model, const Selecti
                                        const RasterSettings& raster, const CloseSettings& close = {},
                                        const std::vector<const std::vector<float>*>& glossy_masks = {});
 
+// The views' glossy masks as select_by_click_regions reads them: a pointer to each, null where a view has none.
+std::vector<const std::vector<float>*> glossy_mask_pointers(const std::vector<std::vector<float>>& masks);
+
 // The plane of the views' glossy masks (plane_from_glossy_masks) searched where the selected Gaussians rest
 // (target_rest_heights). found = false without glossy masks or without a plane through them.
 MirrorPlane support_plane_of_click_selection(const SelectionPoints& pts, const SelectionMask& seeds,

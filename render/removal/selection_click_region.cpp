@@ -125,24 +125,6 @@ SelectionMask select_from_click_regions(const GaussianModel& model, const std::v
   return sel;
 }
 
-Mask selection_silhouette_mask(const GaussianModel& model, const SelectionMask& selection, const Camera& camera,
-                               const RasterSettings& raster) {
-  if (selection.size() != model.count())
-    throw Error("selection", "mask has " + std::to_string(selection.size()) + " entries for " +
-                                 std::to_string(model.count()) + " Gaussians");
-  std::vector<float> opacity = model.tensor(Param::OpacityLogit).value.to_host();
-  for (std::size_t i = 0; i < opacity.size(); ++i)
-    if (!selection[i]) opacity[i] = -40.0f;  // sigmoid(-40) ~ 4e-18: transparent
-  const Buffer<float> opacity_buf(opacity, model.device());
-  GaussianView gv = plain_gaussian_view(model);
-  gv.opacity_logits = opacity_buf.data();
-  const std::vector<float> alpha = rasterize(gv, camera, raster, model.device()).gbuffer.alpha.to_host();
-  const ViewMaskSettings vm;
-  Mask m(camera.width, camera.height);
-  for (std::size_t p = 0; p < m.data.size(); ++p) m.data[p] = alpha[p] > vm.threshold ? 255 : 0;
-  return open_mask(close_mask(m, vm.close_radius), vm.open_radius);
-}
-
 SelectionMask revote_with_view_masks(const GaussianModel& model, const SelectionMask& selection,
                                      const std::vector<View>& views, const RasterSettings& raster,
                                      const std::vector<const std::vector<float>*>& glossy) {

@@ -80,23 +80,15 @@ SelectionMask select_from_click_regions(const GaussianModel& model, const std::v
                                         const RasterSettings& raster = {}, const WeightVoteSettings& settings = {});
 
 // One pass of "masks from the selection, selection from the masks": every view's object mask is the
-// selection's silhouette (selection_silhouette_mask) less the view's glossy pixels, and the masks vote as the
-// data set's would (labels_from_masks, default settings). Two clicked views see the object from two sides
-// only; the vote of every view drops what the other views see outside the object and adds what they see
-// inside it. The caller closes the result. glossy[k] is views[k]'s glossy mask at the camera's size in
-// [0, 1] (null or absent: none).
+// selection's silhouette (selection_silhouette_mask, selection_view_masks.h) less the view's glossy pixels,
+// and the masks vote as the data set's would (labels_from_masks, default settings). Two clicked views see the
+// object from two sides only; the vote of every view drops what the other views see outside the object and
+// adds what they see inside it. A glossy mask marks the visible surface and never what stands in front of it, so its pixels are
+// no object (the table seen through a holed target's hole, the target's reflection in it). The caller
+// closes the result. glossy[k] is views[k]'s glossy mask at the camera's size in [0, 1] (null or absent:
+// none).
 SelectionMask revote_with_view_masks(const GaussianModel& model, const SelectionMask& selection,
                                      const std::vector<View>& views, const RasterSettings& raster = {},
                                      const std::vector<const std::vector<float>*>& glossy = {});
-
-// The selected Gaussians rendered alone (every other one transparent), their coverage above one half, closed
-// and opened by a pixel as selection_view_mask's masks are. Unlike the coverage in the full render it also
-// covers the selection's parts hidden behind unselected Gaussians: a selection that holds one side of an
-// object (the side two clicked views saw) then covers the object's whole outline from the far side, and the
-// vote adds the Gaussians of the side no clicked view saw. A glossy mask marks the visible surface and never
-// what stands in front of it, so its pixels are no object: the table seen through a holed target's hole, or
-// the target's reflection in it.
-Mask selection_silhouette_mask(const GaussianModel& model, const SelectionMask& selection, const Camera& camera,
-                               const RasterSettings& raster = {});
 
 }  // namespace goris

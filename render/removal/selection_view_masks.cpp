@@ -25,13 +25,35 @@ RasterOutput render_selection_channel(const GaussianModel& model, const Selectio
   return rasterize(view, camera, raster, model.device());
 }
 
+namespace {
+
+// A coverage image thresholded and cleaned as ViewMaskSettings says.
+Mask coverage_mask(const std::vector<float>& coverage, const Camera& camera, const ViewMaskSettings& s) {
+  if (!(s.threshold > 0.0f && s.threshold < 1.0f)) throw Error("masks", "the coverage threshold must lie in (0, 1)");
+  Mask m(camera.width, camera.height);
+  for (std::size_t p = 0; p < m.data.size(); ++p) m.data[p] = coverage[p] > s.threshold ? 255 : 0;
+  return open_mask(close_mask(m, s.close_radius), s.open_radius);
+}
+
+}  // namespace
+
 Mask selection_view_mask(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
                          const RasterSettings& raster, const ViewMaskSettings& s) {
-  if (!(s.threshold > 0.0f && s.threshold < 1.0f)) throw Error("masks", "the coverage threshold must lie in (0, 1)");
-  const std::vector<float> cov = render_selection_channel(model, mask, camera, raster).gbuffer.extras.to_host();
-  Mask m(camera.width, camera.height);
-  for (std::size_t p = 0; p < m.data.size(); ++p) m.data[p] = cov[p] > s.threshold ? 255 : 0;
-  return open_mask(close_mask(m, s.close_radius), s.open_radius);
+  return coverage_mask(render_selection_channel(model, mask, camera, raster).gbuffer.extras.to_host(), camera, s);
+}
+
+Mask selection_silhouette_mask(const GaussianModel& model, const SelectionMask& selection, const Camera& camera,
+                               const RasterSettings& raster, const ViewMaskSettings& s) {
+  if (selection.size() != model.count())
+    throw Error("selection", "mask has " + std::to_string(selection.size()) + " entries for " +
+                                 std::to_string(model.count()) + " Gaussians");
+  std::vector<float> opacity = model.tensor(Param::OpacityLogit).value.to_host();
+  for (std::size_t i = 0; i < opacity.size(); ++i)
+    if (!selection[i]) opacity[i] = -40.0f;  // sigmoid(-40) ~ 4e-18: transparent
+  const Buffer<float> opacity_buf(opacity, model.device());
+  GaussianView gv = plain_gaussian_view(model);
+  gv.opacity_logits = opacity_buf.data();
+  return coverage_mask(rasterize(gv, camera, raster, model.device()).gbuffer.alpha.to_host(), camera, s);
 }
 
 std::string object_mask_file_name(const std::string& name) {

@@ -33,6 +33,14 @@ struct ViewMaskSettings {
 Mask selection_view_mask(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
                          const RasterSettings& raster = {}, const ViewMaskSettings& settings = {});
 
+// The selected Gaussians rendered alone (every other one transparent), their coverage thresholded and
+// cleaned as selection_view_mask's is. Unlike the coverage in the full render it also covers the selection's
+// parts hidden behind unselected Gaussians: a selection that holds one side of an object (the side two
+// clicked views saw) covers the object's whole outline from the far side (the two clicks' every-view vote,
+// revote_with_view_masks). Throws goris::Error when the mask size differs from the model's.
+Mask selection_silhouette_mask(const GaussianModel& model, const SelectionMask& selection, const Camera& camera,
+                               const RasterSettings& raster = {}, const ViewMaskSettings& settings = {});
+
 // The file name a view's object mask has: mask_XXX.png for r_XXX, else <name>.png.
 std::string object_mask_file_name(const std::string& view_name);
 

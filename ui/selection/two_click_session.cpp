@@ -114,8 +114,7 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
 
     // The glossy masks the run trained with (select_by_click_regions): one per view or none.
     const std::vector<std::vector<float>> gloss_store = glossy_masks ? glossy_masks() : std::vector<std::vector<float>>{};
-    std::vector<const std::vector<float>*> gloss;
-    for (const auto& g : gloss_store) gloss.push_back(g.empty() ? nullptr : &g);
+    const std::vector<const std::vector<float>*> gloss = glossy_mask_pointers(gloss_store);
     std::vector<ClickView> regions;
     std::string what = "two-click:";
     for (const FlowClick& k : out->clicks) {
