@@ -188,6 +188,12 @@ StepStats Trainer::step() {
   // Optimiser step, density control, and the hooks that act on the updated model.
   optimizer_step(it);
   out.densify = densify(it);
+  if (out.densify.after > 0) {
+    const DensifyCounts& c = out.densify;
+    hook.note("density control: " + std::to_string(c.before) + " -> " + std::to_string(c.after) + " Gaussians (" +
+              std::to_string(c.cloned) + " cloned, " + std::to_string(c.split) + " split, " +
+              std::to_string(c.pruned) + " pruned)");
+  }
   for (const auto& h : hooks_) h->after_densify(hook);
 
   // D is the SH colour; the diffuse channel shows its view-independent part (maps, editor, PLY), in both
