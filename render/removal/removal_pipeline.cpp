@@ -350,7 +350,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
       relit = relight_target_shadow(model, target_only, selected, glossy_plane.found ? &glossy_plane : nullptr, views,
-                                    raster, out / "shadow");
+                                    raster, out / "shadow", intrinsic ? ShadowSampleColour::Model : ShadowSampleColour::Photos);
       report.shadow_found = relit.fit.found;
       report.shadow = relit.fit.reason;
       report.shadow_pixels = relit.relit_pixels;

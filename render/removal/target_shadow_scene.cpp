@@ -84,7 +84,8 @@ void relight_image(Image& image, const PlanePixels& px, const std::vector<float>
 
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                     const MirrorPlane* fallback, std::vector<TrainView>& views,
-                                    const RasterSettings& raster, const std::filesystem::path& out_dir) {
+                                    const RasterSettings& raster, const std::filesystem::path& out_dir,
+                                    ShadowSampleColour colour_from) {
   ShadowRelight out;
   const SelectionPoints pts = selection_points(model);
   const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
@@ -101,9 +102,11 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
   constexpr std::size_t kMaxSamples = 20000;
   out.pixels.resize(views.size());
   std::size_t total = 0;
+  std::vector<std::vector<float>> colour(views.size());  // [3][H][W] per view
   for (std::size_t i = 0; i < views.size(); ++i) {
     const RasterOutput r = rasterize(model.view(false), views[i].camera, raster, model.device());
     out.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
+    colour[i] = colour_from == ShadowSampleColour::Model ? r.gbuffer.color.to_host() : views[i].image;
     total += out.pixels[i].size();
   }
   const std::size_t stride = std::max<std::size_t>(1, (total + kMaxSamples - 1) / kMaxSamples);
@@ -114,7 +117,7 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
     for (std::size_t k = 0; k < out.pixels[i].size(); ++k, ++seen) {
       if (seen % stride) continue;
       const std::uint32_t p = out.pixels[i].pixel[k];
-      samples.add(out.pixels[i].point[k], {views[i].image[p], views[i].image[hw + p], views[i].image[2 * hw + p]});
+      samples.add(out.pixels[i].point[k], {colour[i][p], colour[i][hw + p], colour[i][2 * hw + p]});
     }
   }
   const TargetOccluder occluder(model, target);

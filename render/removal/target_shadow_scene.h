@@ -51,9 +51,18 @@ void relight_planar(std::vector<float>& image, std::size_t pixels_per_channel, c
                     const std::vector<float>& s, const TargetShadow& shadow);
 void relight_image(Image& image, const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow);
 
-// The whole step for `goris remove`: the support plane (shadow_geometry, `fallback` as there), samples from
-// the views' photos on it (the model rendered with the target, so pixels it covers are left out; at most
-// 20K), the fit, then the views' images relit in place. With a shadow found and `out_dir` not empty, the
+// Where the fit's samples take their colour. On a glossy support surface the photos' colour there is mostly
+// the reflection of the scene, which varies from view to view and hides the shadow from the fit; an intrinsic
+// model's own colour is its diffuse term D alone (the reflections are in the traced glossy term G), the same
+// from every view, and keeps the shadow.
+enum class ShadowSampleColour {
+  Photos,  // the training photos (a radiance model's colour would carry the reflections too)
+  Model,   // the model's rendered colour: D for an intrinsic model
+};
+
+// The whole step for `goris remove`: the support plane (shadow_geometry, `fallback` as there), samples on it
+// coloured as `colour` says (the model rendered with the target, so pixels it covers are left out; at most
+// 20K), the fit, then the views' images (the photos) relit in place. With a shadow found and `out_dir` not empty, the
 // share of the light the target took is written per view as grey images (out_dir/VIEW.png). `selected` may
 // hold more than `target` (the mirror twin): none of it is a candidate for the support surface.
 struct ShadowRelight {
@@ -64,6 +73,7 @@ struct ShadowRelight {
 };
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                     const MirrorPlane* fallback, std::vector<TrainView>& views,
-                                    const RasterSettings& raster, const std::filesystem::path& out_dir);
+                                    const RasterSettings& raster, const std::filesystem::path& out_dir,
+                                    ShadowSampleColour colour = ShadowSampleColour::Photos);
 
 }  // namespace goris

@@ -363,5 +363,70 @@ TEST(TargetShadow, RelightTargetShadowOnRenderedViews) {
   EXPECT_LT(after, 0.35 * before) << shaded << " shaded pixels";
 }
 
+
+// A glossy floor: the ball's shadow is in the floor's own (diffuse) colour, and every photo shows instead a
+// bright reflection that moves from view to view and hides it. Sampled from the photos the fit finds no
+// light; sampled from the model's colour (what an intrinsic model renders as D) it finds the true one, and
+// the photos are what it relights.
+TEST(TargetShadow, ModelColourSamplesSeeAShadowTheReflectionsHide) {
+  std::vector<test::TestGaussian> gs;
+  for (int y = 0; y < 25; ++y)
+    for (int x = 0; x < 25; ++x) {
+      const glm::vec3 p(-1.5f + 0.125f * x, -1.5f + 0.125f * y, 0.0f);
+      glm::vec3 c(0.7f);
+      if (hits_ball(p, glm::vec3(kLight)))
+        for (int k = 0; k < 3; ++k) c[k] = float(std::pow(std::pow(0.7, 2.2) * (1.0 - kStrength[k]), 1.0 / 2.2));
+      gs.push_back({p, 0.07f, 0.95f, c, 0.05f});
+    }
+  std::mt19937 rng(4);
+  for (int i = 0; i < 150; ++i)
+    gs.push_back({kBall + kBallRadius * in_unit_ball(rng), 0.06f, 0.95f, {0.8f, 0.2f, 0.2f}, 0.95f});
+  GaussianModel model = test::make_model(gs);
+  SelectionMask target(gs.size(), 0);
+  for (std::size_t i = 625; i < gs.size(); ++i) target[i] = 1;
+
+  const RasterSettings raster;
+  std::vector<TrainView> views;
+  for (int k = 0; k < 8; ++k) {
+    const float a = 0.785398f * float(k);
+    TrainView v;
+    v.name = "v" + std::to_string(k);
+    v.camera = test::look_at({3.0f * std::cos(a), 3.0f * std::sin(a), 2.5f}, {0.0f, 0.0f, 0.1f}, 64, 64, 55.0f);
+    v.image = rasterize(model.view(false), v.camera, raster, Device::CPU).gbuffer.color.to_host();
+    // The photo: the floor unshaded, with a bright band of reflection across it that each view sees elsewhere.
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const std::size_t p = std::size_t(y) * 64 + std::size_t(x);
+        const float band = std::exp(-0.5f * std::pow((float(x + y) - 16.0f * float(k % 4) - 40.0f) / 6.0f, 2.0f));
+        for (int c = 0; c < 3; ++c) {
+          float& pixel = v.image[std::size_t(c) * 64 * 64 + p];
+          if (pixel < 0.69f && pixel > 0.2f) pixel = 0.7f;  // the shadow is not in the photo
+          pixel = std::min(1.0f, pixel + 0.3f * band);
+        }
+      }
+    views.push_back(std::move(v));
+  }
+  const std::vector<TrainView> photos = views;
+
+  std::vector<TrainView> by_photos = photos;
+  const ShadowRelight from_photos = relight_target_shadow(model, target, target, nullptr, by_photos, raster, {});
+  EXPECT_FALSE(from_photos.fit.found) << from_photos.fit.reason;
+
+  std::vector<TrainView> by_model = photos;
+  const ShadowRelight from_model =
+      relight_target_shadow(model, target, target, nullptr, by_model, raster, {}, ShadowSampleColour::Model);
+  ASSERT_TRUE(from_model.fit.found) << from_model.fit.reason;
+  EXPECT_LT(std::acos(std::clamp(glm::dot(from_model.fit.light_direction, kLight), -1.0, 1.0)) * 180.0 / 3.14159265, 8.0)
+      << from_model.fit.reason;
+  // The photos are what gets relit: brighter where the model is shaded, never darker.
+  double gained = 0;
+  for (std::size_t k = 0; k < views.size(); ++k)
+    for (std::size_t i = 0; i < photos[k].image.size(); ++i) {
+      ASSERT_GE(by_model[k].image[i], photos[k].image[i] - 1e-6f);
+      gained += by_model[k].image[i] - photos[k].image[i];
+    }
+  EXPECT_GT(gained, 10.0);
+}
+
 }  // namespace
 }  // namespace goris
