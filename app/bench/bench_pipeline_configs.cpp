@@ -1,7 +1,7 @@
 #include "app/bench/bench_pipeline.h"
 
-#include "core/train/train_config.h"
 #include "core/util/fnv1a.h"
+#include "train/config/train_config.h"
 
 namespace goris::bench::pipeline {
 

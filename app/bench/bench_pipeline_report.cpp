@@ -13,7 +13,7 @@
 #include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
-#include "render/removal/removal_pipeline.h"
+#include "removal/pipeline/removal_pipeline.h"
 #include "tools/report/chart.h"
 #include "tools/report/pareto.h"
 

@@ -24,14 +24,14 @@
 #include "core/compute/kernel_profile.h"
 #include "core/compute/memory.h"
 #include "core/io/dataset.h"
-#include "core/train/image_losses.h"
-#include "core/train/run_folder.h"
-#include "core/train/train_setup.h"
+#include "train/losses/image_losses.h"
+#include "train/run/run_folder.h"
+#include "train/run/train_setup.h"
 #include "core/compute/bench.h"
 #include "core/util/error.h"
 #include "core/util/median.h"
-#include "render/train/intrinsic_renderer.h"
-#include "render/train/run_renderer.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/setup/run_renderer.h"
 
 namespace {
 using namespace goris;

@@ -28,9 +28,9 @@
 #include "app/cli_common/command.h"
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
-#include "core/train/train_config.h"
 #include "core/util/error.h"
-#include "render/train/finite_outputs.h"
+#include "train/config/train_config.h"
+#include "train/setup/finite_outputs.h"
 
 namespace {
 namespace fs = std::filesystem;

@@ -25,7 +25,7 @@ CLI::App& subcommand_group(CLI::App& parent, const std::string& name, const std:
 
 // --data DIR of the commands that read a run's data set (render, eval, select, remove, export): the data
 // set's new folder when it moved after training, in place of config.json's "data" for this one command
-// (core/train/run_data.h checks that it holds the same training views).
+// (train/run/run_data.h checks that it holds the same training views).
 CLI::Option* add_data_option(CLI::App& command, std::string& data);
 
 // The names of a named enumeration (core/util/named_enum.h), for an option's IsMember check.

@@ -1,15 +1,15 @@
 // `goris config`: the training settings and presets. With no option, the user-facing settings by section
 // with their defaults; --all lists every config.json key; --reference prints docs/reference/train-options.md
-// (the page is generated from the documentation beside each setting in core/train/train_config.cpp);
+// (the page is generated from the documentation beside each setting in train/config/train_config.cpp);
 // --presets lists the presets with their files, descriptions and settings.
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "app/cli_common/command.h"
-#include "core/train/config_presets.h"
-#include "core/train/train_config.h"
 #include "core/util/error.h"
+#include "train/config/config_presets.h"
+#include "train/config/train_config.h"
 
 namespace {
 using namespace goris;

@@ -29,9 +29,9 @@
 #include "core/io/dataset.h"
 #include "core/io/file_bytes.h"
 #include "core/metrics/removal_metrics.h"
-#include "core/train/train_config.h"
 #include "core/util/error.h"
-#include "render/removal/removal_pipeline.h"
+#include "removal/pipeline/removal_pipeline.h"
+#include "train/config/train_config.h"
 
 extern char** environ;
 

@@ -1,6 +1,6 @@
 // `goris detect RUN [--checkpoint FILE] [--device D] [--out DIR] [--set KEY=VALUE ...]`: what `--mode auto`
 // would decide on a trained model - the glossy-region detection from the photos
-// (render/train/glossy_detection.h) on the run's latest (or a given) checkpoint, with the run's detection
+// (train/setup/glossy_detection.h) on the run's latest (or a given) checkpoint, with the run's detection
 // settings or others given with --set. Prints the evidence, the planes and the decision, and the agreement
 // with the data set's own glossy masks when it has them; --out writes the masks (gloss_<view>.png).
 #include <algorithm>
@@ -13,13 +13,13 @@
 #include "app/cli_common/command.h"
 #include "core/io/dataset.h"
 #include "core/io/image.h"
-#include "core/removal/plane_from_masks.h"
-#include "core/train/checkpoint.h"
-#include "core/train/train_setup.h"
 #include "core/util/error.h"
-#include "render/train/glossy_detection.h"
-#include "render/train/raster_renderer.h"
-#include "render/train/training_setup.h"
+#include "removal/selection/plane_from_masks.h"
+#include "train/loop/checkpoint.h"
+#include "train/radiance/raster_renderer.h"
+#include "train/run/train_setup.h"
+#include "train/setup/glossy_detection.h"
+#include "train/setup/training_setup.h"
 
 namespace {
 namespace fs = std::filesystem;

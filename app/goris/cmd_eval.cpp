@@ -1,7 +1,7 @@
 // `goris eval RUN --split test [--gt after|full]`: image metrics of a trained run against the ground truth,
 // written to RUN/metrics.json (or --out) through a temporary file.
 //
-// PSNR and SSIM (the 3DGS definitions, core/train/image_losses.h) per view, then averaged over views.
+// PSNR and SSIM (the 3DGS definitions, train/losses/image_losses.h) per view, then averaged over views.
 // Masked metrics (M-PSNR, M-SSIM) use the view's object mask (test/mask_XXX.png): they are computed on the
 // crop given by the bounding box of the mask pixels >= 0.5, grown by 10% of its width / height on each
 // side (at least 4 pixels) and clamped to the image; views whose mask is empty are left out of the
@@ -16,9 +16,9 @@
 //
 // Runs with material channels on a data set with true normals (`goris synth`: train/gt/normal_XXX.exr) also
 // get "intrinsic_ground_truth": normal angular error, roughness and F0 on the training views' glossy
-// surface (render/train/intrinsic_accuracy.h). Intrinsic runs on a data set with glossy masks get
+// surface (train/intrinsic/intrinsic_accuracy.h). Intrinsic runs on a data set with glossy masks get
 // "materials": roughness, F0 and M on the glossy surface against the rest, and how well roughness alone
-// separates the two (render/train/material_separation.h).
+// separates the two (train/intrinsic/material_separation.h).
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -39,19 +39,19 @@
 #include "core/io/file_bytes.h"
 #include "core/io/image.h"
 #include "core/metrics/removal_metrics.h"
-#include "core/train/image_losses.h"
-#include "core/train/run_data.h"
-#include "core/train/run_folder.h"
-#include "core/train/train_setup.h"
+#include "train/losses/image_losses.h"
+#include "train/run/run_data.h"
+#include "train/run/run_folder.h"
+#include "train/run/train_setup.h"
 #include "core/compute/bench.h"
-#include "core/train/run_output_guard.h"
+#include "train/run/run_output_guard.h"
 #include "core/util/error.h"
 #include "core/compute/memory.h"
-#include "core/train/normal_prior.h"
-#include "render/train/intrinsic_accuracy.h"
-#include "render/train/material_separation.h"
-#include "render/train/run_renderer.h"
-#include "render/train/raster_renderer.h"
+#include "train/run/normal_prior.h"
+#include "train/intrinsic/intrinsic_accuracy.h"
+#include "train/intrinsic/material_separation.h"
+#include "train/setup/run_renderer.h"
+#include "train/radiance/raster_renderer.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -195,7 +195,7 @@ nlohmann::json material_stats_json(const MaterialStats& m) {
 }
 
 // Intrinsic runs on a data set with glossy masks: the materials on the glossy surface against the rest
-// (render/train/material_separation.h); j["materials"].
+// (train/intrinsic/material_separation.h); j["materials"].
 std::optional<MaterialSeparation> material_separation(const TrainConfig& config, const Dataset& ds,
                                                       GaussianModel& model, Device device, nlohmann::json& j) {
   if (config.mode != TrainMode::Intrinsic) return std::nullopt;

@@ -1,7 +1,7 @@
 // `goris export RUN [--ply OUT.ply] [--baked OUT.ply] [--spz OUT.spz] [--compressed-ply OUT.compressed.ply]
 // [--splat OUT.splat] [--glb OUT.glb] [--renders DIR [--frames N]] [--video OUT.mp4 [--seconds S] [--fps F]
 // [--before RUN0]] [--path test|train|orbit] [--channel C] [--iters N] [--device D]`: the
-// exports of a run folder (RUN or RUN/removal), see render/export/run_export.h. The standard formats (SPZ,
+// exports of a run folder (RUN or RUN/removal), see export/run/run_export.h. The standard formats (SPZ,
 // compressed PLY, .splat, GLB: core/io/splat_formats.h) hold the plain SH model --baked writes: for an intrinsic
 // run the distilled one (one distillation serves --baked and all of them).
 // Every output path is checked before any work starts; SIGINT, SIGTERM or SIGHUP during the distillation ends
@@ -24,11 +24,11 @@
 #include "app/cli_common/stop_signals.h"
 #include "core/io/file_bytes.h"
 #include "core/io/splat_formats.h"
-#include "core/train/run_folder.h"
-#include "core/train/run_output_guard.h"
 #include "core/util/error.h"
-#include "render/export/run_export.h"
-#include "render/export/video.h"
+#include "export/run/run_export.h"
+#include "export/run/video.h"
+#include "train/run/run_folder.h"
+#include "train/run/run_output_guard.h"
 
 namespace {
 namespace fs = std::filesystem;

@@ -19,9 +19,9 @@
 #include "core/io/ply.h"
 #include "core/io/splat_compare.h"
 #include "core/io/splat_formats.h"
-#include "core/train/checkpoint.h"
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
+#include "train/loop/checkpoint.h"
+#include "train/run/run_folder.h"
 
 namespace {
 namespace fs = std::filesystem;

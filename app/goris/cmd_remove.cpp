@@ -1,5 +1,5 @@
 // `goris remove RUN [--inpainter NAME | --inpainted DIR] [--ablate material|lamask] [--iters N]`: stage 2 on a
-// trained run (render/removal/removal_pipeline.h): each step with its progress, every intermediate in
+// trained run (removal/pipeline/removal_pipeline.h): each step with its progress, every intermediate in
 // RUN/removal/, the cleaned scene as the run folder RUN/removal (render / eval / export take it). SIGINT,
 // SIGTERM or SIGHUP stops at the next safe point with exit status 130, 143 or 129; running the command
 // again resumes.
@@ -18,7 +18,7 @@
 #include "app/cli_common/stop_signals.h"
 #include "core/compute/device.h"
 #include "core/util/error.h"
-#include "render/removal/removal_pipeline.h"
+#include "removal/pipeline/removal_pipeline.h"
 
 namespace {
 using namespace goris;

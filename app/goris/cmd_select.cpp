@@ -1,6 +1,6 @@
 // `goris select RUN [--click VIEW X Y ... | --masks [DIR] | --labels [--threshold T]] [regions] [edits]
 // [--out FILE] [--write-masks DIR]`: chooses the target of object removal and stores it in the run folder
-// (selection.json + selection.npy, core/removal/selection_file.h) with preview images (tinted | removed) of
+// (selection.json + selection.npy, removal/selection/selection_file.h) with preview images (tinted | removed) of
 // a few training views.
 //
 //   --labels  Gaussians with learned label > T (0.3), closed by the hull of their centres (paper Sec. 3.3)
@@ -33,15 +33,15 @@
 #include "core/io/dataset.h"
 #include "core/inpaint/mask.h"
 #include "core/io/image.h"
-#include "core/train/run_data.h"
-#include "core/train/run_folder.h"
-#include "core/train/train_setup.h"
-#include "core/train/run_output_guard.h"
+#include "train/run/run_data.h"
+#include "train/run/run_folder.h"
+#include "train/run/train_setup.h"
+#include "train/run/run_output_guard.h"
 #include "core/util/error.h"
-#include "render/removal/selection.h"
-#include "render/removal/selection_click_flow.h"
-#include "render/train/auto_mode.h"
-#include "render/train/raster_renderer.h"
+#include "removal/selection/selection.h"
+#include "removal/selection/selection_click_flow.h"
+#include "train/setup/auto_mode.h"
+#include "train/radiance/raster_renderer.h"
 
 namespace {
 namespace fs = std::filesystem;

@@ -23,18 +23,18 @@
 #include "core/compute/device.h"
 #include "core/io/file_bytes.h"
 #include "core/io/output_path.h"
-#include "core/train/checkpoint.h"
-#include "core/train/config_presets.h"
-#include "core/train/run_data.h"
-#include "core/train/run_folder.h"
-#include "core/train/trainer.h"
+#include "train/loop/checkpoint.h"
+#include "train/config/config_presets.h"
+#include "train/run/run_data.h"
+#include "train/run/run_folder.h"
+#include "train/loop/trainer.h"
 #include "core/compute/bench.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
-#include "render/train/intrinsic_renderer.h"
-#include "render/train/auto_mode.h"
-#include "render/train/run_renderer.h"
-#include "render/train/training_setup.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/setup/auto_mode.h"
+#include "train/setup/run_renderer.h"
+#include "train/setup/training_setup.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -47,7 +47,7 @@ struct Options {
   std::optional<float> downscale;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> sets;  // KEY=VALUE overrides of config.json keys
-  std::string preset;             // a preset's name or file (core/train/config_presets.h), applied before `sets`
+  std::string preset;             // a preset's name or file (train/config/config_presets.h), applied before `sets`
   bool resume = false, restart = false;
 };
 
@@ -124,7 +124,7 @@ void run_train(const Options& o) {
                                         : "no checkpoint in checkpoints/ to resume from");
     config = resumed->checkpoint.config;
     reject_changes_on_resume(o, run_dir, config);
-    // DATA may be the run's data set at a new folder: checked to hold the same views (core/train/run_data.h).
+    // DATA may be the run's data set at a new folder: checked to hold the same views (train/run/run_data.h).
     use_run_data(run_dir, config, data.string(), "DATA");
     std::printf("resuming %s from iteration %d (%s)\n", run_dir.string().c_str(), resumed->checkpoint.state.iteration,
                 resumed->file.filename().string().c_str());
@@ -161,7 +161,7 @@ void run_train(const Options& o) {
     std::printf("the run reached iteration %d but stopped before writing its model: writing it\n", done);
   }
 
-  // The shared set-up (render/train/training_setup.h, also the editor's): data, auto mode, images, state,
+  // The shared set-up (train/setup/training_setup.h, also the editor's): data, auto mode, images, state,
   // renderer, trainer. The line before it says the command has started (a large data set loads for a while).
   std::printf("loading %s\n", data.string().c_str());
   std::fflush(stdout);

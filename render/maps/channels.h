@@ -4,7 +4,7 @@
 // extras; the glossy term, light and visibility come from the intrinsic renderer (intrinsic runs only), the
 // two masks of the removal from the files stage 2 leaves in RUN/removal/ (for the training camera the view
 // is snapped to). Whether a channel can be shown depends on what is open: see channel_unavailable(). The
-// colours of each map: render/maps/channel_image.h on the CPU, shaders/channel.frag.glsl in the editor.
+// colours of each map: export/frames/channel_image.h on the CPU, shaders/channel.frag.glsl in the editor.
 #include <optional>
 #include <span>
 #include <string>

@@ -5,7 +5,7 @@
 // (roughness, traced reflection depth, 1 / view depth), as in the authors' code; the paper has 2 channels.
 //
 // All parameters live in ONE flat buffer (and one gradient buffer of the same layout) so that an optimiser
-// treats the net as a single group: see core/train/flat_adam.h. Per layer: weights [cout][cin][k][k], then biases.
+// treats the net as a single group: see train/optimizer/flat_adam.h. Per layer: weights [cout][cin][k][k], then biases.
 // T = float on CPU or CUDA; T = double on the CPU (gradient tests).
 #include <cstdint>
 #include <vector>

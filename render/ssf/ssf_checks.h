@@ -7,7 +7,7 @@
 #include <type_traits>
 
 #include "core/compute/buffer.h"
-#include "core/train/finite_check.h"
+#include "core/compute/finite_check.h"
 #include "core/util/error.h"
 
 namespace goris::ssf {

@@ -74,4 +74,20 @@ expect_pass(${WORK}/tree ${WORK}/ui_table.cmake "a declared include between ui/ 
 file(WRITE ${WORK}/tree/ui/gl/k.cpp "#include \"ui/shell/j.h\"\n")
 expect_failure(${WORK}/tree ${WORK}/ui_table.cmake "ui/gl/k.cpp: includes ui/shell/j.h, but ui/gl does not declare ui/shell")
 
+# A cycle between top-level folders (core -> render -> core) with none between folders: each top-level
+# folder is one library, so this fails too.
+file(WRITE ${WORK}/top_cycle.cmake
+     "set(GORIS_FOLDER_DEPENDENCIES \"core/util:\" \"core/io:render/raster\" \"render/raster:core/util\")\n")
+expect_failure(${WORK}/tree ${WORK}/top_cycle.cmake "cycle between top-level folders: core -> render -> core")
+
+# train/, removal/ and export/ are walked like core/ and render/: removal over train, not the other way.
+file(REMOVE ${WORK}/tree/ui/gl/k.cpp)
+file(WRITE ${WORK}/tree/train/loop/l.h "#pragma once\n#include \"core/util/a.h\"\n")
+file(WRITE ${WORK}/tree/removal/lift/m.h "#pragma once\n#include \"train/loop/l.h\"\n")
+file(WRITE ${WORK}/layers_table.cmake
+     "set(GORIS_FOLDER_DEPENDENCIES \"core/util:\" \"core/io:core/util\" \"tools/report:core/util\" \"ui/gl:core/util\" \"ui/shell:ui/gl\" \"train/loop:core/util\" \"removal/lift:train/loop\")\n")
+expect_pass(${WORK}/tree ${WORK}/layers_table.cmake "a declared include of train/ from removal/ was refused")
+file(WRITE ${WORK}/tree/train/loop/n.cpp "#include \"removal/lift/m.h\"\n")
+expect_failure(${WORK}/tree ${WORK}/layers_table.cmake "train/loop/n.cpp: includes removal/lift/m.h, but train/loop does not declare removal/lift")
+
 message(STATUS "folder dependencies: the repository passes; undeclared includes, unknown folders and cycles fail")

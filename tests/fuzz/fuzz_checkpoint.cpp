@@ -1,4 +1,4 @@
-// libFuzzer target for the checkpoint reader (core/train/checkpoint.cpp): the input is a checkpoint's body
+// libFuzzer target for the checkpoint reader (train/loop/checkpoint.cpp): the input is a checkpoint's body
 // (after the magic), given the checksum it needs, so the fuzzer reaches the parser behind the checksum.
 // Any body must load or throw goris::Error; anything else is a bug.
 #include <unistd.h>
@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <string>
 
-#include "core/train/checkpoint.h"
 #include "core/util/error.h"
 #include "core/util/fnv1a.h"
+#include "train/loop/checkpoint.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::filesystem::path path =

@@ -1,4 +1,4 @@
-// libFuzzer target for `--set KEY=VALUE` (core/train/train_config.cpp) and the checked number parsing under
+// libFuzzer target for `--set KEY=VALUE` (train/config/train_config.cpp) and the checked number parsing under
 // it (core/util/number_text.h): each input line is one override; any text must apply (leaving a
 // configuration that validates or is refused by validate with goris::Error) or be refused with
 // goris::Error; the number parsers must return a value within their limits whenever they accept.
@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/train/train_config.h"
 #include "core/util/error.h"
 #include "core/util/number_text.h"
+#include "train/config/train_config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -4,8 +4,8 @@
 #include <random>
 #include <vector>
 
-#include "render/intrinsic/coarse_tracing.h"
 #include "tests/support/test_support.h"
+#include "train/intrinsic/coarse_tracing.h"
 
 using namespace goris;
 

@@ -6,11 +6,11 @@
 #include <memory>
 #include <vector>
 
-#include "core/train/trainer.h"
-#include "render/train/intrinsic_renderer.h"
 #include "tests/support/intrinsic_scene.h"
 #include "tests/support/model_values.h"
 #include "tests/support/test_support.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/loop/trainer.h"
 
 using namespace goris;
 using namespace goris::test;

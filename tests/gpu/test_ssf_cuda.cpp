@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/ssf/glossy_filter.h"
-#include "core/train/flat_adam.h"
+#include "train/optimizer/flat_adam.h"
 #include "render/ssf/roughness_net.h"
 #include "tests/support/test_support.h"
 

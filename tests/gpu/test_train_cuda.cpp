@@ -5,13 +5,13 @@
 #include <random>
 #include <vector>
 
+#include "core/compute/finite_check.h"
 #include "core/compute/memory.h"
-#include "core/train/adam.h"
-#include "core/train/densify.h"
-#include "core/train/finite_check.h"
-#include "core/train/trainer.h"
-#include "render/train/raster_renderer.h"
 #include "tests/support/test_support.h"
+#include "train/loop/trainer.h"
+#include "train/optimizer/adam.h"
+#include "train/optimizer/densify.h"
+#include "train/radiance/raster_renderer.h"
 
 using namespace goris;
 

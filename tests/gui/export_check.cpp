@@ -18,8 +18,8 @@
 
 #include "core/io/image.h"
 #include "core/io/ply.h"
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
+#include "train/run/run_folder.h"
 
 namespace {
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/scene/gaussians.h"
-#include "core/train/trainer.h"
-#include "render/train/intrinsic_renderer.h"
 #include "tests/support/test_scenes.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/loop/trainer.h"
 
 namespace goris::test {
 

@@ -1,4 +1,4 @@
-// --mode auto's decision (render/train/auto_mode.h): the glossy-mask fraction rule, when the detection
+// --mode auto's decision (train/setup/auto_mode.h): the glossy-mask fraction rule, when the detection
 // runs, the mask folders, and the switch of a running trainer on the embedded default scene (masks hidden)
 // with resume. The detection itself is tested in test_glossy_detection.cpp.
 #include <algorithm>
@@ -10,14 +10,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/image.h"
-#include "core/train/checkpoint.h"
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
-#include "render/train/auto_mode.h"
-#include "render/train/intrinsic_renderer.h"
-#include "render/train/run_renderer.h"
-#include "render/train/training_setup.h"
 #include "tests/support/test_support.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/loop/checkpoint.h"
+#include "train/run/run_folder.h"
+#include "train/setup/auto_mode.h"
+#include "train/setup/run_renderer.h"
+#include "train/setup/training_setup.h"
 
 namespace goris {
 namespace {

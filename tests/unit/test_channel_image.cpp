@@ -1,4 +1,4 @@
-// render/maps/channel_image.h: every channel of a hand-made G-buffer (two pixels: one covered, one empty)
+// export/frames/channel_image.h: every channel of a hand-made G-buffer (two pixels: one covered, one empty)
 // comes out as the editor colours it, and the channels a render cannot hold are refused by name.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
-#include "render/maps/channel_image.h"
+#include "export/frames/channel_image.h"
 
 using namespace goris;
 

@@ -14,12 +14,12 @@
 #include <tuple>
 
 #include "core/io/file_bytes.h"
-#include "core/train/checkpoint.h"
-#include "core/train/hooks/hooks.h"
-#include "core/train/run_folder.h"
-#include "core/train/trainer.h"
 #include "core/util/fnv1a.h"
 #include "tests/support/test_support.h"
+#include "train/loop/checkpoint.h"
+#include "train/loop/hooks/hooks.h"
+#include "train/loop/trainer.h"
+#include "train/run/run_folder.h"
 
 namespace goris {
 namespace {

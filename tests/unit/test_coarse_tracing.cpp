@@ -1,4 +1,4 @@
-// Coarse tracing's ray selection (render/intrinsic/coarse_tracing.h) on synthetic glossy masks and screen
+// Coarse tracing's ray selection (train/intrinsic/coarse_tracing.h) on synthetic glossy masks and screen
 // roughness: one ray per aligned block in the first pass (a pixel that moves with the seed), every pixel that reads pyramid level 0 keeps its
 // ray, untraced pixels share a block with a traced one whose pixels all blur at least that much, the first
 // pass is part of the final selection, the gathered lists, the net's distance input, the filter's mass
@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "core/util/error.h"
-#include "render/intrinsic/coarse_tracing.h"
-#include "render/intrinsic/coarse_tracing_ops.h"
 #include "render/ssf/pyramid_kernels.h"
 #include "tests/support/test_support.h"
+#include "train/intrinsic/coarse_tracing.h"
+#include "train/intrinsic/coarse_tracing_ops.h"
 
 namespace goris {
 namespace {

@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "core/compute/cuda_dispatch.h"
-#include "render/intrinsic/intrinsic_glue.h"
 #include "render/raster/rasterizer.h"
 #include "render/trace/gaussian_tracer.h"
 #include "tests/support/test_support.h"
+#include "train/intrinsic/intrinsic_glue.h"
 
 namespace goris {
 namespace {

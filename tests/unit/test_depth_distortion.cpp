@@ -1,4 +1,4 @@
-// Depth distortion (core/train/depth_distortion.h, render/train/depth_distortion_pass.h): the image-space
+// Depth distortion (train/losses/depth_distortion.h, train/radiance/depth_distortion_pass.h): the image-space
 // identity A M2 - M1^2 = sum_{i<j} w_i w_j (m_i - m_j)^2, finite-difference gradients in double precision of
 // each piece and of the whole composition through the rasterizer, the float pass against the double maths,
 // and what the loss is for: two surfaces on one ray cost, one does not, and its gradient separates less.
@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/train/depth_distortion.h"
 #include "render/raster/raster_cpu.h"
-#include "render/train/depth_distortion_pass.h"
 #include "tests/unit/test_raster_scenes.h"
+#include "train/losses/depth_distortion.h"
+#include "train/radiance/depth_distortion_pass.h"
 
 using namespace goris;
 using goris::test::RasterScene;

@@ -1,11 +1,11 @@
-// The fine-tune's targets inside the lighting-aware mask (render/removal/dereflect.h): the photo minus what
+// The fine-tune's targets inside the lighting-aware mask (removal/lift/dereflect.h): the photo minus what
 // stage 1 says the target added, only on the mask's pixels, clamped to the photo's range.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "core/util/error.h"
-#include "render/removal/dereflect.h"
+#include "removal/lift/dereflect.h"
 
 using namespace goris;
 

@@ -1,7 +1,7 @@
-// Emit weights from the glossy masks (core/train/emit_weights.h, intrinsic_emit = mask): a Gaussian that
+// Emit weights from the glossy masks (train/loop/emit_weights.h, intrinsic_emit = mask): a Gaussian that
 // projects onto the glossy mask does not emit, one beside it does, one no view sees keeps 1, and views
 // without a mask do not vote. After a removal the masks are filled under the target
-// (render/removal/removed_glossy_masks.h), so what the lift places there takes the surface's vote.
+// (removal/masks/removed_glossy_masks.h), so what the lift places there takes the surface's vote.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/train/emit_weights.h"
-#include "core/train/train_config.h"
-#include "render/removal/removed_glossy_masks.h"
-#include "render/train/auto_mode.h"
+#include "removal/masks/removed_glossy_masks.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
+#include "train/config/train_config.h"
+#include "train/loop/emit_weights.h"
+#include "train/setup/auto_mode.h"
 
 namespace goris {
 namespace {

@@ -1,12 +1,12 @@
-// Bad input to the exports (render/export/run_export.h): unwritable outputs are refused before any work,
+// Bad input to the exports (export/run/run_export.h): unwritable outputs are refused before any work,
 // a missing or broken run folder is an error naming the file, an unknown render path lists the known ones.
 #include <fstream>
 #include <string>
 
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
-#include "render/export/run_export.h"
+#include "export/run/run_export.h"
 #include "tests/support/test_support.h"
+#include "train/run/run_folder.h"
 
 using namespace goris;
 namespace fs = std::filesystem;

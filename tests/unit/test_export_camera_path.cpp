@@ -1,4 +1,4 @@
-// Camera paths of `goris export` (render/export/camera_path.h): the orbit rule recovers a ring of cameras'
+// Camera paths of `goris export` (export/frames/camera_path.h): the orbit rule recovers a ring of cameras'
 // centre, up, radius and height; orbit frames look at the centre, are evenly spaced, counter-clockwise,
 // upright; interpolated distillation cameras lie between neighbours with proper rotations.
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "core/util/error.h"
-#include "render/export/camera_path.h"
+#include "export/frames/camera_path.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;

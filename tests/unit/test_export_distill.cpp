@@ -1,4 +1,4 @@
-// Distillation (render/export/distill.h) on a tiny synthetic scene: a teacher with a strongly view-dependent
+// Distillation (export/distill/distill.h) on a tiny synthetic scene: a teacher with a strongly view-dependent
 // appearance (degree-3 SH) is distilled into a student that starts from the same geometry with plain
 // colours only (as an intrinsic run's D starts); the held-out PSNR must rise substantially while the
 // geometry of the baked PLY stays bit for bit the start's. Also: no training, stops, learning geometry on
@@ -13,10 +13,10 @@
 #include "core/compute/memory.h"
 #include "core/scene/filter3d.h"
 #include "core/util/error.h"
-#include "render/export/camera_path.h"
-#include "render/export/distill.h"
-#include "render/train/raster_renderer.h"
+#include "export/distill/distill.h"
+#include "export/frames/camera_path.h"
 #include "tests/support/test_support.h"
+#include "train/radiance/raster_renderer.h"
 
 using namespace goris;
 

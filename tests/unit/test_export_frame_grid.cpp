@@ -1,8 +1,8 @@
-// The contact sheet of `goris export --renders` (render/export/frame_grid.h): layout and frame placement.
+// The contact sheet of `goris export --renders` (export/frames/frame_grid.h): layout and frame placement.
 #include <vector>
 
 #include "core/util/error.h"
-#include "render/export/frame_grid.h"
+#include "export/frames/frame_grid.h"
 #include "tests/support/test_support.h"
 
 using namespace goris;

@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "core/util/error.h"
-#include "render/removal/finetune_views.h"
+#include "removal/lift/finetune_views.h"
 
 namespace goris {
 namespace {

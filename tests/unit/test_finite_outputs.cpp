@@ -1,4 +1,4 @@
-// The stability bench's finite-output verdict (render/train/finite_outputs.h): a NaN or Inf planted in a
+// The stability bench's finite-output verdict (train/setup/finite_outputs.h): a NaN or Inf planted in a
 // PLY, a checkpoint's parameters or Adam moments, an intrinsic run's environment map, or the metrics of
 // `goris eval` is flagged with the file and what is not finite; clean outputs pass.
 #include <gtest/gtest.h>
@@ -14,11 +14,11 @@
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
 #include "core/io/ply.h"
-#include "core/train/checkpoint.h"
-#include "core/train/run_folder.h"
-#include "render/train/intrinsic_renderer.h"
-#include "render/train/finite_outputs.h"
-#include "render/train/run_renderer.h"
+#include "train/loop/checkpoint.h"
+#include "train/run/run_folder.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/setup/finite_outputs.h"
+#include "train/setup/run_renderer.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;

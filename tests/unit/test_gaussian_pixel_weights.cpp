@@ -6,9 +6,9 @@
 
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
+#include "removal/selection/gaussian_pixel_weights.h"
+#include "removal/selection/select_view.h"
 #include "render/raster/rasterizer.h"
-#include "render/removal/gaussian_pixel_weights.h"
-#include "render/removal/select_view.h"
 #include "tests/support/table_box_scene.h"
 
 namespace goris {

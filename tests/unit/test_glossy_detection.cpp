@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/util/error.h"
-#include "render/export/camera_path.h"
-#include "render/train/glossy_detection.h"
+#include "export/frames/camera_path.h"
 #include "tests/support/test_support.h"
+#include "train/setup/glossy_detection.h"
 
 namespace goris {
 namespace {

@@ -1,4 +1,4 @@
-// The glossy plane constraint (core/train/glossy_plane.h): on a table of flat Gaussians seen from above, the
+// The glossy plane constraint (train/loop/glossy_plane.h): on a table of flat Gaussians seen from above, the
 // plane is the table top with its normal towards the cameras; the mirror world under the table goes at the
 // start, a Gaussian that moves under the table later is put back on it, and what lies under the plane away
 // from the glossy pixels (a leg) or above it (an object) is left alone. Without glossy masks nothing happens.
@@ -10,12 +10,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "core/removal/selection_points.h"
-#include "core/train/glossy_plane.h"
-#include "core/train/trainer.h"
-#include "render/train/intrinsic_renderer.h"
+#include "core/scene/selection_points.h"
 #include "tests/support/intrinsic_scene.h"
 #include "tests/unit/test_selection_scene.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/loop/glossy_plane.h"
+#include "train/loop/trainer.h"
 
 namespace goris {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
-#include "render/removal/inpaint_mask.h"
-#include "render/removal/inpaint_mask_scene.h"
+#include "removal/masks/inpaint_mask.h"
+#include "removal/masks/inpaint_mask_scene.h"
 #include "tests/support/table_box_scene.h"
 
 namespace goris {

@@ -1,4 +1,4 @@
-// Errors of recovered normals and materials against an intrinsic ground truth (render/train/intrinsic_accuracy.h):
+// Errors of recovered normals and materials against an intrinsic ground truth (train/intrinsic/intrinsic_accuracy.h):
 // a flat floor of Gaussians with known roughness and F0, compared with true normals that are exact or tilted
 // by a known angle; and the glossy material reference read from a `goris synth` scene.json.
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 
 #include "core/util/error.h"
-#include "render/train/intrinsic_accuracy.h"
-#include "render/train/material_separation.h"
-#include "render/train/raster_renderer.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
+#include "train/intrinsic/intrinsic_accuracy.h"
+#include "train/intrinsic/material_separation.h"
+#include "train/radiance/raster_renderer.h"
 
 using namespace goris;
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "core/train/intrinsic_losses.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
+#include "train/losses/intrinsic_losses.h"
 
 using namespace goris;
 using goris::test::expect_gradient;

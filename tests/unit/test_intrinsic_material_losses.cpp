@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "core/scene/gaussians.h"
-#include "core/train/trainer.h"
-#include "render/train/intrinsic_renderer.h"
 #include "tests/support/intrinsic_scene.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/loop/trainer.h"
 
 using namespace goris;
 using namespace goris::test;

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "core/train/checkpoint.h"
-#include "core/train/trainer.h"
-#include "render/train/intrinsic_renderer.h"
 #include "tests/support/intrinsic_scene.h"
 #include "tests/support/model_values.h"
 #include "tests/support/test_support.h"
+#include "train/intrinsic/intrinsic_renderer.h"
+#include "train/loop/checkpoint.h"
+#include "train/loop/trainer.h"
 
 using namespace goris;
 using namespace goris::test;

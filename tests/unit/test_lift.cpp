@@ -11,7 +11,7 @@
 
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
-#include "render/removal/lift.h"
+#include "removal/lift/lift.h"
 
 namespace goris {
 namespace {

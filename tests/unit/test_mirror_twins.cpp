@@ -1,4 +1,4 @@
-// The target's mirror twin below a planar glossy surface (core/removal/mirror_twins.h): a table top of
+// The target's mirror twin below a planar glossy surface (core/scene/mirror_twins.h): a table top of
 // glossy centres, a target sphere above it and its learned mirror copy below, another object with its own
 // twin that must stay, noise; the same scene tilted; surfaces that are no plane.
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/removal/mirror_twins.h"
-#include "core/removal/selection_points.h"
+#include "core/scene/mirror_twins.h"
+#include "core/scene/selection_points.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
 

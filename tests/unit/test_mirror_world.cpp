@@ -1,13 +1,13 @@
-// The warm-up's mirror world (core/train/mirror_world.h): a Gaussian seen only behind a glossy surface is
+// The warm-up's mirror world (train/loop/mirror_world.h): a Gaussian seen only behind a glossy surface is
 // found; one in front of it, one behind a rough surface, one seen behind the glossy surface in a single view
 // and one that another view sees against the background are kept. Views without a glossy mask do not vote.
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "core/train/mirror_world.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
+#include "train/loop/mirror_world.h"
 
 namespace goris {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "core/train/train_config.h"
 #include "core/util/number_text.h"
 #include "tests/support/test_support.h"
+#include "train/config/train_config.h"
 
 namespace goris {
 namespace {

@@ -6,13 +6,13 @@
 
 #include <glm/glm.hpp>
 
+#include "core/compute/finite_check.h"
 #include "core/scene/gaussian_kernels.h"
-#include "core/train/adam.h"
-#include "core/train/densify.h"
-#include "core/train/finite_check.h"
-#include "core/train/lr_schedule.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
+#include "train/optimizer/adam.h"
+#include "train/optimizer/densify.h"
+#include "train/optimizer/lr_schedule.h"
 
 using namespace goris;
 

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "core/io/output_path.h"
-#include "core/train/run_output_guard.h"
 #include "tests/support/test_support.h"
+#include "train/run/run_output_guard.h"
 
 namespace goris {
 namespace {

@@ -9,10 +9,10 @@
 
 #include "render/raster/raster_types.h"
 #include "core/util/error.h"
-#include "core/removal/plane_from_masks.h"
-#include "render/removal/planar_reflection.h"
-#include "render/removal/removed_glossy_masks.h"
-#include "core/train/trainer.h"
+#include "removal/selection/plane_from_masks.h"
+#include "removal/masks/planar_reflection.h"
+#include "removal/masks/removed_glossy_masks.h"
+#include "train/loop/trainer.h"
 #include "render/raster/rasterizer.h"
 #include "tests/unit/test_selection_scene.h"
 

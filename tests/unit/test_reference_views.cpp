@@ -9,7 +9,7 @@
 
 #include "core/scene/gaussians.h"
 #include "core/util/error.h"
-#include "render/removal/reference_views.h"
+#include "removal/lift/reference_views.h"
 
 namespace goris {
 namespace {

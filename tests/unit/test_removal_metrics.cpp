@@ -9,7 +9,7 @@
 
 #include "core/metrics/flip.h"
 #include "core/metrics/removal_metrics.h"
-#include "core/train/image_losses.h"
+#include "train/losses/image_losses.h"
 
 namespace goris {
 namespace {

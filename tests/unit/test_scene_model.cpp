@@ -11,11 +11,11 @@
 #include "core/scene/gaussian_init.h"
 #include "core/scene/gaussian_kernels.h"
 #include "core/scene/gaussians.h"
-#include "core/train/train_setup.h"
 #include "core/util/error.h"
 #include "tests/support/model_values.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
+#include "train/run/train_setup.h"
 
 using namespace goris;
 

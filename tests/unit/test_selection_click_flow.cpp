@@ -6,12 +6,12 @@
 
 #include <vector>
 
-#include "core/removal/selection_points.h"
+#include "core/scene/selection_points.h"
 #include "core/util/error.h"
-#include "render/removal/selection_click_flow.h"
-#include "render/removal/selection_click_region.h"
-#include "render/removal/selection_masks.h"
-#include "render/removal/selection_view_masks.h"
+#include "removal/selection/selection_click_flow.h"
+#include "removal/selection/selection_click_region.h"
+#include "removal/selection/selection_masks.h"
+#include "removal/selection/selection_view_masks.h"
 #include "tests/support/table_box_scene.h"
 
 namespace goris {

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "core/util/error.h"
-#include "render/removal/gaussian_pixel_weights.h"
-#include "render/removal/selection_click_region.h"
-#include "render/removal/selection_masks.h"
-#include "render/removal/selection_view_masks.h"
+#include "removal/selection/gaussian_pixel_weights.h"
+#include "removal/selection/selection_click_region.h"
+#include "removal/selection/selection_masks.h"
+#include "removal/selection/selection_view_masks.h"
 #include "tests/support/table_box_scene.h"
 
 namespace goris {

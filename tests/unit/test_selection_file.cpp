@@ -7,8 +7,8 @@
 
 #include "core/io/file_bytes.h"
 #include "core/io/npy.h"
-#include "core/removal/selection_file.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_file.h"
 #include "test_selection_scene.h"
 #include "tests/support/test_support.h"
 

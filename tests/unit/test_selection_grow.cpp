@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "core/removal/selection_grow.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_grow.h"
 #include "test_selection_scene.h"
 
 namespace goris {

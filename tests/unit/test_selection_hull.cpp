@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
-#include "core/removal/select_hull.h"
-#include "core/removal/select_kdtree.h"
-#include "core/removal/select_outliers.h"
+#include "core/scene/select_hull.h"
+#include "removal/selection/select_kdtree.h"
+#include "removal/selection/select_outliers.h"
 
 namespace goris {
 namespace {

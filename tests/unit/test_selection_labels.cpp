@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/removal/selection_labels.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_labels.h"
 #include "test_selection_scene.h"
 
 namespace goris {

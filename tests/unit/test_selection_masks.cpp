@@ -6,9 +6,9 @@
 
 #include "core/io/image.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_masks.h"
+#include "removal/selection/selection_preview.h"
 #include "render/raster/rasterizer.h"
-#include "render/removal/selection_masks.h"
-#include "render/removal/selection_preview.h"
 #include "test_selection_scene.h"
 #include "tests/support/test_support.h"
 

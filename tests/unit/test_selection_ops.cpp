@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <set>
 
-#include "core/removal/selection_grow.h"
-#include "core/removal/selection_ops.h"
-#include "core/removal/selection_screen.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_grow.h"
+#include "removal/selection/selection_ops.h"
+#include "removal/selection/selection_region.h"
+#include "removal/selection/selection_screen.h"
+#include "removal/selection/selection_view_masks.h"
 #include "render/raster/rasterizer.h"
-#include "render/removal/selection_region.h"
-#include "render/removal/selection_view_masks.h"
 #include "test_selection_scene.h"
 
 namespace goris {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/util/error.h"
-#include "render/removal/selection_pick.h"
+#include "removal/selection/selection_pick.h"
 #include "render/trace/gaussian_tracer.h"
 #include "test_selection_scene.h"
 

@@ -12,7 +12,7 @@
 
 #include "core/util/error.h"
 #include "render/ssf/conv_passes.h"
-#include "core/train/flat_adam.h"
+#include "train/optimizer/flat_adam.h"
 #include "render/ssf/roughness_net.h"
 
 namespace goris::ssf {

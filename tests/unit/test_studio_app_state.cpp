@@ -4,7 +4,7 @@
 #include <chrono>
 #include <thread>
 
-#include "core/train/run_folder.h"
+#include "train/run/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 #include "ui/document/app_state.h"

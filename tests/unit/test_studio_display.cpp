@@ -7,10 +7,10 @@
 #include <thread>
 
 #include "core/io/ply.h"
-#include "render/train/raster_renderer.h"
-#include "core/train/run_folder.h"
+#include "train/radiance/raster_renderer.h"
+#include "train/run/run_folder.h"
 #include "core/util/error.h"
-#include "render/train/intrinsic_renderer.h"
+#include "train/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "ui/display/display_renderer.h"
 #include "tests/support/test_support.h"

@@ -11,7 +11,7 @@
 #include "core/io/ply.h"
 #include "core/io/splat_compare.h"
 #include "core/io/splat_formats.h"
-#include "core/train/run_folder.h"
+#include "train/run/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 #include "ui/document/app_state.h"

@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <chrono>
 
-#include "core/removal/selection_file.h"
-#include "core/removal/selection_points.h"
-#include "core/train/run_folder.h"
+#include "core/scene/selection_points.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_file.h"
 #include "tests/support/test_support.h"
+#include "train/run/run_folder.h"
 #include "ui/document/removal_session.h"
 #include "ui/document/trainer_session.h"
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <thread>
 
-#include "core/removal/selection_file.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_file.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_studio_scenes.h"
 #include "ui/selection/selection_session.h"

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <thread>
 
-#include "core/train/checkpoint.h"
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
+#include "train/loop/checkpoint.h"
+#include "train/run/run_folder.h"
 #include "ui/document/trainer_session.h"
 
 using namespace goris;

@@ -5,9 +5,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
+#include "train/config/config_presets.h"
 #include "ui/document/settings_store.h"
 #include "ui/document/train_options.h"
 

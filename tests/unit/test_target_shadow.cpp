@@ -1,4 +1,4 @@
-// The target's cast shadow (core/removal/target_shadow.h): a textured floor z = 0 shaded by a ball-shaped
+// The target's cast shadow (removal/shadow/target_shadow.h): a textured floor z = 0 shaded by a ball-shaped
 // target under a tilted light, with an analytic occluder (ray-sphere); the light's direction and strength
 // come back and relighting restores the unshaded floor. Without a shadow in the colours nothing is found;
 // bad input is an error. The Gaussian-scene glue (tracing the target's Gaussians) is checked as well.
@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
-#include "core/removal/target_shadow.h"
 #include "core/scene/gaussians.h"
+#include "removal/shadow/target_shadow.h"
+#include "removal/shadow/target_shadow_scene.h"
 #include "render/raster/rasterizer.h"
-#include "render/removal/target_shadow_scene.h"
 #include "tests/support/test_support.h"
 #include "tests/unit/test_selection_scene.h"
 

@@ -1,5 +1,5 @@
-// The training configuration's files: presets (resources/presets, core/train/config_presets.h), config.json
-// of older versions (core/train/config_migration.h) and the user-facing settings' documentation.
+// The training configuration's files: presets (resources/presets, train/config/config_presets.h), config.json
+// of older versions (train/config/config_migration.h) and the user-facing settings' documentation.
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/file_bytes.h"
-#include "core/train/config_migration.h"
-#include "core/train/config_presets.h"
-#include "core/train/run_folder.h"
-#include "core/train/train_config.h"
 #include "tests/support/test_support.h"
+#include "train/config/config_migration.h"
+#include "train/config/config_presets.h"
+#include "train/config/train_config.h"
+#include "train/run/run_folder.h"
 
 namespace goris {
 namespace {

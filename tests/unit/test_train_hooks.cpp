@@ -1,4 +1,4 @@
-// The training hooks (core/train/hooks/): which ones a configuration creates and in what order, the emit
+// The training hooks (train/loop/hooks/): which ones a configuration creates and in what order, the emit
 // weights' schedule, and their state in checkpoints (the emit weights' float block, as the format has it).
 #include <gtest/gtest.h>
 
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "core/train/checkpoint.h"
-#include "core/train/hooks/hooks.h"
-#include "core/train/trainer.h"
 #include "tests/support/test_support.h"
+#include "train/loop/checkpoint.h"
+#include "train/loop/hooks/hooks.h"
+#include "train/loop/trainer.h"
 
 using namespace goris;
 

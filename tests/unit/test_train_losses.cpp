@@ -5,10 +5,10 @@
 #include <random>
 #include <vector>
 
-#include "core/train/depth_normal_loss.h"
-#include "core/train/image_losses.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
+#include "train/losses/depth_normal_loss.h"
+#include "train/losses/image_losses.h"
 
 using namespace goris;
 using goris::test::expect_gradient;

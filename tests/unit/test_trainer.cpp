@@ -14,14 +14,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/ply.h"
-#include "core/train/checkpoint.h"
-#include "core/train/image_losses.h"
-#include "core/train/trainer.h"
 #include "core/util/error.h"
-#include "render/train/raster_renderer.h"
 #include "tests/support/model_values.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/test_support.h"
+#include "train/loop/checkpoint.h"
+#include "train/loop/trainer.h"
+#include "train/losses/image_losses.h"
+#include "train/radiance/raster_renderer.h"
 
 using namespace goris;
 
@@ -423,7 +423,7 @@ TEST(TrainConfig, JsonRoundTripAndValidation) {
 // trained with it on is refused by name, and --set names it as removed rather than unknown.
 TEST(TrainConfig, RemovedSettingsLoadWhenOffAndAreRefusedWhenOn) {
   nlohmann::json j = TrainConfig{};
-  j.erase("config_version");  // written before config.json had a version (core/train/config_migration.h)
+  j.erase("config_version");  // written before config.json had a version (train/config/config_migration.h)
   j["intrinsic_net_residual"] = false;
   j["intrinsic_region_rough"] = 0;
   j["intrinsic_roughness_follows_region"] = 0.0;

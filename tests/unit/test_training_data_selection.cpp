@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/io/dataset.h"
-#include "render/train/training_setup.h"
+#include "train/setup/training_setup.h"
 #include "core/util/error.h"
 #include "tests/support/test_support.h"
 

@@ -14,7 +14,7 @@
 
 #include "core/compute/buffer.h"
 #include "core/io/camera.h"
-#include "render/train/intrinsic_renderer.h"
+#include "train/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 
 namespace goris::ui {

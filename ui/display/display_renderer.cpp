@@ -1,7 +1,7 @@
 #include "ui/display/display_renderer.h"
 
 #include "core/util/error.h"
-#include "render/train/intrinsic_renderer.h"
+#include "train/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 
 namespace goris::ui {

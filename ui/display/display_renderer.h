@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/compute/buffer.h"
-#include "core/removal/selection_points.h"
+#include "core/scene/selection_points.h"
 #include "ui/display/display_frame.h"
 #include "ui/display/model_snapshot.h"
 

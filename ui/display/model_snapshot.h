@@ -14,8 +14,8 @@
 
 #include "core/compute/buffer.h"
 #include "core/scene/gaussians.h"
-#include "core/train/train_config.h"
 #include "render/raster/raster_types.h"
+#include "train/config/train_config.h"
 
 namespace goris::ui {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "core/removal/selection_points.h"
+#include "core/scene/selection_points.h"
 #include "ui/display/display_frame.h"
 #include "ui/display/model_snapshot.h"
 

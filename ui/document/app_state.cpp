@@ -6,9 +6,9 @@
 
 #include "core/compute/device.h"
 #include "core/io/output_path.h"
-#include "core/train/checkpoint.h"
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
+#include "train/loop/checkpoint.h"
+#include "train/run/run_folder.h"
 #include "ui/document/panel_layout.h"
 #include "ui/document/train_options.h"
 

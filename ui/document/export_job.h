@@ -1,5 +1,5 @@
 #pragma once
-// The exports of a run folder (`goris export`: render/export/run_export.h) on a background job
+// The exports of a run folder (`goris export`: export/run/run_export.h) on a background job
 // (ui/document/background_job.h) for the editor's Export dialog and the scripted mode's `export` actions: the
 // intrinsic PLY, the baked (distilled, SH-only) PLY (and the same model as SPZ, compressed PLY, .splat, GLB)
 // and rendered frames, in that order, each through the same library call as the CLI.
@@ -21,7 +21,7 @@
 
 #include "core/compute/device_choice.h"
 #include "core/io/splat_formats.h"
-#include "render/export/run_export.h"
+#include "export/run/run_export.h"
 #include "ui/document/background_job.h"
 
 namespace goris::ui {

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <string>
 
-#include "render/removal/removal_pipeline.h"
+#include "removal/pipeline/removal_pipeline.h"
 
 namespace goris::ui {
 

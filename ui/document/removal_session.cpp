@@ -3,9 +3,9 @@
 #include <cstdio>
 
 #include "core/io/dataset.h"
-#include "core/train/run_folder.h"
-#include "core/train/train_setup.h"
 #include "core/util/error.h"
+#include "train/run/run_folder.h"
+#include "train/run/train_setup.h"
 
 namespace goris::ui {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 2 (object removal, render/removal/removal_pipeline.h run_removal) on a background job
+// Stage 2 (object removal, removal/pipeline/removal_pipeline.h run_removal) on a background job
 // (ui/document/background_job.h) for the editor, on the same run folder as `goris remove`. A new start after a run
 // ended resumes from what RUN/removal holds.
 //
@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "render/removal/removal_pipeline.h"
+#include "removal/pipeline/removal_pipeline.h"
 #include "ui/document/background_job.h"
 #include "ui/document/removal_progress.h"
 

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "core/io/splat_formats.h"
-#include "core/train/run_folder.h"
-#include "core/train/train_setup.h"
 #include "core/util/error.h"
-#include "render/train/raster_renderer.h"
-#include "render/train/run_renderer.h"
+#include "train/radiance/raster_renderer.h"
+#include "train/run/run_folder.h"
+#include "train/run/train_setup.h"
+#include "train/setup/run_renderer.h"
 #include "ui/display/dataset_cameras.h"
 
 namespace goris::ui {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/io/dataset.h"
-#include "core/train/train_config.h"
+#include "train/config/train_config.h"
 #include "ui/display/model_snapshot.h"
 
 namespace goris::ui {

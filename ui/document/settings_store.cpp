@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/train/config_presets.h"
 #include "core/util/error.h"
 #include "render/maps/channels.h"
+#include "train/config/config_presets.h"
 
 namespace goris::ui {
 

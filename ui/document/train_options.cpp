@@ -5,8 +5,8 @@
 #include <ctime>
 #include <optional>
 
-#include "core/train/config_presets.h"
 #include "core/util/error.h"
+#include "train/config/config_presets.h"
 
 namespace goris::ui {
 

@@ -7,18 +7,18 @@
 #include <utility>
 #include <vector>
 
-#include "core/train/train_config.h"
+#include "train/config/train_config.h"
 #include "ui/document/settings_store.h"
 
 namespace goris::ui {
 
-// Applies KEY=VALUE to `config` as `goris train --set KEY=VALUE` does (core/train/train_config.h), then
+// Applies KEY=VALUE to `config` as `goris train --set KEY=VALUE` does (train/config/train_config.h), then
 // validates it, so that a script or the panel fails at the line that sets a bad value. Throws goris::Error
 // for an unknown or removed key or a value the configuration rejects.
 void apply_config_override(TrainConfig& config, const std::string& key, const std::string& value);
 
 // The panel's options (mode, iterations, resolution, initial points, device, background), its preset's
-// settings (a preset file, core/train/config_presets.h, as `goris train --preset`), then `overrides` in order.
+// settings (a preset file, train/config/config_presets.h, as `goris train --preset`), then `overrides` in order.
 // Throws goris::Error naming the preset's file when it cannot be read.
 TrainConfig new_run_config(const StudioSettings& settings,
                            const std::vector<std::pair<std::string, std::string>>& overrides);

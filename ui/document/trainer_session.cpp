@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/train/checkpoint.h"
-#include "core/train/run_folder.h"
 #include "core/util/error.h"
-#include "render/train/auto_mode.h"
-#include "render/train/raster_renderer.h"
-#include "render/train/run_renderer.h"
-#include "render/train/training_setup.h"
+#include "train/loop/checkpoint.h"
+#include "train/radiance/raster_renderer.h"
+#include "train/run/run_folder.h"
+#include "train/setup/auto_mode.h"
+#include "train/setup/run_renderer.h"
+#include "train/setup/training_setup.h"
 
 namespace goris::ui {
 
@@ -42,7 +42,7 @@ void TrainerSession::publish_snapshot(int iteration) {
 }
 
 // A new run, or the latest checkpoint of the folder, set up as `goris train` does it
-// (render/train/training_setup.h); the in-memory trainer is reused when the folder is the one trained last.
+// (train/setup/training_setup.h); the in-memory trainer is reused when the folder is the one trained last.
 void TrainerSession::prepare_trainer(const TrainRequest& rq) {
   const fs::path run_dir = fs::absolute(rq.run_dir);
   if (trainer_ && run_dir == run_dir_) {

@@ -1,6 +1,6 @@
 #pragma once
 // Stage-1 training on its own thread for the editor (docs/design/architecture.md, The editor), set up as
-// `goris train` does (render/train/training_setup.h: modes radiance / intrinsic / auto, normal priors,
+// `goris train` does (train/setup/training_setup.h: modes radiance / intrinsic / auto, normal priors,
 // make_renderer) with the same run folder (config.json, checkpoints/, log.csv, point_cloud.ply,
 // environment.png; an existing run is resumed from its latest checkpoint). It runs on a background job
 // (ui/document/background_job.h) whose stop is a finish, not a cancel:
@@ -21,8 +21,8 @@
 #include <memory>
 #include <string>
 
-#include "core/train/train_config.h"
-#include "core/train/trainer.h"
+#include "train/config/train_config.h"
+#include "train/loop/trainer.h"
 #include "ui/document/background_job.h"
 #include "ui/display/model_snapshot.h"
 #include "ui/document/training_history.h"

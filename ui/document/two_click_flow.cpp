@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "core/util/error.h"
-#include "render/train/auto_mode.h"
+#include "train/setup/auto_mode.h"
 #include "ui/document/app_state.h"
 
 namespace goris::ui {

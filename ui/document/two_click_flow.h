@@ -10,7 +10,7 @@
 //      back;
 //   4. use them as target masks (AppState::use_as_target_masks) and start the removal.
 //
-// Every evaluation is `goris select --click`'s own code (render/removal/selection_click_flow.h) run on the
+// Every evaluation is `goris select --click`'s own code (removal/selection/selection_click_flow.h) run on the
 // selection worker (SelectionSession::click_regions), one undo step of the selection; the flow's undo steps
 // back through its clicks (and the target masks), its cancel undoes them all and stops a running removal.
 // No ImGui here: the panel (ui/panels/two_click_panel.h), the main viewport and scripts drive it.
@@ -23,7 +23,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/removal/selection_points.h"
+#include "core/scene/selection_points.h"
 #include "ui/selection/flow_result.h"
 
 namespace goris::ui {

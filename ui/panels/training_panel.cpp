@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "core/compute/device_choice.h"
-#include "core/train/config_presets.h"
 #include "core/util/duration_text.h"
 #include "core/util/error.h"
+#include "train/config/config_presets.h"
 #include "ui/document/train_options.h"
 
 namespace goris::ui {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/inpaint/mask.h"
-#include "core/removal/selection_points.h"
+#include "core/scene/selection_points.h"
 
 namespace goris::ui {
 

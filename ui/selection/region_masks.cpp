@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "core/util/error.h"
-#include "render/removal/selection_region.h"
+#include "removal/selection/selection_region.h"
 
 namespace goris::ui {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The selection tools' regions as masks over a model's Gaussians, computed with the library's selection
-// rules (render/removal/selection.h): a rectangle, lasso or brush stroke in a view's pixels (through the
+// rules (removal/selection/selection.h): a rectangle, lasso or brush stroke in a view's pixels (through the
 // depth or through everything), a sphere or an oriented box, a colour range. Nothing here touches threads
 // or the GUI; the editor runs these on its selection worker.
 #include <string>
@@ -9,9 +9,9 @@
 #include <glm/glm.hpp>
 
 #include "core/io/camera.h"
-#include "core/removal/selection_ops.h"
-#include "core/removal/selection_points.h"
-#include "core/removal/selection_screen.h"
+#include "core/scene/selection_points.h"
+#include "removal/selection/selection_ops.h"
+#include "removal/selection/selection_screen.h"
 #include "render/raster/raster_types.h"
 
 namespace goris {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/removal/selection_labels.h"
-#include "core/removal/selection_ops.h"
 #include "core/util/error.h"
+#include "removal/selection/selection_labels.h"
+#include "removal/selection/selection_ops.h"
 
 namespace goris::ui {
 

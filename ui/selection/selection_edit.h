@@ -1,6 +1,6 @@
 #pragma once
 // The editor's selection as a short list of edits over one model (docs/design/architecture.md, The editor),
-// evaluated with the library's selection rules (core/removal, render/removal/selection.h):
+// evaluated with the library's selection rules (removal/selection/selection.h):
 //
 //   click        the Gaussian under the cursor; with the slider g > 0 grown over similar neighbours
 //                (grow_selection) and closed (close_selection), as `goris select --click --grow g`
@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "core/removal/selection_grow.h"
-#include "core/removal/selection_points.h"
+#include "core/scene/selection_points.h"
+#include "removal/selection/selection_grow.h"
 
 namespace goris::ui {
 

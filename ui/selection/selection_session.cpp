@@ -4,10 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/removal/selection_file.h"
-#include "core/removal/selection_labels.h"
 #include "core/util/error.h"
-#include "render/removal/selection_masks.h"
+#include "removal/selection/selection_file.h"
+#include "removal/selection/selection_labels.h"
+#include "removal/selection/selection_masks.h"
 #include "ui/display/background_priority.h"
 #include "ui/selection/session_context.h"
 

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "core/scene/gaussians.h"
-#include "render/removal/selection_pick.h"
+#include "removal/selection/selection_pick.h"
 #include "ui/selection/selection_session.h"
 
 namespace goris::ui {

@@ -3,11 +3,11 @@
 #include <cstdio>
 
 #include "core/inpaint/mask.h"
-#include "core/removal/selection_labels.h"
-#include "core/removal/selection_ops.h"
 #include "core/util/error.h"
-#include "render/removal/selection_masks.h"
-#include "render/removal/selection_view_masks.h"
+#include "removal/selection/selection_labels.h"
+#include "removal/selection/selection_masks.h"
+#include "removal/selection/selection_ops.h"
+#include "removal/selection/selection_view_masks.h"
 #include "ui/selection/session_context.h"
 
 namespace goris::ui {

@@ -1,13 +1,13 @@
 // SelectionSession::click_regions (ui/selection/selection_session.h): the two-click flow's evaluation on the
-// selection worker, with `goris select --click`'s own steps (render/removal/selection_click_flow.h).
+// selection worker, with `goris select --click`'s own steps (removal/selection/selection_click_flow.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "core/util/error.h"
-#include "render/removal/selection_click_flow.h"
-#include "render/removal/selection_view_masks.h"
+#include "removal/selection/selection_click_flow.h"
+#include "removal/selection/selection_view_masks.h"
 #include "ui/selection/flow_result.h"
 #include "ui/selection/session_context.h"
 

@@ -1,0 +1,257 @@
+#include "removal/shadow/target_shadow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/util/error.h"
+
+namespace goris {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const double kGoldenAngle = kPi * (3.0 - std::sqrt(5.0));
+
+// n directions spread evenly over the cap of angular radius `radius` around unit `axis` (the whole sphere
+// for radius = pi); n = 1 gives the axis itself.
+std::vector<glm::dvec3> cap_directions(const glm::dvec3& axis, double radius, int n) {
+  if (n <= 1 || radius <= 0.0) return {axis};
+  const glm::dvec3 helper = std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 t = glm::normalize(glm::cross(helper, axis));
+  const glm::dvec3 b = glm::cross(axis, t);
+  const double one_minus_cos = 1.0 - std::cos(radius);
+  std::vector<glm::dvec3> out(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double cos_t = 1.0 - (k + 0.5) / n * one_minus_cos;
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double phi = k * kGoldenAngle;
+    out[std::size_t(k)] = glm::normalize(cos_t * axis + sin_t * (std::cos(phi) * t + std::sin(phi) * b));
+  }
+  return out;
+}
+
+struct LineFit {
+  double b = 0.0, beta = 0.0, r2 = 0.0;
+};
+
+// Weighted least squares y = b + beta x.
+LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& w) {
+  double sw = 0, sx = 0, sy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) sw += w[i], sx += w[i] * x[i], sy += w[i] * y[i];
+  LineFit f;
+  if (sw <= 0) return f;
+  const double mx = sx / sw, my = sy / sw;
+  double sxx = 0, sxy = 0, syy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double dx = x[i] - mx, dy = y[i] - my;
+    sxx += w[i] * dx * dx, sxy += w[i] * dx * dy, syy += w[i] * dy * dy;
+  }
+  f.beta = sxx > 1e-12 ? sxy / sxx : 0.0;
+  f.b = my - f.beta * mx;
+  f.r2 = (sxx > 1e-12 && syy > 1e-12) ? sxy * sxy / (sxx * syy) : 0.0;
+  return f;
+}
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+}  // namespace
+
+ShadowGeometry shadow_geometry(const std::vector<glm::vec3>& centres, const std::vector<float>& weights,
+                               const SelectionMask& target, const SelectionMask& candidates, const ShadowSettings& st,
+                               const MirrorPlane* fallback) {
+  const std::size_t n = centres.size();
+  if (weights.size() != n || target.size() != n || candidates.size() != n)
+    throw Error("target shadow", "per-Gaussian arrays differ in size (" + std::to_string(n) + " centres)");
+  if (count_selected(target) == 0) throw Error("target shadow", "the target is empty");
+  ShadowGeometry g;
+  std::vector<glm::dvec3> tc;  // the target's centres
+  for (std::size_t i = 0; i < n; ++i)
+    if (target[i]) tc.push_back(glm::dvec3(centres[i])), g.centroid += tc.back();
+  g.centroid /= double(tc.size());
+  // 90th percentile: a few stray centres must not inflate the neighbourhood.
+  std::vector<double> dist;
+  for (const glm::dvec3& c : tc) dist.push_back(glm::length(c - g.centroid));
+  const std::size_t q = dist.size() * 9 / 10;
+  std::nth_element(dist.begin(), dist.begin() + std::ptrdiff_t(q), dist.end());
+  g.radius = std::max(dist[q], 1e-6);
+  g.reach = st.radius_ratio * g.radius;
+
+  std::vector<glm::vec3> near;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!target[i] && candidates[i] && weights[i] >= 0.05f && g.in_reach(glm::dvec3(centres[i])))
+      near.push_back(centres[i]);
+  if (near.size() >= st.min_samples) {
+    // The target rests on (or hangs just above) its support: a plane counts only where the target's lowest
+    // centres (5th percentile of their heights above it) are within its radius of it. Without this, over a
+    // mirror the learned mirror world below the surface wins (the default scene's radiance run: a plane 0.65
+    // below the table top).
+    std::vector<double> h(tc.size());
+    MirrorSettings ps;
+    ps.tolerance_ratio = st.plane_tolerance_ratio;
+    ps.min_inlier_fraction = st.min_plane_fraction;
+    ps.min_glossy = st.min_samples;
+    ps.ransac_iterations = 512;
+    ps.accept = [&](const glm::dvec3& normal, double offset) {
+      const double side = glm::dot(normal, g.centroid) - offset < 0 ? -1.0 : 1.0;
+      for (std::size_t k = 0; k < tc.size(); ++k) h[k] = side * (glm::dot(normal, tc[k]) - offset);
+      const std::size_t q5 = h.size() / 20;
+      std::nth_element(h.begin(), h.begin() + std::ptrdiff_t(q5), h.end());
+      return std::abs(h[q5]) <= g.radius;
+    };
+    g.plane = fit_mirror_plane(near, ps);
+  }
+  if (!g.plane.found && fallback && fallback->found && std::abs(fallback->signed_distance(g.centroid)) <= g.reach)
+    g.plane = *fallback;
+  if (!g.plane.found) {
+    g.reason = near.size() < st.min_samples
+                   ? "only " + std::to_string(near.size()) + " Gaussians near the target: no surface to shade"
+                   : "no support plane under the target (" + std::to_string(near.size()) + " Gaussians near it)";
+    return g;
+  }
+  g.up = g.plane.signed_distance(g.centroid) < 0 ? -g.plane.normal : g.plane.normal;
+  g.found = true;
+  return g;
+}
+
+namespace {
+
+// The target's opacity along each point's rays toward each direction of `dirs`, averaged.
+std::vector<double> mean_occlusion(const std::vector<glm::vec3>& points, const std::vector<glm::dvec3>& dirs,
+                                   const TargetOcclusion& occlusion) {
+  const std::size_t m = points.size();
+  std::vector<double> s(m, 0.0);
+  if (m == 0) return s;
+  std::vector<glm::vec3> ray_d(m);
+  std::vector<float> alpha(m);
+  for (const glm::dvec3& d : dirs) {  // one direction per call keeps the ray arrays small
+    std::fill(ray_d.begin(), ray_d.end(), glm::vec3(d));
+    std::fill(alpha.begin(), alpha.end(), 0.0f);
+    occlusion(points, ray_d, alpha);
+    for (std::size_t k = 0; k < m; ++k) s[k] += std::clamp(double(alpha[k]), 0.0, 1.0) / double(dirs.size());
+  }
+  return s;
+}
+
+std::vector<glm::dvec3> cone_of(const glm::dvec3& d, double cone_degrees, const ShadowSettings& st) {
+  return cap_directions(d, cone_degrees * kPi / 180.0, cone_degrees > 0 ? st.cone_samples : 1);
+}
+
+}  // namespace
+
+TargetShadow fit_target_shadow(const ShadowGeometry& geo, const ShadowSamples& samples, const TargetOcclusion& occlusion,
+                               const ShadowSettings& st) {
+  const std::size_t m = samples.size();
+  if (samples.colour.size() != m || samples.weight.size() != m)
+    throw Error("target shadow", "the samples' arrays differ in size (" + std::to_string(m) + " positions)");
+  TargetShadow out;
+  out.samples = m;
+  if (!geo.found) {
+    out.reason = geo.reason;
+    return out;
+  }
+  if (m < st.min_samples) {
+    out.reason = "only " + std::to_string(m) + " samples of the support surface near the target";
+    return out;
+  }
+  std::vector<glm::dvec3> lin(m);
+  std::vector<double> y(m), w(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const glm::dvec3 c = glm::max(glm::dvec3(samples.colour[k]), glm::dvec3(0.0));
+    lin[k] = glm::dvec3(std::pow(c.x, st.gamma), std::pow(c.y, st.gamma), std::pow(c.z, st.gamma));
+    y[k] = luminance(lin[k]);
+    w[k] = std::max(0.0f, samples.weight[k]);
+  }
+  // Points right under the target are hidden from the views: what they show says nothing about the light.
+  const std::vector<double> under = mean_occlusion(samples.position, {geo.up}, occlusion);
+  double w_total = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    if (under[k] > 0.5) w[k] = 0.0;
+    w_total += w[k];
+  }
+  if (w_total <= 0) {
+    out.reason = "every sample lies under the target";
+    return out;
+  }
+
+  struct Scored {
+    glm::dvec3 dir{0, 0, 1};
+    double cone = 0.0;
+    LineFit fit;
+    std::vector<double> s;
+    bool valid = false;
+  };
+  auto score = [&](const glm::dvec3& d, double cone) {
+    Scored sc;
+    sc.dir = d;
+    sc.cone = cone;
+    sc.s = mean_occlusion(samples.position, cone_of(d, cone, st), occlusion);
+    double shadowed = 0;
+    for (std::size_t k = 0; k < m; ++k) shadowed += sc.s[k] > 0.5 ? w[k] : 0.0;
+    sc.fit = fit_line(sc.s, y, w);
+    sc.valid = shadowed >= st.min_shadowed * w_total && sc.fit.beta < 0;
+    return sc;
+  };
+  auto better = [](const Scored& a, const Scored& b) { return a.valid && (!b.valid || a.fit.r2 > b.fit.r2); };
+
+  // The light's direction: the hemisphere on the target's side, then a cap around the best.
+  Scored best;
+  for (const glm::dvec3& d : cap_directions(geo.up, 0.5 * kPi, st.directions / 2)) {
+    Scored sc = score(d, 0.0);
+    if (better(sc, best)) best = std::move(sc);
+  }
+  if (!best.valid) {
+    out.reason = "no light direction puts enough of the support surface in the target's shadow";
+    return out;
+  }
+  const double spacing = std::sqrt(4.0 * kPi / st.directions);
+  for (const glm::dvec3& d : cap_directions(best.dir, 2.0 * spacing, st.refine_directions)) {
+    Scored sc = score(d, 0.0);
+    if (better(sc, best)) best = std::move(sc);
+  }
+  // Its size.
+  const glm::dvec3 dir = best.dir;
+  for (double cone : st.cone_degrees) {
+    if (cone <= 0.0) continue;
+    Scored sc = score(dir, cone);
+    if (better(sc, best)) best = std::move(sc);
+  }
+
+  // Strength per channel: y_c = b_c - b_c k_c s.
+  glm::dvec3 k(0.0);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> yc(m);
+    for (std::size_t r = 0; r < m; ++r) yc[r] = lin[r][c];
+    const LineFit f = fit_line(best.s, yc, w);
+    k[c] = f.b > 1e-9 ? std::clamp(-f.beta / f.b, 0.0, st.max_strength) : 0.0;
+  }
+  const double k_lum = best.fit.b > 1e-9 ? std::clamp(-best.fit.beta / best.fit.b, 0.0, st.max_strength) : 0.0;
+  out.light_direction = best.dir;
+  out.cone_degrees = best.cone;
+  out.strength = k;
+  out.strength_luminance = k_lum;
+  out.r2 = best.fit.r2;
+  char line[200];
+  std::snprintf(line, sizeof line, "light (%.2f, %.2f, %.2f), cone %.1f deg, strength %.2f, R^2 %.2f",
+                best.dir.x, best.dir.y, best.dir.z, best.cone, k_lum, best.fit.r2);
+  out.found = k_lum >= st.min_strength && best.fit.r2 >= st.min_r2;
+  out.reason = out.found ? std::string(line) : std::string("too weak to be a shadow: ") + line;
+  return out;
+}
+
+std::vector<float> shadow_fraction(const TargetShadow& shadow, const std::vector<glm::vec3>& points,
+                                   const TargetOcclusion& occlusion, const ShadowSettings& st) {
+  if (!shadow.found) return std::vector<float>(points.size(), 0.0f);
+  const std::vector<double> s = mean_occlusion(points, cone_of(shadow.light_direction, shadow.cone_degrees, st), occlusion);
+  return std::vector<float>(s.begin(), s.end());
+}
+
+glm::vec3 shadow_gain(const TargetShadow& shadow, float s, const ShadowSettings& st) {
+  glm::vec3 g(1.0f);
+  if (!shadow.found || s <= 0.0f) return g;
+  for (int c = 0; c < 3; ++c)
+    g[c] = float(std::pow(1.0 / (1.0 - shadow.strength[c] * std::min(1.0f, s)), 1.0 / st.gamma));
+  return g;
+}
+
+}  // namespace goris

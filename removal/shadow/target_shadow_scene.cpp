@@ -1,0 +1,148 @@
+#include "removal/shadow/target_shadow_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/io/image.h"
+#include "core/scene/gaussian_kernels.h"
+#include "core/scene/selection_points.h"
+#include "core/util/error.h"
+#include "removal/masks/inpaint_mask_scene.h"
+#include "render/raster/rasterizer.h"
+
+namespace goris {
+
+TargetOccluder::TargetOccluder(const GaussianModel& model, const SelectionMask& target)
+    : target_(subset_model(model, target).copy_to(Device::CPU)), tracer_(Device::CPU) {
+  tracer_.build(target_.view(false));
+}
+
+TargetOcclusion TargetOccluder::function() const {
+  return [this](const std::vector<glm::vec3>& o, const std::vector<glm::vec3>& d, std::vector<float>& alpha) {
+    if (o.empty()) return;
+    TraceOutputs out;
+    out.alpha = alpha.data();
+    tracer_.trace({&o[0].x, &d[0].x, o.size()}, out);
+  };
+}
+
+PlanePixels support_plane_pixels(const Camera& camera, const std::vector<float>& median_depth,
+                                 const std::vector<float>& alpha, const ShadowGeometry& geo) {
+  const std::size_t w = std::size_t(camera.width), h = std::size_t(camera.height);
+  if (median_depth.size() != w * h || alpha.size() != w * h)
+    throw Error("shadow", "depth/alpha maps of " + std::to_string(median_depth.size()) + " pixels for a " +
+                              std::to_string(w) + "x" + std::to_string(h) + " camera");
+  PlanePixels px;
+  if (!geo.found) return px;
+  const glm::dvec3 c(camera.center());
+  const double nc = glm::dot(geo.plane.normal, c);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const std::size_t p = y * w + x;
+      if (alpha[p] < 0.5f || median_depth[p] <= 0.0f) continue;
+      const glm::dvec3 d(camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f));
+      const double nd = glm::dot(geo.plane.normal, d);
+      if (std::abs(nd) < 1e-6) continue;
+      const double t = (geo.plane.offset - nc) / nd;
+      if (t <= 0) continue;
+      const glm::dvec3 hit = c + t * d;
+      if (!geo.in_reach(hit)) continue;
+      const double z = camera.to_camera(glm::vec3(hit)).z;
+      if (std::abs(double(median_depth[p]) - z) > 0.03 * z + 2.0 * geo.plane.tolerance) continue;
+      px.pixel.push_back(std::uint32_t(p));
+      px.point.push_back(glm::vec3(hit));
+    }
+  return px;
+}
+
+namespace {
+
+// Multiplies channel c of pixel p, at data[p * pixel_stride + c * channel_stride], by its gain.
+void relight(float* data, std::size_t pixel_stride, std::size_t channel_stride, bool sizes_ok, const std::string& image,
+             const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow) {
+  if (s.size() != px.size() || !sizes_ok)
+    throw Error("shadow", "relighting " + std::to_string(px.size()) + " pixels with " + std::to_string(s.size()) +
+                              " shadow values in an image of " + image);
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    const glm::vec3 g = shadow_gain(shadow, s[k]);
+    for (std::size_t c = 0; c < 3; ++c) data[px.pixel[k] * pixel_stride + c * channel_stride] *= g[c];
+  }
+}
+
+}  // namespace
+
+void relight_planar(std::vector<float>& image, std::size_t hw, const PlanePixels& px, const std::vector<float>& s,
+                    const TargetShadow& shadow) {
+  relight(image.data(), 1, hw, image.size() >= 3 * hw, std::to_string(image.size()) + " floats", px, s, shadow);
+}
+
+void relight_image(Image& image, const PlanePixels& px, const std::vector<float>& s, const TargetShadow& shadow) {
+  relight(image.pixels.data(), std::size_t(image.channels), 1, image.channels >= 3,
+          std::to_string(image.channels) + " channels", px, s, shadow);
+}
+
+ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
+                                    const MirrorPlane* fallback, std::vector<TrainView>& views,
+                                    const RasterSettings& raster, const std::filesystem::path& out_dir,
+                                    ShadowSampleColour colour_from) {
+  ShadowRelight out;
+  const SelectionPoints pts = selection_points(model);
+  const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
+  std::vector<float> opacity(logit.size());
+  for (std::size_t i = 0; i < logit.size(); ++i) opacity[i] = kernels::sigmoid(logit[i]);
+  SelectionMask candidates(selected.size());
+  for (std::size_t i = 0; i < selected.size(); ++i) candidates[i] = !selected[i];
+  const ShadowGeometry geo = shadow_geometry(pts.position, opacity, target, candidates, {}, fallback);
+  if (!geo.found) {
+    out.fit.reason = geo.reason;
+    return out;
+  }
+
+  constexpr std::size_t kMaxSamples = 20000;
+  out.pixels.resize(views.size());
+  std::size_t total = 0;
+  std::vector<std::vector<float>> colour(views.size());  // [3][H][W] per view
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const RasterOutput r = rasterize(model.view(false), views[i].camera, raster, model.device());
+    out.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
+    colour[i] = colour_from == ShadowSampleColour::Model ? r.gbuffer.color.to_host() : views[i].image;
+    total += out.pixels[i].size();
+  }
+  const std::size_t stride = std::max<std::size_t>(1, (total + kMaxSamples - 1) / kMaxSamples);
+  ShadowSamples samples;
+  std::size_t seen = 0;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const std::size_t hw = views[i].image.size() / 3;
+    for (std::size_t k = 0; k < out.pixels[i].size(); ++k, ++seen) {
+      if (seen % stride) continue;
+      const std::uint32_t p = out.pixels[i].pixel[k];
+      samples.add(out.pixels[i].point[k], {colour[i][p], colour[i][hw + p], colour[i][2 * hw + p]});
+    }
+  }
+  const TargetOccluder occluder(model, target);
+  out.fit = fit_target_shadow(geo, samples, occluder.function());
+  if (!out.fit.found) return out;
+
+  if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
+  out.s.resize(views.size());
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const PlanePixels& px = out.pixels[i];
+    out.s[i] = shadow_fraction(out.fit, px.point, occluder.function());
+    const std::size_t hw = views[i].image.size() / 3;
+    relight_planar(views[i].image, hw, px, out.s[i], out.fit);
+    std::vector<float> share(px.size());  // the share of the light the target took, per plane pixel
+    for (std::size_t k = 0; k < px.size(); ++k) {
+      share[k] = float(out.fit.strength_luminance) * out.s[i][k];
+      out.relit_pixels += share[k] > 0.05f ? 1 : 0;
+    }
+    if (out_dir.empty()) continue;
+    Image im(views[i].camera.width, views[i].camera.height, 1, Device::CPU);
+    for (std::size_t p = 0; p < hw; ++p) im.pixels[p] = 0.0f;
+    for (std::size_t k = 0; k < px.size(); ++k) im.pixels[px.pixel[k]] = share[k];
+    save_png(out_dir / (views[i].name + ".png"), im);
+  }
+  return out;
+}
+
+}  // namespace goris
