@@ -437,8 +437,19 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     nlohmann::json opts = made_from;
     opts["materials"] = materials;
     opts["views"] = report.reference_views;
+    // The file stems of every view's maps: the reference views', then the other views' fills ("_fill").
+    std::vector<std::string> stems;
+    for (std::size_t k = 0; k < inpainted.size(); ++k) {
+      const bool reference = k < choice.views.size();
+      const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
+      stems.push_back(reference ? ds.train[v].name : ds.train[v].name + "_fill");
+    }
+    opts["fills"] = std::vector<std::string>(stems.begin() + std::ptrdiff_t(choice.views.size()), stems.end());
     const fs::path opts_path = dir / "made_from.json";
-    const bool cached = made_from_changes(opts_path, opts).empty();
+    // A record whose maps are not all there (removed by hand, or a folder copied in part) is no cache.
+    const bool cached = made_from_changes(opts_path, opts).empty() &&
+                        std::all_of(stems.begin(), stems.end(),
+                                    [&](const std::string& stem) { return fs::exists(dir / (stem + "_rgb.npy")); });
     std::unique_ptr<Inpainter> inp, fill_inp;
     const HarmonicInpainter harmonic;
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
@@ -461,7 +472,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
         const std::string& name = ds.train[v].name;
         // The other views' fills are only targets, kept apart from the reference views' maps (the lift's input).
-        const std::string stem = reference ? name : name + "_fill";
+        const std::string& stem = stems[k];
         MapSet& m = inpainted[k];
         if (cached) {
           m = load_inpainted_maps(dir, stem);
