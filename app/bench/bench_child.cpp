@@ -15,6 +15,9 @@
 #include <sstream>
 #include <thread>
 
+#include <CLI/CLI.hpp>
+
+#include "app/cli_common/command.h"
 #include "app/cli_common/stop_signals.h"
 #include "core/io/file_bytes.h"
 #include "core/io/json_file.h"
@@ -24,6 +27,11 @@
 extern char** environ;
 
 namespace goris::bench {
+
+CLI::App& bench_group(CLI::App& root) {
+  return goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+}
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 

@@ -12,7 +12,15 @@
 
 #include "app/cli_common/json_number.h"
 
+namespace CLI {
+class App;
+}
+
 namespace goris::bench {
+
+// The `goris bench` group that every benchmark command adds itself to (created by the first).
+CLI::App& bench_group(CLI::App& root);
+
 
 // One child process: whether it exited 0, its wall time, its peak resident memory, when it failed a message
 // "STEP failed (exit code N | killed by signal S): <its error line> [log LOG]", and its CPU time (user +

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/bench_child.h"
 #include "app/cli_common/command.h"
 #include "core/compute/primitives.h"
 #include "core/compute/bench.h"
@@ -61,7 +62,7 @@ void run_compute_bench(std::size_t n, int repeats) {
 }
 
 void setup_bench_compute(CLI::App& root) {
-  auto& bench = goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto& bench = goris::bench::bench_group(root);
   auto* c = bench.add_subcommand("compute", "Sort-by-key, scan and reductions on every available backend");
   auto n = std::make_shared<double>(4e6);
   auto repeats = std::make_shared<int>(11);

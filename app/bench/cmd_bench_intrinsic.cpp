@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/bench_child.h"
 #include "app/cli_common/command.h"
 #include "app/cli_common/number_checks.h"
 #include "core/compute/kernel_profile.h"
@@ -178,7 +179,7 @@ void run_bench_intrinsic(const std::string& run, int view_index, int repeats, in
 }
 
 void setup_bench_intrinsic(CLI::App& root) {
-  auto& bench = cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto& bench = goris::bench::bench_group(root);
   auto* c = bench.add_subcommand("intrinsic", "Time split of one intrinsic iteration on a trained run's training view");
   auto run = std::make_shared<std::string>();
   auto view = std::make_shared<int>(0);

@@ -8,6 +8,7 @@
 // app/bench/bench_pipeline.h.
 #include <memory>
 
+#include "app/bench/bench_child.h"
 #include "app/bench/bench_pipeline.h"
 #include "app/cli_common/command.h"
 #include "app/cli_common/number_checks.h"
@@ -20,7 +21,7 @@ using goris::bench::pipeline::config_names;
 using goris::bench::pipeline::Options;
 
 void setup_bench_pipeline(CLI::App& root) {
-  auto& bench = goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto& bench = goris::bench::bench_group(root);
   auto o = std::make_shared<Options>();
   auto* c = bench.add_subcommand(
       "pipeline", "The ablation ladder end to end per scene and schedule: times, memory, PSNR/SSIM, Pareto chart");

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/bench_child.h"
 #include "app/cli_common/command.h"
 #include "core/compute/memory.h"
 #include "core/compute/bench.h"
@@ -190,7 +191,7 @@ void run_raster_bench(int res, int n, int iters, int extras, int threads, const 
 }
 
 void setup_bench_raster(CLI::App& root) {
-  auto& bench = goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto& bench = goris::bench::bench_group(root);
   auto* c = bench.add_subcommand("raster", "G-buffer rasterizer forward and backward on a synthetic scene");
   auto res = std::make_shared<int>(256);
   auto n = std::make_shared<int>(50000);

@@ -560,7 +560,7 @@ void Bench::run() {
 }
 
 void setup_bench_stability(CLI::App& root) {
-  auto& bench = goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto& bench = goris::bench::bench_group(root);
   auto o = std::make_shared<Options>();
   std::string names;
   for (const auto& c : cases()) names += (names.empty() ? "" : ", ") + c.name;

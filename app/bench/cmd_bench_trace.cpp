@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/bench/bench_child.h"
 #include "app/cli_common/command.h"
 #include "app/cli_common/number_checks.h"
 #include "core/compute/buffer.h"
@@ -194,7 +195,7 @@ void run_bench(const fs::path& shared, int image, int repeats) {
 }
 
 void setup_bench_trace(CLI::App& root) {
-  auto& bench = goris::cli::subcommand_group(root, "bench", "Benchmarks (medians, with the machine and sizes)");
+  auto& bench = goris::bench::bench_group(root);
   auto* c = bench.add_subcommand("trace", "Gaussian ray tracer: rays/s forward and backward on the fixture scene");
   auto shared = std::make_shared<std::string>(std::string(GORIS_RESOURCE_DIR) + "/../../shared");
   auto image = std::make_shared<int>(256);
