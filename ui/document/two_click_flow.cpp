@@ -66,6 +66,7 @@ void TwoClickFlow::start(AppState& st, std::optional<std::size_t> view) {
   result_.reset();
   cancelling_ = false;
   model_ = st.model().get();
+  glossy_ = std::make_shared<GlossyCache>();  // another run's masks, or the same run's written again
   review_view_ = v;
   st.message("two-click: 1. click the object in " + views[v].name + " (or choose another view)");
 }
@@ -135,16 +136,19 @@ std::uint64_t TwoClickFlow::evaluate(AppState& st, std::vector<FlowClick> clicks
   progress_->done = 0;
   progress_->total = 0;
   progress_->set_stage("queued");
-  std::function<std::vector<std::vector<float>>()> glossy;
+  SelectionSession::GlossyMasks glossy;
   if (const std::optional<TrainConfig>& config = st.scene()->run_config)
-    glossy = [config = *config, views] {
+    glossy = [config = *config, views, cache = glossy_]() -> std::shared_ptr<const std::vector<std::vector<float>>> {
+      const std::lock_guard<std::mutex> lock(cache->mutex);
+      if (cache->read) return cache->masks;
+      cache->read = true;
       // They help and are not needed: a run whose detected masks are gone selects without them.
       try {
-        return run_glossy_masks(config, views);
+        cache->masks = std::make_shared<const std::vector<std::vector<float>>>(run_glossy_masks(config, views));
       } catch (const Error& e) {
         std::fprintf(stderr, "two-click: selecting without the run's glossy masks: %s\n", e.what());
-        return std::vector<std::vector<float>>{};
       }
+      return cache->masks;
     };
   const std::uint64_t job =
       st.selection().click_regions(views, st.scene()->dataset_options, result, progress_, std::move(glossy));

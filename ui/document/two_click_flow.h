@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -102,6 +103,14 @@ class TwoClickFlow {
   bool cancelling_ = false;  // cancel(): undo everything once nothing runs
   int removal_iterations_ = 0;
   const void* model_ = nullptr;  // the model the flow runs on
+  // The run's glossy masks, read from disk by the first evaluation of a flow and shared by the later ones
+  // (each runs on the selection worker; start() begins a new cache).
+  struct GlossyCache {
+    std::mutex mutex;
+    bool read = false;
+    std::shared_ptr<const std::vector<std::vector<float>>> masks;
+  };
+  std::shared_ptr<GlossyCache> glossy_ = std::make_shared<GlossyCache>();
 };
 
 }  // namespace goris::ui

@@ -90,11 +90,11 @@ class SelectionSession {
   // The two-click flow's evaluation (ui/selection/two_click_session.cpp): `goris select --click`'s regions
   // of out->clicks in `views` lifted to a selection that replaces the current one, then every view's object
   // mask written into out->dir; fills `out`, follows `progress` (whose cancel stops it). `glossy_masks`, called
-  // on the worker, gives the views' glossy masks the run trained with (one per view, empty for none;
+  // on the worker, gives the views' glossy masks the run trained with (one per view; null or empty for none;
   // select_by_click_regions reads them); empty function: none.
+  using GlossyMasks = std::function<std::shared_ptr<const std::vector<std::vector<float>>>()>;
   std::uint64_t click_regions(std::vector<View> views, DatasetOptions photos, std::shared_ptr<FlowResult> out,
-                              std::shared_ptr<FlowProgress> progress,
-                              std::function<std::vector<std::vector<float>>()> glossy_masks = {});
+                              std::shared_ptr<FlowProgress> progress, GlossyMasks glossy_masks = {});
   std::uint64_t clear();
   std::uint64_t undo();
   std::uint64_t redo();

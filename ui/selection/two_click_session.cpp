@@ -100,7 +100,7 @@ void check_cancel(const FlowProgress& p) {
 
 std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOptions photos,
                                               std::shared_ptr<FlowResult> out, std::shared_ptr<FlowProgress> progress,
-                                              std::function<std::vector<std::vector<float>>()> glossy_masks) {
+                                              GlossyMasks glossy_masks) {
   return submit([this, views = std::move(views), photos, out, progress, glossy_masks](const Job& job) {
     if (out->clicks.empty()) throw Error("two-click: no click to select from");
     Context& c = prepared(job.model);
@@ -113,8 +113,9 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
     progress->total = n_clicks + 1 + int(views.size());
 
     // The glossy masks the run trained with (select_by_click_regions): one per view or none.
-    const std::vector<std::vector<float>> gloss_store = glossy_masks ? glossy_masks() : std::vector<std::vector<float>>{};
-    const std::vector<const std::vector<float>*> gloss = glossy_mask_pointers(gloss_store);
+    const std::shared_ptr<const std::vector<std::vector<float>>> gloss_store = glossy_masks ? glossy_masks() : nullptr;
+    const std::vector<const std::vector<float>*> gloss =
+        gloss_store ? glossy_mask_pointers(*gloss_store) : std::vector<const std::vector<float>*>{};
     std::vector<ClickView> regions;
     std::string what = "two-click:";
     for (const FlowClick& k : out->clicks) {
