@@ -85,7 +85,7 @@ void relight_image(Image& image, const PlanePixels& px, const std::vector<float>
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                     const MirrorPlane* fallback, std::vector<TrainView>& views,
                                     const RasterSettings& raster, const std::filesystem::path& out_dir,
-                                    ShadowSampleColour colour_from) {
+                                    ShadowSampleColour sample_colour) {
   ShadowRelight out;
   const SelectionPoints pts = selection_points(model);
   const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
@@ -102,24 +102,23 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
   constexpr std::size_t kMaxSamples = 20000;
   out.pixels.resize(views.size());
   std::size_t total = 0;
-  std::vector<std::vector<float>> colour(views.size());  // [3][H][W] per view
+  std::vector<std::vector<glm::vec3>> colour(views.size());  // per view, per plane pixel
   for (std::size_t i = 0; i < views.size(); ++i) {
     const RasterOutput r = rasterize(model.view(false), views[i].camera, raster, model.device());
     out.pixels[i] = support_plane_pixels(views[i].camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), geo);
-    colour[i] = colour_from == ShadowSampleColour::Model ? r.gbuffer.color.to_host() : views[i].image;
+    const std::vector<float> rendered =
+        sample_colour == ShadowSampleColour::Model ? r.gbuffer.color.to_host() : std::vector<float>{};
+    const std::vector<float>& c = sample_colour == ShadowSampleColour::Model ? rendered : views[i].image;
+    const std::size_t hw = c.size() / 3;
+    for (const std::uint32_t p : out.pixels[i].pixel) colour[i].push_back({c[p], c[hw + p], c[2 * hw + p]});
     total += out.pixels[i].size();
   }
   const std::size_t stride = std::max<std::size_t>(1, (total + kMaxSamples - 1) / kMaxSamples);
   ShadowSamples samples;
   std::size_t seen = 0;
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const std::size_t hw = views[i].image.size() / 3;
-    for (std::size_t k = 0; k < out.pixels[i].size(); ++k, ++seen) {
-      if (seen % stride) continue;
-      const std::uint32_t p = out.pixels[i].pixel[k];
-      samples.add(out.pixels[i].point[k], {colour[i][p], colour[i][hw + p], colour[i][2 * hw + p]});
-    }
-  }
+  for (std::size_t i = 0; i < views.size(); ++i)
+    for (std::size_t k = 0; k < out.pixels[i].size(); ++k, ++seen)
+      if (seen % stride == 0) samples.add(out.pixels[i].point[k], colour[i][k]);
   const TargetOccluder occluder(model, target);
   out.fit = fit_target_shadow(geo, samples, occluder.function());
   if (!out.fit.found) return out;

@@ -61,10 +61,10 @@ enum class ShadowSampleColour {
 };
 
 // The whole step for `goris remove`: the support plane (shadow_geometry, `fallback` as there), samples on it
-// coloured as `colour` says (the model rendered with the target, so pixels it covers are left out; at most
-// 20K), the fit, then the views' images (the photos) relit in place. With a shadow found and `out_dir` not empty, the
-// share of the light the target took is written per view as grey images (out_dir/VIEW.png). `selected` may
-// hold more than `target` (the mirror twin): none of it is a candidate for the support surface.
+// coloured as `sample_colour` says (the model rendered with the target, so pixels it covers are left out; at
+// most 20K), the fit, then the views' images (the photos) relit in place. With a shadow found and `out_dir`
+// not empty, the share of the light the target took is written per view as grey images (out_dir/VIEW.png).
+// `selected` may hold more than `target` (the mirror twin): none of it is a candidate for the support surface.
 struct ShadowRelight {
   TargetShadow fit;                     // fit.reason says why nothing was found
   std::vector<PlanePixels> pixels;      // per view
@@ -74,6 +74,6 @@ struct ShadowRelight {
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                     const MirrorPlane* fallback, std::vector<TrainView>& views,
                                     const RasterSettings& raster, const std::filesystem::path& out_dir,
-                                    ShadowSampleColour colour = ShadowSampleColour::Photos);
+                                    ShadowSampleColour sample_colour = ShadowSampleColour::Photos);
 
 }  // namespace goris
