@@ -63,4 +63,10 @@ MapSet load_inpainted_maps(const fs::path& dir, const std::string& stem) {
   return m;
 }
 
+bool inpainted_maps_present(const fs::path& dir, const std::string& stem) {
+  for (const MapSlot& slot : map_slots())
+    if (slot.member == &MapSet::rgb) return fs::exists(dir / (stem + "_" + slot.name + ".npy"));
+  return false;
+}
+
 }  // namespace goris

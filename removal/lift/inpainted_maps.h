@@ -16,5 +16,7 @@ void save_inpainted_maps(const std::filesystem::path& dir, const std::string& st
 // The maps DIR/STEM_MAP.npy that exist (the others stay absent). Throws goris::Error naming a file that is not
 // an [H][W][C] array.
 MapSet load_inpainted_maps(const std::filesystem::path& dir, const std::string& stem);
+// Whether save_inpainted_maps wrote `stem`'s maps into `dir` (its colour map, which every map set has).
+bool inpainted_maps_present(const std::filesystem::path& dir, const std::string& stem);
 
 }  // namespace goris

@@ -437,19 +437,20 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     nlohmann::json opts = made_from;
     opts["materials"] = materials;
     opts["views"] = report.reference_views;
-    // The file stems of every view's maps: the reference views', then the other views' fills ("_fill").
+    // inpainted[k]: the reference views, then the other views' fills, kept apart from the reference views'
+    // maps (the lift's input) under their own file stem.
+    auto view_of = [&](std::size_t k) {
+      return k < choice.views.size() ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
+    };
     std::vector<std::string> stems;
-    for (std::size_t k = 0; k < inpainted.size(); ++k) {
-      const bool reference = k < choice.views.size();
-      const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
-      stems.push_back(reference ? ds.train[v].name : ds.train[v].name + "_fill");
-    }
+    for (std::size_t k = 0; k < inpainted.size(); ++k)
+      stems.push_back(ds.train[view_of(k)].name + (k < choice.views.size() ? "" : "_fill"));
     opts["fills"] = std::vector<std::string>(stems.begin() + std::ptrdiff_t(choice.views.size()), stems.end());
     const fs::path opts_path = dir / "made_from.json";
     // A record whose maps are not all there (removed by hand, or a folder copied in part) is no cache.
     const bool cached = made_from_changes(opts_path, opts).empty() &&
                         std::all_of(stems.begin(), stems.end(),
-                                    [&](const std::string& stem) { return fs::exists(dir / (stem + "_rgb.npy")); });
+                                    [&](const std::string& stem) { return inpainted_maps_present(dir, stem); });
     std::unique_ptr<Inpainter> inp, fill_inp;
     const HarmonicInpainter harmonic;
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
@@ -469,9 +470,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       for (std::size_t k = 0; k < inpainted.size(); ++k) {
         if (cancelled()) throw Stopped{};
         const bool reference = k < choice.views.size();
-        const std::size_t v = reference ? std::size_t(choice.views[k]) : fill_views[k - choice.views.size()];
+        const std::size_t v = view_of(k);
         const std::string& name = ds.train[v].name;
-        // The other views' fills are only targets, kept apart from the reference views' maps (the lift's input).
         const std::string& stem = stems[k];
         MapSet& m = inpainted[k];
         if (cached) {
