@@ -111,7 +111,9 @@ class Bench {
                  const Row* full);
   void evaluate(Row& r, const fs::path& run_dir, const fs::path& logs);
   void write_outputs(const std::vector<Row>& rows, bool final) const;
-  void write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const;
+  // kinds: each suite scene's kind; images: its scene_images_fingerprint.
+  void write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds,
+                   const std::map<std::string, std::string>& images) const;
   void publish_suite(std::vector<goris::bench::SuiteResult> results, const std::string& schedule) const;
   std::string stage1_notes(const std::vector<Row>& rows) const;
   bool write_chart(const std::vector<Row>& rows, const std::string& title, const fs::path& stem,

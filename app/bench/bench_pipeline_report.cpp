@@ -208,7 +208,8 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
 
 // suite.md / suite.json: the removal metrics per scene against baseline, the goals, and with --check the
 // regressions against a committed suite.json (each printed; the bench then exits 1).
-void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds) const {
+void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string, std::string>& kinds,
+                        const std::map<std::string, std::string>& images) const {
   const TimeAxis axis = time_axis(rows);
   time_axis_is_cpu_ = axis.cpu;
   for (const auto& sched : o_.schedules) {
@@ -219,6 +220,7 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
       s.scene = r.scene, s.kind = kinds.at(r.scene), s.config = r.config, s.ok = r.status == "ok";
       s.psnr = r.psnr, s.region_psnr = r.region_psnr, s.region_ssim = r.region_ssim, s.region_flip = r.region_flip;
       s.flip = r.flip, s.ghost_ratio = r.ghost_ratio, s.seconds = axis.of(r);
+      if (images.count(r.scene)) s.scene_images = images.at(r.scene);
       const fs::path sheet = fs::path("runs") / r.scene / sched / r.config / "run" / "removal" / "metrics_removal.png";
       if (fs::exists(out_ / sheet)) s.contact_sheet = sheet.string();
       results.push_back(s);
@@ -235,13 +237,26 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
     if (o_.check.empty()) continue;
     const json committed = read_json_object(o_.check);
     if (committed.value("schedule", "") != sched) continue;
-    const auto bad = goris::bench::suite_regressions(committed, sum.json, o_.tolerance_db);
-    if (bad.empty()) {
-      std::printf("suite check against %s: no regression (tolerance %.2f dB)\n", o_.check.c_str(), o_.tolerance_db);
+    const auto check = goris::bench::check_suite(committed, sum.json, o_.tolerance_db);
+    for (const auto& line : check.not_compared) std::printf("suite check: not compared: %s\n", line.c_str());
+    if (check.unverified)
+      std::printf("suite check: %d rows compared without knowing whether their scenes rendered alike (the committed "
+                  "results name no scene images)\n", check.unverified);
+    if (check.compared == 0 && !check.not_compared.empty()) {
+      std::printf("\nSUITE CHECK against %s: nothing could be compared - every scene rendered differently from those "
+                  "the committed results were measured on (another Blender build or machine). Make a reference on this "
+                  "machine: run the committed command with the code that made it, and --check against that.\n",
+                  o_.check.c_str());
+      goris::cli::set_exit_code(1);
+      continue;
+    }
+    if (check.regressions.empty()) {
+      std::printf("suite check against %s: no regression in %d rows (tolerance %.2f dB)\n", o_.check.c_str(),
+                  check.compared, o_.tolerance_db);
       continue;
     }
     std::printf("\nSUITE REGRESSION against %s (tolerance %.2f dB):\n", o_.check.c_str(), o_.tolerance_db);
-    for (const auto& b : bad) std::printf("  %s\n", b.c_str());
+    for (const auto& b : check.regressions) std::printf("  %s\n", b.c_str());
     goris::cli::set_exit_code(1);
   }
 }

@@ -201,6 +201,7 @@ void Bench::run() {
   o_.schedules = schedules;
   std::vector<std::pair<std::string, std::string>> scenes;  // name, absolute data path
   std::map<std::string, std::string> kinds;                  // suite scenes: their kind
+  std::map<std::string, std::string> images;                 // suite scenes: scene_images_fingerprint
   if (!o_.suite.empty()) {
     const auto& suite = goris::bench::suite_scenes(o_.suite);
     const fs::path cache = o_.scene_cache.empty() ? out_ / "scenes" : fs::absolute(o_.scene_cache);
@@ -214,6 +215,7 @@ void Bench::run() {
           goris::bench::ensure_suite_scene(sc, cache, fs::path(GORIS_RESOURCE_DIR) / "synth" / "render_scene.py");
       scenes.push_back({sc.name, dir.string()});
       kinds[sc.name] = sc.kind;
+      images[sc.name] = goris::bench::scene_images_fingerprint(dir);
     }
   }
   for (const auto& d : o_.data) {
@@ -240,7 +242,7 @@ void Bench::run() {
     }
   std::printf("\n");
   write_outputs(rows, true);
-  if (!o_.suite.empty()) write_suite(rows, kinds);
+  if (!o_.suite.empty()) write_suite(rows, kinds, images);
   int failed = 0;
   for (const Row& r : rows) failed += r.status == "failed";
   std::printf("wrote %s, %s and the charts in %s (%zu rows, %d failed)\n", (out_ / "results.csv").c_str(),

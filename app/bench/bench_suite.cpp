@@ -12,6 +12,7 @@
 
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
+#include "core/util/fnv1a.h"
 #include "tools/synth/synth.h"
 
 namespace goris::bench {
@@ -146,6 +147,33 @@ fs::path ensure_suite_scene(const SuiteScene& scene, const fs::path& cache, cons
   return dir;
 }
 
+std::string scene_images_fingerprint(const fs::path& scene) {
+  std::vector<fs::path> files;
+  for (const char* split : {"train", "test"}) {
+    if (!fs::is_directory(scene / split)) continue;
+    for (const auto& e : fs::directory_iterator(scene / split))
+      if (e.is_regular_file() && e.path().extension() == ".png") files.push_back(e.path());
+  }
+  if (files.empty()) throw Error(scene.string(), "no train/ or test/ images to fingerprint");
+  std::sort(files.begin(), files.end());
+  Fnv1a h;
+  auto bytes = [&](const void* p, size_t n) {
+    for (size_t i = 0; i < n; ++i) h.byte(static_cast<const std::uint8_t*>(p)[i]);
+  };
+  for (const auto& f : files) {
+    const cv::Mat m = cv::imread(f.string(), cv::IMREAD_UNCHANGED);
+    if (m.empty()) throw Error(f.string(), "cannot read this image");
+    const std::string name = fs::relative(f, scene).generic_string();
+    const int head[3] = {m.rows, m.cols, m.type()};
+    bytes(name.data(), name.size() + 1);
+    bytes(head, sizeof head);
+    for (int y = 0; y < m.rows; ++y) bytes(m.ptr(y), m.cols * m.elemSize());
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value));
+  return hex;
+}
+
 SuiteResult::SuiteResult()
     : psnr(nan()), region_psnr(nan()), region_ssim(nan()), region_flip(nan()), flip(nan()), ghost_ratio(nan()),
       seconds(nan()) {}
@@ -201,6 +229,7 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
                       {"flip", num(r->flip)},
                       {"ghost_ratio", num(r->ghost_ratio)},
                       {"seconds", num(r->seconds)}});
+      if (!r->scene_images.empty()) rows.back()["scene_images"] = r->scene_images;
     }
   j["rows"] = rows;
 
@@ -298,18 +327,31 @@ bool write_suite_sheet(const std::vector<SuiteResult>& results, const fs::path& 
 }
 
 
-std::vector<std::string> suite_regressions(const json& committed, const json& current, double tolerance_db) {
-  std::vector<std::string> bad;
-  if (!committed.contains("rows") || !current.contains("rows")) return {"a suite summary without rows"};
+SuiteCheck check_suite(const json& committed, const json& current, double tolerance_db) {
+  SuiteCheck out;
+  if (!committed.contains("rows") || !current.contains("rows")) {
+    out.regressions.push_back("a suite summary without rows");
+    return out;
+  }
   std::map<std::pair<std::string, std::string>, json> now;
   for (const auto& r : current["rows"]) now[{r.value("scene", ""), r.value("config", "")}] = r;
+  std::set<std::string> differ;
   for (const auto& old : committed["rows"]) {
     const auto key = std::make_pair(old.value("scene", ""), old.value("config", ""));
     const auto it = now.find(key);
     if (it == now.end() || !old.value("ok", false)) continue;  // not rerun, or nothing to keep
     const json& r = it->second;
+    const std::string was = old.value("scene_images", ""), is = r.value("scene_images", "");
+    if (!was.empty() && !is.empty() && was != is) {
+      if (differ.insert(key.first).second)
+        out.not_compared.push_back(key.first + ": its images differ from those the committed results were measured "
+                                   "on (scene_images " + is + ", committed " + was + ")");
+      continue;
+    }
+    ++out.compared;
+    out.unverified += was.empty();
     if (!r.value("ok", false)) {
-      bad.push_back(key.first + " / " + key.second + ": failed (it succeeded in the committed results)");
+      out.regressions.push_back(key.first + " / " + key.second + ": failed (it succeeded in the committed results)");
       continue;
     }
     const double a = json_number(old, "region_psnr"), b = json_number(r, "region_psnr");
@@ -317,10 +359,10 @@ std::vector<std::string> suite_regressions(const json& committed, const json& cu
       char line[256];
       std::snprintf(line, sizeof line, "%s / %s: changed-region PSNR %.2f dB, committed %.2f (%.2f below, tolerance %.2f)",
                     key.first.c_str(), key.second.c_str(), b, a, a - b, tolerance_db);
-      bad.push_back(line);
+      out.regressions.push_back(line);
     }
   }
-  return bad;
+  return out;
 }
 
 }  // namespace goris::bench

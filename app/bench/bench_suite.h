@@ -30,12 +30,19 @@ const std::vector<std::string>& suite_names();
 std::filesystem::path ensure_suite_scene(const SuiteScene& scene, const std::filesystem::path& cache,
                                          const std::filesystem::path& blender_script);
 
+// The fingerprint of a rendered scene (16 hex digits): FNV-1a over the decoded pixels of every PNG under its
+// train/ and test/ folders, with their paths and sizes. Blender builds or machines that render a scene
+// differently give different fingerprints (PNG encoders that merely compress differently do not), and
+// results measured on differently rendered scenes are not comparable.
+std::string scene_images_fingerprint(const std::filesystem::path& scene);
+
 // One configuration's result on one scene, as the suite summary reads it.
 struct SuiteResult {
   std::string scene, kind, config;
   bool ok = false;
   double psnr, region_psnr, region_ssim, region_flip, flip, ghost_ratio, seconds;
   std::string contact_sheet;  // relative to the bench folder; "" when none
+  std::string scene_images;   // scene_images_fingerprint of the scene it ran on; "" when unknown
   SuiteResult();
 };
 
@@ -56,9 +63,15 @@ bool write_suite_sheet(const std::vector<SuiteResult>& results, const std::files
                        const std::filesystem::path& path);
 
 // Compares `current` with a committed suite.json: a configuration whose changed-region PSNR on any scene
-// fell by more than `tolerance_db` (or that failed where it succeeded) is a regression. Returns the
-// regressions, one line each (empty: none).
-std::vector<std::string> suite_regressions(const nlohmann::json& committed, const nlohmann::json& current,
-                                           double tolerance_db);
+// fell by more than `tolerance_db` (or that failed where it succeeded) is a regression. A scene whose images
+// differ from those the committed results were measured on (both rows name their scene_images) is not
+// compared: a drop there says nothing about the code.
+struct SuiteCheck {
+  std::vector<std::string> regressions;   // one line each (empty: none)
+  std::vector<std::string> not_compared;  // one line per scene rendered differently
+  int compared = 0;                       // rows compared
+  int unverified = 0;                     // of them, rows whose committed result names no scene images
+};
+SuiteCheck check_suite(const nlohmann::json& committed, const nlohmann::json& current, double tolerance_db);
 
 }  // namespace goris::bench

@@ -2,13 +2,20 @@
 // `goris synth` scene) and its summary: goals from the per-scene results, regressions against a committed one.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <set>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "app/bench/bench_suite.h"
 #include "core/util/error.h"
 
 using namespace goris::bench;
+namespace fs = std::filesystem;
 
 TEST(BenchSuite, GeneralizationCoversEveryAxisWithValidScenes) {
   const auto& scenes = suite_scenes("generalization");
@@ -98,14 +105,65 @@ TEST(BenchSuite, RegressionsAreDropsBeyondTheTolerance) {
   std::vector<SuiteResult> before = {result("a", "glossy", "default", 25, 0.1), result("b", "glossy", "default", 23, 0.2)};
   const auto committed = summarize_suite("fast", "short", before, "baseline").json;
   auto now = before;
+  auto check = [&] { return check_suite(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5); };
   now[0].region_psnr = 24.7;  // within 0.5 dB
-  EXPECT_TRUE(suite_regressions(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5).empty());
+  EXPECT_TRUE(check().regressions.empty());
+  EXPECT_EQ(check().compared, 2);
+  EXPECT_EQ(check().unverified, 2);  // the committed rows name no scene images
   now[1].region_psnr = 22.0;
-  auto bad = suite_regressions(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  auto bad = check().regressions;
   ASSERT_EQ(bad.size(), 1u);
   EXPECT_NE(bad[0].find("b / default"), std::string::npos) << bad[0];
   now[1].region_psnr = 23, now[0].ok = false;
-  bad = suite_regressions(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  bad = check().regressions;
   ASSERT_EQ(bad.size(), 1u);
   EXPECT_NE(bad[0].find("failed"), std::string::npos) << bad[0];
+}
+
+TEST(BenchSuite, ScenesRenderedDifferentlyAreNotCompared) {
+  std::vector<SuiteResult> before = {result("a", "glossy", "default", 25, 0.1), result("b", "glossy", "default", 23, 0.2)};
+  before[0].scene_images = "00000000000000aa", before[1].scene_images = "00000000000000bb";
+  const auto committed = summarize_suite("fast", "short", before, "baseline").json;
+  EXPECT_EQ(committed["rows"][0]["scene_images"], "00000000000000aa");
+  auto now = before;
+  now[1].region_psnr = 20;  // a drop on a scene whose images are the committed ones: a regression
+  auto c = check_suite(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  EXPECT_EQ(c.regressions.size(), 1u);
+  EXPECT_EQ(c.compared, 2);
+  EXPECT_EQ(c.unverified, 0);
+  now[1].scene_images = "00000000000000cc";  // the same drop on a scene rendered differently: not compared
+  c = check_suite(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  EXPECT_TRUE(c.regressions.empty());
+  EXPECT_EQ(c.compared, 1);
+  ASSERT_EQ(c.not_compared.size(), 1u);
+  EXPECT_NE(c.not_compared[0].find("b:"), std::string::npos) << c.not_compared[0];
+  now[0].scene_images = "00000000000000dd";
+  c = check_suite(committed, summarize_suite("fast", "short", now, "baseline").json, 0.5);
+  EXPECT_EQ(c.compared, 0);
+  EXPECT_EQ(c.not_compared.size(), 2u);
+}
+
+TEST(BenchSuite, SceneFingerprintFollowsThePixelsNotTheEncoding) {
+  const fs::path dir = fs::temp_directory_path() / ("goris_scene_fp_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "train");
+  fs::create_directories(dir / "test");
+  cv::Mat img(8, 12, CV_8UC4, cv::Scalar(10, 20, 30, 255));
+  img.at<cv::Vec4b>(3, 5) = cv::Vec4b(200, 100, 50, 128);
+  cv::imwrite((dir / "train" / "r_000.png").string(), img, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  cv::imwrite((dir / "test" / "r_000.png").string(), img, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  const std::string a = scene_images_fingerprint(dir);
+  EXPECT_EQ(a.size(), 16u);
+  cv::imwrite((dir / "test" / "r_000.png").string(), img, {cv::IMWRITE_PNG_COMPRESSION, 9});
+  EXPECT_EQ(scene_images_fingerprint(dir), a);  // the same pixels, compressed differently
+  img.at<cv::Vec4b>(0, 0)[1] += 1;
+  cv::imwrite((dir / "test" / "r_000.png").string(), img);
+  const std::string b = scene_images_fingerprint(dir);
+  EXPECT_NE(b, a);  // one channel of one pixel
+  fs::copy_file(dir / "test" / "r_000.png", dir / "test" / "r_001.png");
+  EXPECT_NE(scene_images_fingerprint(dir), b);  // an image more
+  fs::remove_all(dir / "train");
+  fs::remove_all(dir / "test");
+  EXPECT_THROW(scene_images_fingerprint(dir), goris::Error);
+  fs::remove_all(dir);
 }
