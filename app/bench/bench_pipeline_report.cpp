@@ -233,10 +233,11 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
     write_text(out_ / (stem + ".md"), sum.markdown);
     write_text(out_ / (stem + ".json"), sum.json.dump(2) + "\n");
     std::printf("wrote %s and %s\n", (out_ / (stem + ".md")).c_str(), (out_ / (stem + ".json")).c_str());
+    // The committed summary is read before --publish may overwrite it (./dev suite fast --publish docs/results
+    // checks against the very file it republishes).
+    const json committed = o_.check.empty() ? json() : read_json_object(o_.check);
     if (!o_.publish.empty()) publish_suite(results, sched);
-    if (o_.check.empty()) continue;
-    const json committed = read_json_object(o_.check);
-    if (committed.value("schedule", "") != sched) continue;
+    if (o_.check.empty() || committed.value("schedule", "") != sched) continue;
     const auto check = goris::bench::check_suite(committed, sum.json, o_.tolerance_db);
     for (const auto& line : check.not_compared) std::printf("suite check: not compared: %s\n", line.c_str());
     if (check.unverified)
