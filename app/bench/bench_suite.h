@@ -30,8 +30,8 @@ const std::vector<std::string>& suite_names();
 std::filesystem::path ensure_suite_scene(const SuiteScene& scene, const std::filesystem::path& cache,
                                          const std::filesystem::path& blender_script);
 
-// The fingerprint of a rendered scene (16 hex digits): FNV-1a over the decoded pixels of every PNG under its
-// train/ and test/ folders, with their paths and sizes. Blender builds or machines that render a scene
+// The fingerprint of a rendered scene (16 hex digits): FNV-1a over the decoded pixels of every PNG directly in
+// its train/ and test/ folders (the views and their masks), with their paths and sizes. Blender builds or machines that render a scene
 // differently give different fingerprints (PNG encoders that merely compress differently do not), and
 // results measured on differently rendered scenes are not comparable.
 std::string scene_images_fingerprint(const std::filesystem::path& scene);
