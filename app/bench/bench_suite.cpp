@@ -157,21 +157,16 @@ std::string scene_images_fingerprint(const fs::path& scene) {
   if (files.empty()) throw Error(scene.string(), "no train/ or test/ images to fingerprint");
   std::sort(files.begin(), files.end());
   Fnv1a h;
-  auto bytes = [&](const void* p, size_t n) {
-    for (size_t i = 0; i < n; ++i) h.byte(static_cast<const std::uint8_t*>(p)[i]);
-  };
   for (const auto& f : files) {
     const cv::Mat m = cv::imread(f.string(), cv::IMREAD_UNCHANGED);
     if (m.empty()) throw Error(f.string(), "cannot read this image");
     const std::string name = fs::relative(f, scene).generic_string();
     const int head[3] = {m.rows, m.cols, m.type()};
-    bytes(name.data(), name.size() + 1);
-    bytes(head, sizeof head);
-    for (int y = 0; y < m.rows; ++y) bytes(m.ptr(y), m.cols * m.elemSize());
+    h.bytes(name.data(), name.size() + 1);
+    h.bytes(head, sizeof head);
+    for (int y = 0; y < m.rows; ++y) h.bytes(m.ptr(y), m.cols * m.elemSize());
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value));
-  return hex;
+  return h.hex();
 }
 
 SuiteResult::SuiteResult()

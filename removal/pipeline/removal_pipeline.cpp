@@ -167,10 +167,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
 
 // The selection as 16 hex digits (FNV-1a of the per-Gaussian mask): any added or dropped Gaussian changes it.
 std::string selection_fingerprint(const SelectionMask& mask) {
-  const std::uint64_t h = fnv1a(std::string_view(reinterpret_cast<const char*>(mask.data()), mask.size()));
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
+  return hex16(fnv1a(std::string_view(reinterpret_cast<const char*>(mask.data()), mask.size())));
 }
 
 // Removes a fine-tune's checkpoints and results that were made from other inputs, so that neither a rerun

@@ -40,9 +40,7 @@ std::string model_fingerprint(const GaussianModel& model) {
     std::memcpy(&u, &f, 4);
     for (int k = 0; k < 4; ++k) mix(std::uint8_t(u >> (8 * k)));
   }
-  char b[17];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(hash.value));
-  return b;
+  return hash.hex();
 }
 
 void write_selection(const fs::path& json_path, SelectionRecord record, const SelectionMask& mask) {

@@ -21,9 +21,7 @@ std::string training_views_fingerprint(const Dataset& dataset) {
     add(v.name);
     add(std::to_string(v.source_width) + "x" + std::to_string(v.source_height));
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value));
-  return std::to_string(dataset.train.size()) + " views, " + hex;
+  return std::to_string(dataset.train.size()) + " views, " + h.hex();
 }
 
 void use_run_data(const fs::path& run_dir, TrainConfig& config, const std::string& data, const std::string& how) {
