@@ -13,7 +13,16 @@
 namespace goris {
 
 GaussianModel mirrored_through(const GaussianModel& model, const SelectionMask& selected, const MirrorPlane& plane) {
-  GaussianModel m = subset_model(model, selected);
+  if (selected.size() != model.count())
+    throw Error("planar reflection", "the selection has " + std::to_string(selected.size()) + " entries for " +
+                                         std::to_string(model.count()) + " Gaussians");
+  // Only what stands on the target's side of the surface is reflected by it (see the header).
+  const std::vector<float> all_pos = model.tensor(Param::Position).value.to_host();
+  SelectionMask in_front(selected.size(), 0);
+  for (std::size_t i = 0; i < selected.size(); ++i)
+    in_front[i] = selected[i] && plane.signed_distance(glm::dvec3(all_pos[3 * i], all_pos[3 * i + 1], all_pos[3 * i + 2])) > 0.0
+                      ? 1 : 0;
+  GaussianModel m = subset_model(model, in_front);
   std::vector<float> pos = m.tensor(Param::Position).value.to_host();
   std::vector<float> rot = m.tensor(Param::Rotation).value.to_host();
   const glm::dvec3 n = glm::normalize(plane.normal);

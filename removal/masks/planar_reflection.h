@@ -23,9 +23,14 @@
 
 namespace goris {
 
-// The Gaussians `selected` of `model` reflected through `plane`: centres mirrored, orientations mirrored
-// (the covariance M S M^T of the mirror M, kept a rotation by flipping one local axis), everything else as
-// it was. On the model's device.
+// The Gaussians `selected` of `model` that lie on the target's side of `plane` (centre's signed distance
+// > 0), reflected through it: centres mirrored, orientations mirrored (the covariance M S M^T of the mirror
+// M, kept a rotation by flipping one local axis), everything else as it was. On the model's device.
+// A surface reflects only what stands in front of it. Selected Gaussians behind it are the model's own
+// mirror world under the target, or the surface's underside caught by the target's masks (on a
+// semi-transparent floor, flat discs up to a third of a metre wide); mirrored, they would land at the
+// target's foot and mark a wide patch of the surface as reflection. They go with the removal as they are.
+// Throws goris::Error when `selected` does not have one entry per Gaussian.
 GaussianModel mirrored_through(const GaussianModel& model, const SelectionMask& selected, const MirrorPlane& plane);
 
 struct ReflectionMaskSettings {

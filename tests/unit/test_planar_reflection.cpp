@@ -64,6 +64,27 @@ TEST(PlanarReflection, MirroringReflectsCentresAndCovariances) {
   EXPECT_NE(got[0][2], covariance(ls, rot)[0][2]);  // the mirror changed the orientation
 }
 
+TEST(PlanarReflection, OnlyWhatStandsInFrontOfTheSurfaceIsReflected) {
+  // A target above the floor z = 0 with a wide flat disc of its selection under the floor (a mirror world or
+  // the floor's underside caught by its masks): the disc is not reflected, so the mask stays the target's
+  // reflection and not a patch the disc's size at the target's foot.
+  GaussianModel m = make_model({{{0, 0, 0.4f}, 0.08f, 0.95f}, {{0, 0, -0.1f}, 0.3f, 0.95f}, {{0.5f, 0, 0.2f}, 0.05f}});
+  GaussianModel mirrored = mirrored_through(m, {1, 1, 0}, floor_plane());
+  ASSERT_EQ(mirrored.count(), 1u);
+  EXPECT_NEAR(mirrored.values(Param::Position)[2], -0.4f, 1e-6f);
+  const Camera cam = look_at({0, -3, 1.5f}, {0, 0, 0});
+  const std::vector<float> all(std::size_t(cam.width) * cam.height, 1.0f);
+  RasterSettings raster;
+  GaussianModel target_alone = mirrored_through(make_model({{{0, 0, 0.4f}, 0.08f, 0.95f}}), {1}, floor_plane());
+  const Mask alone = planar_reflection_mask(target_alone, cam, all, raster, {0.2f, 0.0f});
+  const Mask with_disc = planar_reflection_mask(mirrored, cam, all, raster, {0.2f, 0.0f});
+  EXPECT_EQ(with_disc.data, alone.data);
+  MirrorPlane below = floor_plane();
+  below.offset = -0.2;  // the same disc now in front of a lower surface: reflected
+  EXPECT_EQ(mirrored_through(m, {1, 1, 0}, below).count(), 2u);
+  EXPECT_THROW(mirrored_through(m, {1, 1}, floor_plane()), Error);
+}
+
 TEST(PlanarReflection, ReflectionMaskIsTheMirroredTargetOnTheGlossySurface) {
   // A blob 0.4 above the floor z = 0 seen from above at an angle: its reflection lies below it in the image.
   GaussianModel target = make_model({{{0, 0, 0.4f}, 0.08f, 0.95f}});
