@@ -24,7 +24,7 @@ namespace {
 using namespace goris;
 
 struct Options {
-  std::string run, inpainter = "telea", inpainted, device = "auto", lighting_fresnel = "relative",
+  std::string run, inpainter = RemovalOptions{}.inpainter, inpainted, device = "auto", lighting_fresnel = "relative",
               lighting_targets = "dereflect", data;
   std::vector<std::string> ablate;
   int iters = 0;
@@ -100,8 +100,8 @@ void setup_remove(CLI::App& root) {
   auto* c = root.add_subcommand("remove", "Remove the selected object and its reflections from a trained run (stage 2)");
   c->add_option("run", o->run, "Run folder of stage 1 (goris train)")->required();
   auto* inp = c->add_option("--inpainter", o->inpainter,
-                            "2D inpainter: telea, ns, harmonic, fsr (OpenCV contrib), or \"cmd:COMMAND {image} {mask} "
-                            "{out}\" to run your own per map");
+                            "2D inpainter: harmonic (the default), telea, ns, fsr (OpenCV contrib), or "
+                            "\"cmd:COMMAND {image} {mask} {out}\" to run your own per map");
   c->add_option("--inpainted", o->inpainted, "Folder of ready-made inpainted maps (VIEW_MAP.png)")->excludes(inp);
   c->add_option("--ablate", o->ablate, "Switch off a part: material (RGB-only inpainting), lamask (no lighting-aware mask: neither "
                  "reflections nor shadow), twins (keep the target's mirror twin below a planar glossy surface), shadows "

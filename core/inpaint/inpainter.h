@@ -11,9 +11,10 @@
 // an encoded image with values in [0, 1] (colours may go above 1) and the pixels it must fill.
 // Pixels outside the mask come back bit-identical to the input.
 //
-// Choice of backend: OpenCV's Telea / NS are fast and fine for colour and material maps; for depth use
-// the harmonic fill (exact on planes; Telea / NS leave ~20% depth errors in a 150-pixel hole on a tilted
-// plane), e.g. through MapSetInpaintOptions::depth_inpainter (map_set.h). "cmd:" runs a user's learned
+// Choice of backend: the harmonic fill is the removal's default for every map (RemovalOptions::inpainter):
+// on depth it is exact on planes (Telea / NS leave ~20% depth errors in a 150-pixel hole on a tilted plane;
+// MapSetInpaintOptions::depth_inpainter, map_set.h, keeps it for depth whatever fills the rest), and on
+// colour and materials it continues the rim's gradients where Telea / NS smear the rim inwards. "cmd:" runs a user's learned
 // inpainter (LaMa, SD) per map; "dir:" reads results prepared offline.
 #include <memory>
 #include <string>

@@ -452,10 +452,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     const HarmonicInpainter harmonic;
     const bool own_depth = o.inpainter.rfind("cmd:", 0) != 0 && o.inpainter.rfind("dir:", 0) != 0;
     // The other views' fills are smooth targets for many views: with an external program or a folder of
-    // ready-made maps (made for the reference views) they come from the built-in Telea.
+    // ready-made maps (made for the reference views) they come from the default built-in inpainter.
     auto inpainter_for = [&](bool reference) -> const Inpainter& {
       if (reference || own_depth) return *inp;
-      if (!fill_inp) fill_inp = make_inpainter("telea");
+      if (!fill_inp) fill_inp = make_inpainter(RemovalOptions{}.inpainter);
       return *fill_inp;
     };
     const std::size_t maps_per_view = materials ? 6 : 2;

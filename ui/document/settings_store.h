@@ -26,7 +26,7 @@ struct StudioSettings {
   std::string train_device = "auto";  // auto | cpu | cuda (as `goris train --device`)
   bool train_white_background = false;  // composite RGBA photos on white instead of black
   // Removal options of the panel (as `goris remove`).
-  std::string removal_inpainter = "telea";  // telea | ns | harmonic | fsr | cmd:COMMAND
+  std::string removal_inpainter = "harmonic";  // as RemovalOptions::inpainter; harmonic | telea | ns | fsr | cmd:COMMAND
   int removal_iterations = 0;               // fine-tune iterations; 0 = the pipeline's default
   bool removal_ablate_material = false;     // RGB-only inpainting
   bool removal_ablate_lamask = false;       // no lighting-aware mask

@@ -57,7 +57,7 @@ void RemovalPanel::draw(AppState& st) {
 void RemovalPanel::draw_options(AppState& st, bool active) {
   StudioSettings& set = st.settings();
   ImGui::BeginDisabled(active);
-  static const char* kInpainters[] = {"telea", "ns", "harmonic", "fsr", "cmd:"};
+  static const char* kInpainters[] = {"harmonic", "telea", "ns", "fsr", "cmd:"};
   int which = 0;
   for (int i = 0; i < 5; ++i)
     if (set.removal_inpainter == kInpainters[i] || (i == 4 && set.removal_inpainter.rfind("cmd:", 0) == 0)) which = i;
@@ -66,7 +66,8 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
     set.removal_inpainter = which == 4 ? "cmd:" + custom_command_ : kInpainters[which];
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
-        "telea / ns: OpenCV inpainting; harmonic: smooth fill; fsr: OpenCV xphoto (slow);\n"
+        "harmonic (default): smooth fill that continues gradients; telea / ns: OpenCV inpainting;\n"
+        "fsr: OpenCV xphoto (slow);\n"
         "cmd: your own inpainter (LaMa, SD), run per map with {image} {mask} {out} (core/inpaint/external_inpainter.h)");
   if (which == 4) {
     if (custom_command_.empty() && set.removal_inpainter.size() > 4) custom_command_ = set.removal_inpainter.substr(4);
