@@ -14,8 +14,8 @@
 // Choice of backend: the harmonic fill is the removal's default for every map (RemovalOptions::inpainter):
 // on depth it is exact on planes (Telea / NS leave ~20% depth errors in a 150-pixel hole on a tilted plane;
 // MapSetInpaintOptions::depth_inpainter, map_set.h, keeps it for depth whatever fills the rest), and on
-// colour and materials it continues the rim's gradients where Telea / NS smear the rim inwards. "cmd:" runs a user's learned
-// inpainter (LaMa, SD) per map; "dir:" reads results prepared offline.
+// colour and materials it continues the rim's gradients where Telea / NS smear the rim inwards. "cmd:" runs
+// a user's learned inpainter (LaMa, SD) per map; "dir:" reads results prepared offline.
 #include <memory>
 #include <string>
 

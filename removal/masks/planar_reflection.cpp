@@ -19,9 +19,10 @@ GaussianModel mirrored_through(const GaussianModel& model, const SelectionMask& 
   // Only what stands on the target's side of the surface is reflected by it (see the header).
   const std::vector<float> all_pos = model.tensor(Param::Position).value.to_host();
   SelectionMask in_front(selected.size(), 0);
-  for (std::size_t i = 0; i < selected.size(); ++i)
-    in_front[i] = selected[i] && plane.signed_distance(glm::dvec3(all_pos[3 * i], all_pos[3 * i + 1], all_pos[3 * i + 2])) > 0.0
-                      ? 1 : 0;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    const glm::dvec3 centre(all_pos[3 * i], all_pos[3 * i + 1], all_pos[3 * i + 2]);
+    in_front[i] = selected[i] && plane.signed_distance(centre) > 0.0 ? 1 : 0;
+  }
   GaussianModel m = subset_model(model, in_front);
   std::vector<float> pos = m.tensor(Param::Position).value.to_host();
   std::vector<float> rot = m.tensor(Param::Rotation).value.to_host();

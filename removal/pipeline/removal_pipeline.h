@@ -52,7 +52,7 @@ const char* removal_step_name(RemovalStep step);  // "selection", "lighting mask
 struct RemovalOptions {
   // The 2D inpainter of colour and materials, make_inpainter() (core/inpaint/inpainter.h): harmonic, telea, ns,
   // fsr, cmd:..., dir:.... Harmonic by default: on the generalization suite it scored higher than Telea on the
-  // mean and on the worst glossy scene (docs/results/, the removal's 2D inpainting).
+  // mean and on the worst glossy scene (docs/design/deviations.md, "Appearance loss and 2D inpainting").
   std::string inpainter = "harmonic";
   std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
                                     // "twins" (keep the target's mirror twin, core/scene/mirror_twins.h),
