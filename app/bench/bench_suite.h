@@ -31,9 +31,9 @@ std::filesystem::path ensure_suite_scene(const SuiteScene& scene, const std::fil
                                          const std::filesystem::path& blender_script);
 
 // The fingerprint of a rendered scene (16 hex digits): FNV-1a over the decoded pixels of every PNG directly in
-// its train/ and test/ folders (the views and their masks), with their paths and sizes. Blender builds or machines that render a scene
-// differently give different fingerprints (PNG encoders that merely compress differently do not), and
-// results measured on differently rendered scenes are not comparable.
+// its train/ and test/ folders (the views and their masks), with their paths and sizes. Blender builds or
+// machines that render a scene differently give different fingerprints (PNG encoders that merely compress
+// differently do not), and results measured on differently rendered scenes are not comparable.
 std::string scene_images_fingerprint(const std::filesystem::path& scene);
 
 // One configuration's result on one scene, as the suite summary reads it.

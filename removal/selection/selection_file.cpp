@@ -32,13 +32,12 @@ fs::path selection_json_path(const fs::path& run_dir) { return run_dir / "select
 std::string model_fingerprint(const GaussianModel& model) {
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
   Fnv1a hash;
-  auto mix = [&](std::uint8_t b) { hash.byte(b); };
   const std::uint64_t n = model.count();
-  for (int k = 0; k < 8; ++k) mix(std::uint8_t(n >> (8 * k)));
+  for (int k = 0; k < 8; ++k) hash.byte(std::uint8_t(n >> (8 * k)));  // little-endian on every machine
   for (float f : pos) {
     std::uint32_t u;
     std::memcpy(&u, &f, 4);
-    for (int k = 0; k < 4; ++k) mix(std::uint8_t(u >> (8 * k)));
+    for (int k = 0; k < 4; ++k) hash.byte(std::uint8_t(u >> (8 * k)));
   }
   return hash.hex();
 }

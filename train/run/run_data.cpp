@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 std::string training_views_fingerprint(const Dataset& dataset) {
   Fnv1a h;
   auto add = [&h](std::string_view bytes) {
-    for (unsigned char c : bytes) h.byte(c);
+    h.bytes(bytes.data(), bytes.size());
     h.byte(0);  // a separator, so that "ab" + "c" differs from "a" + "bc"
   };
   for (const View& v : dataset.train) {
