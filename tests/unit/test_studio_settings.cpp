@@ -129,10 +129,28 @@ TEST(StudioSettings, BadFilesNameTheProblem) {
   EXPECT_NE(load_error(f, R"({"train_mode": "fast"})").find("'train_mode': unknown value 'fast'"), std::string::npos);
   EXPECT_NE(load_error(f, R"({"removal_iterations": -5})").find("'removal_iterations' = -5 is outside"),
             std::string::npos);
-  EXPECT_NE(load_error(f, R"({"removal_inpainter": ""})").find("'removal_inpainter' is empty"), std::string::npos);
   // Keys of other versions are ignored; what is known is read.
   EXPECT_EQ(load_error(f, R"({"future_key": 1, "display_max_side": 64})"), "");
   EXPECT_EQ(load_settings(f).display_max_side, 64);
+}
+
+TEST(StudioSettings, TheInpaintersDefaultFollowsTheRemoval) {
+  const fs::path f = test::scratch_dir("studio_settings_inpainter") / "settings.json";
+  EXPECT_EQ(StudioSettings{}.removal_inpainter, "") << "the default is the removal's own";
+  save_settings(f, StudioSettings{});
+  EXPECT_EQ(load_settings(f).removal_inpainter, "");
+  // Editors that wrote no settings_version stored their default by name: telea, later harmonic.
+  for (const char* old_default : {"telea", "harmonic"}) {
+    EXPECT_EQ(load_error(f, std::string(R"({"removal_inpainter": ")") + old_default + R"("})"), "");
+    EXPECT_EQ(load_settings(f).removal_inpainter, "") << old_default;
+  }
+  EXPECT_EQ(load_error(f, R"({"removal_inpainter": "ns"})"), "");
+  EXPECT_EQ(load_settings(f).removal_inpainter, "ns") << "any other name was a choice";
+  // A file of this version keeps a choice of the old default.
+  StudioSettings chosen;
+  chosen.removal_inpainter = "telea";
+  save_settings(f, chosen);
+  EXPECT_EQ(load_settings(f).removal_inpainter, "telea");
 }
 
 TEST(StudioSettings, FollowsXdgFolders) {

@@ -435,7 +435,7 @@ void AppState::start_removal(int iterations) {
   const SelectionView sel = selection_.view();
   if (sel.mask && !sel.saved) save_selection();  // the removal takes RUN/selection.json: what is shown
   RemovalOptions o;
-  o.inpainter = settings_.removal_inpainter;
+  if (!settings_.removal_inpainter.empty()) o.inpainter = settings_.removal_inpainter;
   o.finetune_iterations = iterations > 0 ? iterations : settings_.removal_iterations;
   if (settings_.removal_ablate_material) o.ablate.insert("material");
   if (settings_.removal_ablate_lamask) o.ablate.insert("lamask");

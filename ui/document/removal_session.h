@@ -24,6 +24,8 @@ class RemovalSession : public JobReadout {
   // Starts run_removal(run_dir, options) on the worker. Throws goris::Error while one runs.
   void start(const std::filesystem::path& run_dir, const RemovalOptions& options);
   void cancel();  // Running -> Cancelling; otherwise nothing
+  // The removal's own 2D inpainter (RemovalOptions::inpainter): what the settings' "" stands for.
+  static std::string default_inpainter() { return RemovalOptions{}.inpainter; }
 
   RemovalProgressTracker progress() const { return progress_.get(); }
   // Of the last run that returned (finished or cancelled).

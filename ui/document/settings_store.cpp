@@ -130,7 +130,9 @@ StudioSettings load_settings(const fs::path& path) {
   check_range(s.export_baked_iterations, 1, 10000000, "export_baked_iterations", path);
   check_range(s.export_frames, 0, 100000, "export_frames", path);
   check_member(s.export_render_path, {"test", "train", "orbit"}, "export_render_path", path);
-  if (s.removal_inpainter.empty()) throw Error(path.string(), "'removal_inpainter' is empty");
+  int version = 1;
+  read_key(j, "settings_version", version, path);
+  if (version < 2 && (s.removal_inpainter == "telea" || s.removal_inpainter == "harmonic")) s.removal_inpainter.clear();
   check_channel(s.main_channel, "main_channel", path);
   for (const std::string& c : s.grid_channels) check_channel(c, "grid_channels", path);
   check_member(s.compare_mode, {"off", "side_by_side", "slider"}, "compare_mode", path);
@@ -146,7 +148,8 @@ StudioSettings load_settings(const fs::path& path) {
 }
 
 void save_settings(const fs::path& path, const StudioSettings& s) {
-  const json j = {{"window_width", s.window_width},
+  const json j = {{"settings_version", 2},
+                  {"window_width", s.window_width},
                   {"window_height", s.window_height},
                   {"show_sidebar", s.show_sidebar},
                   {"show_grid", s.show_grid},

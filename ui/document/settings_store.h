@@ -26,7 +26,9 @@ struct StudioSettings {
   std::string train_device = "auto";  // auto | cpu | cuda (as `goris train --device`)
   bool train_white_background = false;  // composite RGBA photos on white instead of black
   // Removal options of the panel (as `goris remove`).
-  std::string removal_inpainter = "harmonic";  // as RemovalOptions::inpainter; harmonic | telea | ns | fsr | cmd:COMMAND
+  // "" = the removal's default (RemovalOptions::inpainter), so a saved file follows a changed default; else a
+  // choice: harmonic | telea | ns | fsr | cmd:COMMAND.
+  std::string removal_inpainter;
   int removal_iterations = 0;               // fine-tune iterations; 0 = the pipeline's default
   bool removal_ablate_material = false;     // RGB-only inpainting
   bool removal_ablate_lamask = false;       // no lighting-aware mask
@@ -62,7 +64,9 @@ std::filesystem::path settings_dir();
 std::filesystem::path settings_path();
 
 // Missing file: defaults. Malformed file or a value of the wrong type / out of range: goris::Error naming
-// the file and the key.
+// the file and the key. A file without "settings_version" (editors that stored the inpainter's default as
+// a name) holding "telea" or "harmonic" reads as the default inpainter: those were the defaults it was saved
+// with, and nothing told them from a choice.
 StudioSettings load_settings(const std::filesystem::path& path);
 // Writes through a temporary file renamed into place; creates the folder.
 void save_settings(const std::filesystem::path& path, const StudioSettings& settings);

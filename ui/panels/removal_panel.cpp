@@ -57,19 +57,23 @@ void RemovalPanel::draw(AppState& st) {
 void RemovalPanel::draw_options(AppState& st, bool active) {
   StudioSettings& set = st.settings();
   ImGui::BeginDisabled(active);
-  static const char* kInpainters[] = {"harmonic", "telea", "ns", "fsr", "cmd:"};
+  // Entry 0 is the removal's default, stored as "" so that the settings follow it when it changes.
+  static const std::string kDefaultLabel = "default (" + RemovalSession::default_inpainter() + ")";
+  static const char* kInpainters[] = {kDefaultLabel.c_str(), "harmonic", "telea", "ns", "fsr", "cmd:"};
+  constexpr int kCount = 6, kCommand = 5;
   int which = 0;
-  for (int i = 0; i < 5; ++i)
-    if (set.removal_inpainter == kInpainters[i] || (i == 4 && set.removal_inpainter.rfind("cmd:", 0) == 0)) which = i;
-  ImGui::SetNextItemWidth(120);
-  if (ImGui::Combo("inpainter", &which, kInpainters, 5))
-    set.removal_inpainter = which == 4 ? "cmd:" + custom_command_ : kInpainters[which];
+  for (int i = 1; i < kCount; ++i)
+    if (set.removal_inpainter == kInpainters[i] || (i == kCommand && set.removal_inpainter.rfind("cmd:", 0) == 0)) which = i;
+  ImGui::SetNextItemWidth(160);
+  if (ImGui::Combo("inpainter", &which, kInpainters, kCount))
+    set.removal_inpainter = which == 0 ? "" : which == kCommand ? "cmd:" + custom_command_ : kInpainters[which];
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(
-        "harmonic (default): smooth fill that continues gradients; telea / ns: OpenCV inpainting;\n"
+        "default: the removal's own choice (follows it when it changes);\n"
+        "harmonic: smooth fill that continues gradients; telea / ns: OpenCV inpainting;\n"
         "fsr: OpenCV xphoto (slow);\n"
         "cmd: your own inpainter (LaMa, SD), run per map with {image} {mask} {out} (core/inpaint/external_inpainter.h)");
-  if (which == 4) {
+  if (which == kCommand) {
     if (custom_command_.empty() && set.removal_inpainter.size() > 4) custom_command_ = set.removal_inpainter.substr(4);
     ImGui::SetNextItemWidth(-1);
     if (ImGui::InputTextWithHint("##cmd", "e.g. python lama.py --image {image} --mask {mask} --out {out}", &custom_command_))
