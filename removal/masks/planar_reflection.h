@@ -2,12 +2,14 @@
 // The target's reflection in a planar glossy surface, from geometry alone, for any stage-1 model.
 //
 // A radiance model holds a mirror's reflections as a mirror world behind the surface; an intrinsic model
-// traces them. Either way the photos show the target's reflection where the target, mirrored through the
-// surface's plane, covers the visible glossy surface. Rendering the mirrored target (its Gaussians
-// reflected through the plane) from each training camera and keeping its coverage inside the photo's
-// glossy mask gives that region without tracing and without a crisp mirror twin in the model: the removal
-// inpaints it and turns the photo loss off there, so a blurred reflection on a rough surface (where the
-// mirror world is no copy of the target) goes as well. The coverage is grown to take in the blur.
+// should trace them, but after a short stage 1 it often bakes them into its colour too (a metal table's F0
+// learned at a small fraction of the truth, the glossy term near black), so deleting the target's Gaussians
+// leaves its reflection behind. Either way the photos show the target's reflection where the target,
+// mirrored through the surface's plane, covers the visible glossy surface. Rendering the mirrored target
+// (its Gaussians reflected through the plane) from each training camera and keeping its coverage inside the
+// photo's glossy mask gives that region without tracing and without a crisp mirror twin in the model: the
+// removal inpaints it and turns the photo loss off there, so a blurred reflection on a rough surface (where
+// the mirror world is no copy of the target) goes as well. The coverage is grown to take in the blur.
 // The plane: mirror_twins.h (fitted to an intrinsic model's flat glossy Gaussians) or plane_from_masks.h.
 #include <cstdint>
 #include <vector>

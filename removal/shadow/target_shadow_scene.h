@@ -53,8 +53,8 @@ void relight_image(Image& image, const PlanePixels& px, const std::vector<float>
 
 // Where the fit's samples take their colour. On a glossy support surface the photos' colour there is mostly
 // the reflection of the scene, which varies from view to view and hides the shadow from the fit; an intrinsic
-// model's own colour is its diffuse term D alone (the reflections are in the traced glossy term G), the same
-// from every view, and keeps the shadow.
+// model's own colour is its diffuse term D alone, the same from every view (what it did not put into the traced
+// glossy term G, it bakes into D as a fixed colour), and keeps the shadow.
 enum class ShadowSampleColour {
   Photos,  // the training photos (a radiance model's colour would carry the reflections too)
   Model,   // the model's rendered colour: D for an intrinsic model
