@@ -37,7 +37,10 @@ GaussianModel mirrored_through(const GaussianModel& model, const SelectionMask& 
 
 struct ReflectionMaskSettings {
   float alpha_threshold = 0.2f;  // coverage of the mirrored target above which a pixel shows its reflection
-  float grow_fraction = 0.03f;   // the region grown by this fraction of the image width (at least 1 px): blur
+  // The region grown by this fraction of the image width (at least 1 px) to take in the reflection's blur.
+  // Half and twice as much scored lower on the generalization suite
+  // (docs/lab/2026-12-05-where-the-reflections-live.md).
+  float grow_fraction = 0.03f;
 };
 
 // The pixels of one view where the mirrored target covers the visible glossy surface (glossy_mask > 0.5),
