@@ -62,8 +62,9 @@ void RemovalPanel::draw_options(AppState& st, bool active) {
   static const char* kInpainters[] = {kDefaultLabel.c_str(), "harmonic", "telea", "ns", "fsr", "cmd:"};
   constexpr int kCount = 6, kCommand = 5;
   int which = 0;
+  const bool command = set.removal_inpainter.rfind("cmd:", 0) == 0;
   for (int i = 1; i < kCount; ++i)
-    if (set.removal_inpainter == kInpainters[i] || (i == kCommand && set.removal_inpainter.rfind("cmd:", 0) == 0)) which = i;
+    if (set.removal_inpainter == kInpainters[i] || (i == kCommand && command)) which = i;
   ImGui::SetNextItemWidth(160);
   if (ImGui::Combo("inpainter", &which, kInpainters, kCount))
     set.removal_inpainter = which == 0 ? "" : which == kCommand ? "cmd:" + custom_command_ : kInpainters[which];
