@@ -13,6 +13,20 @@
 
 namespace goris::bench::pipeline {
 
+namespace {
+
+// A stage-1 run's recorded arguments without its own output folder: a run folder holds no path of its own, so
+// a bench folder copied or moved elsewhere keeps its stage-1 runs.
+json without_run_folder(json options) {
+  if (!options.is_object() || !options.contains("args") || !options["args"].is_array()) return options;
+  json& args = options["args"];
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i] == "--out") args[i + 1] = "RUN";
+  return options;
+}
+
+}  // namespace
+
 Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Schedule& s, const ConfigSpec& c) {
   const fs::path dir = out_ / "runs" / scene / s.name / (std::string("stage1_") + c.stage1);
   const std::string key = dir.string();
@@ -28,11 +42,13 @@ Stage1 Bench::stage1(const std::string& scene, const std::string& data, const Sc
   if (c.train_args.empty()) options["defaults"] = defaults_fingerprint();
   Stage1 st{dir / "run", {}};
   // A finished stage 1 with the same arguments, trained by this very binary, is reused with its recorded
-  // time; --keep-stage1 also takes one another build trained (to measure a change of the removal alone).
+  // time, wherever its bench folder was when it trained; --keep-stage1 also takes one another build trained
+  // (to measure a change of the removal alone, in a copy of the folder that measured the change's base).
   if (fs::exists(dir / "stage1.json")) {
     const json j = read_json_object(dir / "stage1.json");
     const bool same_binary = j.value("binary", std::string()) == goris::bench::binary_fingerprint();
-    if (j.value("options", json()) == options && j.value("ok", false) && (same_binary || o_.keep_stage1)) {
+    if (without_run_folder(j.value("options", json())) == without_run_folder(options) && j.value("ok", false) &&
+        (same_binary || o_.keep_stage1)) {
       if (!same_binary) std::printf("    train    --keep-stage1: trained by another build of goris\n");
       st.train = {true, j.value("seconds", 0.0), j.value("peak_mib", 0.0), j.value("peak_device_mib", 0.0), "",
                   json_number(j, "cpu_seconds")};

@@ -1,6 +1,7 @@
 # `goris bench pipeline` on the embedded scene with the hidden seconds-long `tiny` schedule: two rungs of the
 # ladder (baseline, full) each trained, selected, removed and evaluated in child processes; results.csv,
-# results.md and the charts are written; a second run reuses both results; bad names are refused.
+# results.md and the charts are written; a second run reuses both results, a copy of the folder its stage-1
+# runs; bad names are refused.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -94,6 +95,17 @@ expect_text("${md}" "default_scene / tiny / stage 1 `default`: --mode auto: intr
 expect_text("${md}" "default_scene / tiny / stage 1 `intrinsic`: reflection rays: ")
 file(READ "${OUTDIR}/runs/default_scene/tiny/sh1/run/config.json" sh1_config)
 expect_text("${sh1_config}" "\"max_sh_degree\": 1")
+
+# A copy of the bench folder elsewhere keeps its stage-1 runs: a configuration not yet measured there trains
+# nothing when its stage 1 (default's) is in the copy.
+file(COPY "${OUTDIR}/" DESTINATION "${WORK}/bench_copy")
+goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs default-nofill --out "${WORK}/bench_copy"
+         --schedule tiny --device cpu)
+expect_text("${OUT}" "train    reused ${WORK}/bench_copy/runs/default_scene/tiny/stage1_default/run")
+string(FIND "${OUT}" "goris train" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "a copied bench folder trained its stage 1 again:\n${OUT}")
+endif()
 
 # --report-only: tables from what is there; a configuration without a result is listed, nothing runs.
 goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full,coarse --out "${OUTDIR}"
