@@ -14,7 +14,7 @@
 #include "core/io/dataset.h"
 #include "core/io/image.h"
 #include "core/util/error.h"
-#include "removal/selection/plane_from_masks.h"
+#include "core/scene/plane_from_masks.h"
 #include "train/loop/checkpoint.h"
 #include "train/radiance/raster_renderer.h"
 #include "train/run/train_setup.h"

@@ -20,7 +20,7 @@
 #include "core/io/ply.h"
 #include "core/scene/mirror_twins.h"
 #include "core/inpaint/region_fill.h"
-#include "removal/selection/plane_from_masks.h"
+#include "core/scene/plane_from_masks.h"
 #include "removal/masks/planar_reflection.h"
 #include "removal/selection/selection_file.h"
 #include "removal/selection/selection_labels.h"

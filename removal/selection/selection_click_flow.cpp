@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "core/util/error.h"
-#include "removal/selection/plane_from_masks.h"
+#include "core/scene/plane_from_masks.h"
 #include "removal/selection/selection_view_masks.h"
 
 namespace goris {

@@ -9,7 +9,7 @@
 
 #include "render/raster/raster_types.h"
 #include "core/util/error.h"
-#include "removal/selection/plane_from_masks.h"
+#include "core/scene/plane_from_masks.h"
 #include "removal/masks/planar_reflection.h"
 #include "removal/masks/removed_glossy_masks.h"
 #include "train/loop/trainer.h"

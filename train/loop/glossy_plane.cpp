@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/compute/parallel_for.h"
+#include "core/scene/plane_from_masks.h"
 #include "core/scene/selection_points.h"
 #include "train/loop/trainer.h"
 #include "train/optimizer/densify.h"
@@ -32,8 +33,52 @@ std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const s
   return over;
 }
 
+namespace {
+
+// The masks place the plane to within a few tolerances (the visible side of a thick top pulls it down); the
+// model's own surface - the densest layer, one tolerance thick, of the centres over glossy pixels within
+// kReach tolerances of it - places it exactly, when that layer holds at least kMinLayer centres (a mirror's
+// warm-up may have almost no Gaussians on its surface; the masks' height stays then). Sets the plane's inlier
+// counts to the model's.
+void snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, const std::vector<std::uint8_t>& over) {
+  constexpr double kReach = 3.0;
+  constexpr std::size_t kMinLayer = 10;
+  auto distance = [&](std::size_t i) {
+    return plane.signed_distance(glm::dvec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+  };
+  std::vector<double> near;
+  for (std::size_t i = 0; i < over.size(); ++i)
+    if (over[i] && std::abs(distance(i)) <= kReach * plane.tolerance) near.push_back(distance(i));
+  std::sort(near.begin(), near.end());
+  std::size_t best = 0, best_count = 0;  // the window [near[best], near[best] + tolerance]
+  for (std::size_t a = 0, b = 0; a < near.size(); ++a) {
+    while (b < near.size() && near[b] <= near[a] + plane.tolerance) ++b;
+    if (b - a > best_count) best = a, best_count = b - a;
+  }
+  if (best_count >= kMinLayer) plane.offset += near[best + best_count / 2];  // the layer's median
+  plane.glossy = plane.inliers = 0;
+  for (std::size_t i = 0; i < over.size(); ++i)
+    if (over[i]) ++plane.glossy, plane.inliers += std::abs(distance(i)) <= plane.tolerance;
+}
+
+}  // namespace
+
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
                                  const std::vector<std::uint8_t>& over_glossy) {
+  std::vector<Camera> cameras;
+  std::vector<const std::vector<float>*> masks;
+  for (const TrainView& v : views) {
+    cameras.push_back(v.camera);
+    const bool sized = v.glossy_mask.size() == std::size_t(v.camera.width) * std::size_t(v.camera.height);
+    masks.push_back(sized ? &v.glossy_mask : nullptr);
+  }
+  if (std::any_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) {
+    MirrorPlane plane = plane_from_glossy_masks(cameras, masks).plane;
+    if (plane.found) {
+      snap_to_surface_layer(plane, model.tensor(Param::Position).value.to_host(), over_glossy);
+      return plane;
+    }
+  }
   const SelectionPoints points = selection_points(model);
   const std::vector<glm::vec3> flat = flat_normals(model);
   std::vector<glm::vec3> centres, normals;
@@ -41,9 +86,9 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
     if (over_glossy[i]) centres.push_back(points.position[i]), normals.push_back(flat[i]);
   MirrorPlane plane = fit_mirror_plane(centres, {}, normals);
   if (!plane.found) return plane;
-  std::size_t above = 0, cameras = 0;
-  for (const TrainView& v : views) above += plane.signed_distance(glm::dvec3(v.camera.center())) > 0, ++cameras;
-  if (2 * above < cameras) plane.normal = -plane.normal, plane.offset = -plane.offset;
+  std::size_t above = 0, n_cameras = 0;
+  for (const TrainView& v : views) above += plane.signed_distance(glm::dvec3(v.camera.center())) > 0, ++n_cameras;
+  if (2 * above < n_cameras) plane.normal = -plane.normal, plane.offset = -plane.offset;
   return plane;
 }
 

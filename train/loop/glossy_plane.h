@@ -6,10 +6,9 @@
 // snowman there (opaque Gaussians just under the table top, tilted 50-81 degrees: docs/lab/bench/NOTES.md,
 // 2026-11-29), and the reflected rays then hit the table's own tilted Gaussians.
 //
-// `intrinsic_glossy_plane` (off by default) fits the plane the centres on glossy pixels lie on at the last
-// warm-up iteration (RANSAC over flat Gaussians' normals, core/scene/mirror_twins.h), removes the Gaussians
-// beyond it that lie over glossy pixels inside its footprint (PlaneFootprint, below), and from then on
-// projects every such centre back onto the cameras' side after each update (a projected gradient step).
+// `intrinsic_glossy_plane` (off by default) finds the glossy surface's plane at the last warm-up iteration
+// (from the glossy masks, glossy_surface_plane below), removes the Gaussians beyond it that lie over glossy
+// pixels inside its footprint (PlaneFootprint, below), and from then on projects every such centre back onto the cameras' side after each update (a projected gradient step).
 // Which Gaussians lie over glossy pixels, and the footprint, are refreshed every `kRefreshInterval`
 // iterations and whenever the count changes. A Gaussian put back keeps the colour it took on beyond the
 // plane; on steel_snowman (8K, with alpha_weight) those painted the snowman's reflection into the table's
@@ -37,8 +36,14 @@ struct TrainView;  // train/loop/trainer.h; the GlossyPlaneHook (train/loop/hook
 // whose frame it is in.
 std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const std::vector<TrainView>& views);
 
-// The plane the centres over glossy pixels lie on (fit_mirror_plane with the flat Gaussians' normals), its
-// normal turned to the side most camera centres are on. found = false when no plane holds enough of them.
+// The glossy surface's plane, its normal towards the cameras: from the views' glossy masks when they have
+// any (plane_from_glossy_masks, core/scene/plane_from_masks.h), moved to the densest layer of the centres over
+// glossy pixels near it (the model's own surface, when it has one); else - or when the masks give none - the
+// plane the centres over glossy pixels lie on (fit_mirror_plane with the flat Gaussians' normals). The warm-up's
+// Gaussians over a mirror-like surface are mostly its mirror world: fitted to them, the plane came out tilted
+// 12-30 degrees on the generalization suite's metal tables and 0.4-1.6 above its floors; the masks give
+// every table's top within 6 degrees (docs/lab/2026-12-05-the-glossy-plane-from-the-masks.md). found = false
+// when neither gives one.
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
                                  const std::vector<std::uint8_t>& over_glossy);
 

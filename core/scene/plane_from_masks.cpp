@@ -1,4 +1,4 @@
-#include "removal/selection/plane_from_masks.h"
+#include "core/scene/plane_from_masks.h"
 
 #include "core/scene/select_hull.h"
 

@@ -40,9 +40,9 @@ struct PlaneFromMasks {
   double iou = 0;
 };
 // Where to search, as heights up . x (up = mean_camera_up). A surface that fills every view (a floor reaching
-// past the images' edges) maps onto itself at nearly any height, so the caller narrows the search to where
-// the target rests and prefers that height on near-ties (removal_pipeline.cpp). Absent: from twice the
-// cameras' spread below the lowest camera up to it, and the best score wins.
+// past the images' edges) maps onto itself at nearly any height, so the removal narrows the search to where
+// the target rests and prefers that height on near-ties (removal/pipeline/removal_pipeline.cpp). Absent: from
+// twice the cameras' spread below the lowest camera up to it, and the best score wins.
 struct PlaneHeights {
   double low = 0, high = 0;
   std::optional<double> preferred;
