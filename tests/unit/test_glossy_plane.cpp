@@ -95,6 +95,8 @@ TEST(GlossyPlane, PrunesTheMirrorWorldAndKeepsCentresOnTheCamerasSide) {
   EXPECT_EQ(constraint.pruned(), s.mirror) << note << ": the side, under the plane over glossy pixels, stays";
   ASSERT_EQ(s.model.count(), s.table + s.leg + s.object + s.side);
   EXPECT_NE(note.find("pruned 36 of"), std::string::npos) << note;
+  // The masks' level plane lies below the top (its glossy side pulls it down); the top's Gaussians place it.
+  EXPECT_NE(note.find("from the glossy masks, level, moved +0.0"), std::string::npos) << note;
 
   // A table Gaussian sinks under the top, the leg moves: only the first is put back (at -tolerance / 2).
   constexpr std::size_t kCentre = 7 * 15 + 7;  // the table's middle Gaussian

@@ -40,8 +40,8 @@ namespace {
 // kReach tolerances of it - places it exactly when there is one: at least kMinLayer centres and a third of
 // those within reach, twice what a layer holds of an even spread. A mirror's warm-up has its centres spread
 // through the mirror world instead (the suite's metal tables: no denser layer at the top); the masks' height
-// stays then. Sets the plane's inlier counts to the model's.
-void snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, const std::vector<std::uint8_t>& over) {
+// stays then. Sets the plane's inlier counts to the model's; returns how far it moved the plane.
+double snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, const std::vector<std::uint8_t>& over) {
   constexpr double kReach = 3.0;
   constexpr std::size_t kMinLayer = 10;
   auto distance = [&](std::size_t i) {
@@ -56,16 +56,19 @@ void snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, co
     while (b < near.size() && near[b] <= near[a] + plane.tolerance) ++b;
     if (b - a > best_count) best = a, best_count = b - a;
   }
-  if (best_count >= kMinLayer && 3 * best_count >= near.size()) plane.offset += near[best + best_count / 2];  // the layer's median
+  double moved = 0;
+  if (best_count >= kMinLayer && 3 * best_count >= near.size()) moved = near[best + best_count / 2];  // its median
+  plane.offset += moved;
   plane.glossy = plane.inliers = 0;
   for (std::size_t i = 0; i < over.size(); ++i)
     if (over[i]) ++plane.glossy, plane.inliers += std::abs(distance(i)) <= plane.tolerance;
+  return moved;
 }
 
 }  // namespace
 
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
-                                 const std::vector<std::uint8_t>& over_glossy) {
+                                 const std::vector<std::uint8_t>& over_glossy, std::string* source) {
   std::vector<Camera> cameras;
   std::vector<const std::vector<float>*> masks;
   for (const TrainView& v : views) {
@@ -82,7 +85,12 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
     level.tilt_steps = 0;
     MirrorPlane plane = plane_from_glossy_masks(cameras, masks, level).plane;
     if (plane.found) {
-      snap_to_surface_layer(plane, model.tensor(Param::Position).value.to_host(), over_glossy);
+      const double moved = snap_to_surface_layer(plane, model.tensor(Param::Position).value.to_host(), over_glossy);
+      if (source) {
+        char buf[120];
+        std::snprintf(buf, sizeof buf, "from the glossy masks, level, moved %+.3f onto the model's surface layer", moved);
+        *source = moved != 0 ? buf : "from the glossy masks, level";
+      }
       return plane;
     }
   }
@@ -92,6 +100,7 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
   for (std::size_t i = 0; i < points.size(); ++i)
     if (over_glossy[i]) centres.push_back(points.position[i]), normals.push_back(flat[i]);
   MirrorPlane plane = fit_mirror_plane(centres, {}, normals);
+  if (source) *source = "fitted to the flat glossy Gaussians";
   if (!plane.found) return plane;
   std::size_t above = 0, n_cameras = 0;
   for (const TrainView& v : views) above += plane.signed_distance(glm::dvec3(v.camera.center())) > 0, ++n_cameras;
@@ -200,7 +209,8 @@ void for_each_beyond(const std::vector<float>& pos, const MirrorPlane& plane, co
 std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector<TrainView>& views) {
   started_ = true;
   over_glossy_ = over_glossy_pixels(model, views);
-  plane_ = glossy_surface_plane(model, views, over_glossy_);
+  std::string source;
+  plane_ = glossy_surface_plane(model, views, over_glossy_, &source);
   if (!plane_.found) return "glossy plane: none found, not constrained";
   const std::vector<float> pos = model.tensor(Param::Position).value.to_host();
   footprint_ = PlaneFootprint(pos, plane_, over_glossy_);
@@ -211,10 +221,10 @@ std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector
   pruned_ = prune_gaussians(model, keep);
   over_glossy_.clear();  // refreshed at the first apply()
   char buf[200];
-  std::snprintf(buf, sizeof buf, "glossy plane n = (%.3f, %.3f, %.3f), n . x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
+  std::snprintf(buf, sizeof buf, "n = (%.3f, %.3f, %.3f), n . x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
                 plane_.normal.x, plane_.normal.y, plane_.normal.z, plane_.offset, plane_.inliers, plane_.glossy, pruned_,
                 before);
-  return buf;
+  return "glossy plane " + source + ": " + buf;
 }
 
 GlossyPlaneConstraint::Step GlossyPlaneConstraint::apply(GaussianModel& model, const std::vector<TrainView>& views,

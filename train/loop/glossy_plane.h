@@ -44,8 +44,9 @@ std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const s
 // 12-30 degrees on the generalization suite's metal tables and 0.4-1.6 above its floors; the masks give
 // every table's top within 6 degrees (docs/lab/2026-12-05-the-glossy-plane-from-the-masks.md). found = false
 // when neither gives one.
+// `source`, when given, is told which of the two it came from, for the log.
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
-                                 const std::vector<std::uint8_t>& over_glossy);
+                                 const std::vector<std::uint8_t>& over_glossy, std::string* source = nullptr);
 
 // Where the surface is, seen along its normal: the cells of a grid in the plane (kCells across the in-band
 // centres' extent, or their mean spacing when coarser) that hold a flagged centre within the plane's
