@@ -67,8 +67,7 @@ double snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, 
 
 }  // namespace
 
-MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
-                                 const std::vector<std::uint8_t>& over_glossy, std::string* source) {
+MirrorPlane level_plane_from_masks(const std::vector<TrainView>& views) {
   std::vector<Camera> cameras;
   std::vector<const std::vector<float>*> masks;
   for (const TrainView& v : views) {
@@ -76,23 +75,22 @@ MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<T
     const bool sized = v.glossy_mask.size() == std::size_t(v.camera.width) * std::size_t(v.camera.height);
     masks.push_back(sized ? &v.glossy_mask : nullptr);
   }
-  if (std::any_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) {
-    // Level (the normal: the cameras' mean up). The constraint turns the surface's normals to the plane and
-    // a reflected ray is off by twice their error; the masks' tilt search gained at most 0.017 IoU over the
-    // level plane on the generalization suite's level surfaces and was 2-7 degrees off on 12 of 13, while a
-    // true 4-degree tilt gains 0.009 on clean masks: the masks cannot tell a small tilt.
-    PlaneFromMasksSettings level;
-    level.tilt_steps = 0;
-    MirrorPlane plane = plane_from_glossy_masks(cameras, masks, level).plane;
-    if (plane.found) {
-      const double moved = snap_to_surface_layer(plane, model.tensor(Param::Position).value.to_host(), over_glossy);
-      if (source) {
-        char buf[120];
-        std::snprintf(buf, sizeof buf, "from the glossy masks, level, moved %+.3f onto the model's surface layer", moved);
-        *source = moved != 0 ? buf : "from the glossy masks, level";
-      }
-      return plane;
+  if (std::none_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) return {};
+  PlaneFromMasksSettings level;
+  level.tilt_steps = 0;
+  return plane_from_glossy_masks(cameras, masks, level).plane;
+}
+
+MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
+                                 const std::vector<std::uint8_t>& over_glossy, std::string* source) {
+  if (MirrorPlane plane = level_plane_from_masks(views); plane.found) {
+    const double moved = snap_to_surface_layer(plane, model.tensor(Param::Position).value.to_host(), over_glossy);
+    if (source) {
+      char buf[120];
+      std::snprintf(buf, sizeof buf, "from the glossy masks, level, moved %+.3f onto the model's surface layer", moved);
+      *source = moved != 0 ? buf : "from the glossy masks, level";
     }
+    return plane;
   }
   const SelectionPoints points = selection_points(model);
   const std::vector<glm::vec3> flat = flat_normals(model);
@@ -221,9 +219,10 @@ std::string GlossyPlaneConstraint::start(GaussianModel& model, const std::vector
   pruned_ = prune_gaussians(model, keep);
   over_glossy_.clear();  // refreshed at the first apply()
   char buf[200];
-  std::snprintf(buf, sizeof buf, "n = (%.3f, %.3f, %.3f), n . x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
-                plane_.normal.x, plane_.normal.y, plane_.normal.z, plane_.offset, plane_.inliers, plane_.glossy, pruned_,
-                before);
+  std::snprintf(buf, sizeof buf,
+                "n = (%.3f, %.3f, %.3f), n . x = %.3f (%zu of %zu centres): pruned %zu of %zu beyond it",
+                plane_.normal.x, plane_.normal.y, plane_.normal.z, plane_.offset, plane_.inliers, plane_.glossy,
+                pruned_, before);
   return "glossy plane " + source + ": " + buf;
 }
 
