@@ -39,7 +39,7 @@ namespace {
 // holds the model's own surface: the densest layer, one tolerance thick, of the centres over glossy pixels
 // within kReach tolerances of the masks' plane, when there is one - at least kMinLayer centres and a third of
 // those within reach, twice what a layer holds of an even spread. On the generalization suite's tables the
-// warm-up's layer lay 0.02-0.06 below the masks' plane on 10 of 11, and moving there was worth 0.7-3.2 dB on
+// warm-up's layer lay 0.015-0.07 below the masks' plane on 10 of 11, and moving there was worth 0.7-3.2 dB on
 // the three mirror-like tables of six measured (level on the other three); the floors' warm-ups, still a fog,
 // had none and kept the masks' height (docs/lab/2026-12-05-the-glossy-plane-from-the-masks.md). Sets the
 // plane's inlier counts to the model's; returns how far it moved the plane.
