@@ -173,6 +173,21 @@ TEST(GlossyPlane, ThePlaneComesFromTheMasksNotFromATiltedMirrorWorld) {
   EXPECT_EQ(constraint.pruned(), s.mirror + gs.size()) << note;
 }
 
+TEST(GlossyPlane, WithoutASurfaceLayerThePlaneStaysAtTheMasksHeight) {
+  // A floor's warm-up can still be a fog: spread the table's Gaussians evenly through +-0.15 around the top.
+  // No layer holds a third of them, so the plane stays where the masks put it (below the top: the glossy
+  // side pulls the masks' outline down) and the log line says it was not moved.
+  Scene s = table_scene();
+  float* pos = s.model.values(Param::Position);
+  for (std::size_t i = 0; i < s.table; ++i) pos[3 * i + 2] = -0.15f + 0.3f * float((i * 7) % s.table) / float(s.table);
+  GlossyPlaneConstraint constraint;
+  const std::string note = constraint.start(s.model, s.views);
+  ASSERT_TRUE(constraint.plane().found) << note;
+  EXPECT_NE(note.find("from the glossy masks, level: n ="), std::string::npos) << note;
+  EXPECT_LT(constraint.plane().offset, -0.03) << note << ": the masks' height, not the top's";
+  EXPECT_GT(constraint.plane().offset, -0.1) << note;
+}
+
 TEST(GlossyPlane, AlignsTheTablesFlatGaussiansToThePlaneOnly) {
   Scene s = table_scene();
   GlossyPlaneConstraint constraint;
