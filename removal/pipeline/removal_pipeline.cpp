@@ -103,8 +103,7 @@ MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& tar
   // a radiance model of a mirror-like surface has no Gaussians on the surface to fit a plane to (it shows a
   // mirror world behind it), and an intrinsic model's flat glossy Gaussians can lie in another plane (the
   // tops of the objects on a mirror table) when few of them make the surface.
-  std::vector<const std::vector<float>*> masks;
-  for (const TrainView& v : views) masks.push_back(v.glossy_mask.empty() ? nullptr : &v.glossy_mask);
+  const std::vector<const std::vector<float>*> masks = glossy_masks_of(views);
   if (std::any_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) {
     const PlaneFromMasks pm =
         plane_from_glossy_masks(cameras, masks, {}, target_rest_heights(cameras, masks, centres, target));

@@ -67,21 +67,21 @@ double snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, 
   return moved;
 }
 
-}  // namespace
-
+// The views' glossy masks' plane, level: its normal the cameras' mean up. The masks cannot tell a small tilt:
+// their tilt search gained at most 0.017 IoU over the level plane on the generalization suite's level surfaces
+// and was 2-7 degrees off on 12 of 13, while a true 4-degree tilt gains 0.009 on clean masks; a reflected ray
+// is off by twice the surface normal's error. (The removal keeps the tilt search: level, its planar
+// reflection mask lost 0.10 dB on the suite's mean.) found = false without masks or when they agree at no
+// height.
 MirrorPlane level_plane_from_masks(const std::vector<TrainView>& views) {
   std::vector<Camera> cameras;
-  std::vector<const std::vector<float>*> masks;
-  for (const TrainView& v : views) {
-    cameras.push_back(v.camera);
-    const bool sized = v.glossy_mask.size() == std::size_t(v.camera.width) * std::size_t(v.camera.height);
-    masks.push_back(sized ? &v.glossy_mask : nullptr);
-  }
-  if (std::none_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) return {};
+  for (const TrainView& v : views) cameras.push_back(v.camera);
   PlaneFromMasksSettings level;
   level.tilt_steps = 0;
-  return plane_from_glossy_masks(cameras, masks, level).plane;
+  return plane_from_glossy_masks(cameras, glossy_masks_of(views), level).plane;
 }
+
+}  // namespace
 
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
                                  const std::vector<std::uint8_t>& over_glossy, std::string* source) {

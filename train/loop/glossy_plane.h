@@ -37,22 +37,15 @@ struct TrainView;  // train/loop/trainer.h; the GlossyPlaneHook (train/loop/hook
 // whose frame it is in.
 std::vector<std::uint8_t> over_glossy_pixels(const GaussianModel& model, const std::vector<TrainView>& views);
 
-// The views' glossy masks' plane (plane_from_glossy_masks, core/scene/plane_from_masks.h), level: its normal
-// the cameras' mean up. The masks cannot tell a small tilt: their tilt search gained at most 0.017 IoU over
-// the level plane on the generalization suite's level surfaces and was 2-7 degrees off on 12 of 13, while a
-// true 4-degree tilt gains 0.009 on clean masks; a reflected ray is off by twice the surface normal's error.
-// (The removal keeps the tilt search: level, its planar reflection mask lost 0.10 dB on the suite's mean.)
-// found = false without masks or when they agree at no height.
-MirrorPlane level_plane_from_masks(const std::vector<TrainView>& views);
-
-// The glossy surface's plane, its normal towards the cameras: level_plane_from_masks when the views have
-// masks, moved to the densest layer of the centres over glossy pixels near it (the model's own surface, when
-// it has one); else - or when the masks give none - the plane the centres over glossy pixels lie on
-// (fit_mirror_plane with the flat Gaussians' normals). The warm-up's Gaussians over a mirror-like surface are
-// mostly its mirror world: fitted to them, the plane came out tilted 12-30 degrees on the generalization
-// suite's metal tables and 0.4-1.6 above its floors; the masks' level plane lies within 0.035 of every
-// table's top (docs/lab/2026-12-05-the-glossy-plane-from-the-masks.md). found = false when neither gives one.
-// `source`, when given, is told which of the two it came from, for the log.
+// The glossy surface's plane, its normal towards the cameras: the glossy masks' level plane
+// (plane_from_glossy_masks, core/scene/plane_from_masks.h) when the views have masks, moved to the densest
+// layer of the centres over glossy pixels near it (the model's own surface, when it has one); else - or when
+// the masks give none - the plane the centres over glossy pixels lie on (fit_mirror_plane with the flat
+// Gaussians' normals). The warm-up's Gaussians over a mirror-like surface are mostly its mirror world: fitted
+// to them, the plane came out tilted 12-30 degrees on the generalization suite's metal tables and 0.4-1.6 above
+// its floors; the masks' level plane lies within 0.035 of every table's top
+// (docs/lab/2026-12-05-the-glossy-plane-from-the-masks.md). found = false when neither gives one. `source`,
+// when given, is told which of the two it came from, for the log.
 MirrorPlane glossy_surface_plane(const GaussianModel& model, const std::vector<TrainView>& views,
                                  const std::vector<std::uint8_t>& over_glossy, std::string* source = nullptr);
 

@@ -134,6 +134,13 @@ void Trainer::switch_mode(TrainConfig config, std::shared_ptr<DifferentiableRend
     }
 }
 
+std::vector<const std::vector<float>*> glossy_masks_of(const std::vector<TrainView>& views) {
+  std::vector<const std::vector<float>*> masks;
+  masks.reserve(views.size());
+  for (const TrainView& v : views) masks.push_back(v.glossy_mask.empty() ? nullptr : &v.glossy_mask);
+  return masks;
+}
+
 std::vector<Camera> Trainer::cameras() const {
   std::vector<Camera> c;
   c.reserve(views_.size());

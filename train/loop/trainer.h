@@ -56,6 +56,10 @@ struct TrainView {
   std::shared_ptr<const InpaintTargets> inpaint;
 };
 
+// Each view's glossy mask, null where it has none: the form plane_from_glossy_masks takes
+// (core/scene/plane_from_masks.h). The pointers are into `views`.
+std::vector<const std::vector<float>*> glossy_masks_of(const std::vector<TrainView>& views);
+
 // Everything that changes while training; a checkpoint stores exactly this (and the config).
 struct TrainerState {
   int iteration = 0;  // iterations completed
