@@ -42,6 +42,7 @@
 #include "removal/lift/inpainted_maps.h"
 #include "removal/lift/lift.h"
 #include "removal/masks/lighting_aware_mask.h"
+#include "removal/lift/plane_depth.h"
 #include "removal/lift/reference_views.h"
 #include "removal/masks/removed_glossy_masks.h"
 #include "removal/shadow/target_shadow_scene.h"
@@ -432,6 +433,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     fs::create_directories(dir);
     nlohmann::json opts = made_from;
     opts["materials"] = materials;
+    const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
+    const bool lift_on_plane = surface_fill && glossy_plane.found;
+    if (lift_on_plane) opts["lift_not_in_front_of"] = {glossy_plane.normal.x, glossy_plane.normal.y, glossy_plane.normal.z, glossy_plane.offset};
     opts["views"] = report.reference_views;
     // inpainted[k]: the reference views, then the other views' fills, kept apart from the reference views'
     // maps (the lift's input) under their own file stem.
@@ -458,7 +462,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       return *fill_inp;
     };
     const std::size_t maps_per_view = materials ? 6 : 2;
-    const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
+
     const std::size_t total = inpainted.size() * maps_per_view;
     std::size_t done = 0;
     struct Stopped {};  // a stop while the maps are filled leaves no record: a rerun fills them again
@@ -499,8 +503,13 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         const Inpainter& fill_with = inpainter_for(reference);
         m = inpaint_map_set(fill_with, maps, holes[v].mask, name, mo);
         if (!reference) ++done;  // the depth map it skipped
+        std::vector<float> g = surface_fill ? removed_glossy_mask(views[v], holes[v]) : std::vector<float>();
+        if (reference && lift_on_plane && !g.empty() && m.depth.channels == 1) {  // plane_depth.h: the fill is not lifted into the air
+          Mask on_surface(cameras[v].width, cameras[v].height);
+          for (std::size_t p = 0; p < g.size(); ++p) on_surface.data[p] = holes[v].mask.data[p] && g[p] >= 0.5f ? 255 : 0;
+          report.lift_onto_plane_pixels += depth_onto_plane(m.depth, cameras[v], on_surface, glossy_plane);
+        }
         if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)
-          std::vector<float> g = removed_glossy_mask(views[v], holes[v]);
           if (!g.empty()) {
             const MapInfo info{name, "rgb", MapKind::Color};
             m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
@@ -532,7 +541,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     }
     if (!lv.empty()) lift = lift_reference_views(lifted, lv);
     report.added = lift.added;
-    s.finish(std::to_string(lift.added) + " Gaussians added");
+    s.finish(std::to_string(lift.added) + " Gaussians added" +
+             (report.lift_onto_plane_pixels ? " (" + std::to_string(report.lift_onto_plane_pixels) +
+                                                  " hole pixels moved back onto the glossy plane)"
+                                            : std::string()));
   }
 
   // 7. Fine-tune.
@@ -631,6 +643,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["lighting_mask_pixels"] = report.lighting_pixels;
     j["mirror_twins"] = report.mirror_twins;
     j["reflection_pixels"] = report.reflection_pixels;
+    j["lift_onto_plane_pixels"] = report.lift_onto_plane_pixels;
     if (report.glossy_plane.found)
       j["glossy_plane"] = {{"normal", {report.glossy_plane.normal.x, report.glossy_plane.normal.y, report.glossy_plane.normal.z}},
                            {"offset", report.glossy_plane.offset},

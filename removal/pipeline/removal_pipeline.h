@@ -23,7 +23,8 @@
 //                                                              -> removal/inpainted/VIEW_MAP.png|.npy
 //                    and the same maps but depth of every other view with a hole: its own fill, a target
 //                    where no lifted point lands (view_fill_weight)  -> removal/inpainted/VIEW_fill_MAP.npy
-//   3D lift          new Gaussians on the inpainted depth       (count in removal/report.json)
+//   3D lift          new Gaussians on the inpainted depth, never in front of the glossy plane where the
+//                    hole lies on the glossy surface (plane_depth.h) (count in removal/report.json)
 //   fine-tune        environment map and net frozen; photo losses outside object U lighting masks,
 //                    appearance / material losses in every view's hole   -> removal/ as a run folder: config.json,
 //                                                                 checkpoints/, log.csv, point_cloud.ply
@@ -92,6 +93,7 @@ struct RemovalReport {
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   MirrorPlane glossy_plane;           // the glossy surface's plane (found = false: none)
   std::size_t reflection_pixels = 0;  // the mirrored target on the glossy surface (planar_reflection.h), all views
+  std::size_t lift_onto_plane_pixels = 0;  // reference-view hole pixels whose depth moved onto the glossy plane (plane_depth.h)
   std::size_t glossy_filled_pixels = 0;  // glossy-mask pixels filled under the target (removed_glossy_masks.h)
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
