@@ -4,9 +4,9 @@
 //
 // The lift back-projects each reference view's inpainted depth (lift.h), and that depth is the removed
 // scene's own, filled in from the hole's border. Where the model's geometry is a fog rather than a surface
-// (a rough metal floor learned in 2000 iterations renders its colour from Gaussians 0.6-1.2 above it), the fill's new
-// Gaussians land in the air where the target stood, and the views between the reference views show them as
-// a floating disc. Where the hole lies on the glossy surface (the removed scene's glossy mask says so) and
+// (a rough metal floor learned in 2000 iterations renders its colour from Gaussians 0.6-1.2 above it), the
+// fill's new Gaussians land in the air where the target stood, and the views between the reference views
+// show them as a floating disc. Where the hole lies on the glossy surface (the removed scene's glossy mask says so) and
 // the removal found that surface's plane, nothing of the fill belongs in front of the plane: a depth nearer
 // than where the pixel's ray meets the plane (or none) becomes the plane's. A depth beyond it stays: a
 // model's surface layer often lies a little below the plane the glossy masks give.

@@ -435,7 +435,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     opts["materials"] = materials;
     const bool surface_fill = glossy_masks && !o.ablate.count("lamask") && !o.ablate.count("reflection");
     const bool lift_on_plane = surface_fill && glossy_plane.found;
-    if (lift_on_plane) opts["lift_not_in_front_of"] = {glossy_plane.normal.x, glossy_plane.normal.y, glossy_plane.normal.z, glossy_plane.offset};
+    if (lift_on_plane)
+      opts["lift_not_in_front_of"] = {glossy_plane.normal.x, glossy_plane.normal.y, glossy_plane.normal.z,
+                                      glossy_plane.offset};
     opts["views"] = report.reference_views;
     // inpainted[k]: the reference views, then the other views' fills, kept apart from the reference views'
     // maps (the lift's input) under their own file stem.
@@ -462,7 +464,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       return *fill_inp;
     };
     const std::size_t maps_per_view = materials ? 6 : 2;
-
     const std::size_t total = inpainted.size() * maps_per_view;
     std::size_t done = 0;
     struct Stopped {};  // a stop while the maps are filled leaves no record: a rerun fills them again
@@ -504,9 +505,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         m = inpaint_map_set(fill_with, maps, holes[v].mask, name, mo);
         if (!reference) ++done;  // the depth map it skipped
         std::vector<float> g = surface_fill ? removed_glossy_mask(views[v], holes[v]) : std::vector<float>();
-        if (reference && lift_on_plane && !g.empty() && m.depth.channels == 1) {  // plane_depth.h: the fill is not lifted into the air
+        if (reference && lift_on_plane && !g.empty() && m.depth.channels == 1) {  // plane_depth.h: not into the air
           Mask on_surface(cameras[v].width, cameras[v].height);
-          for (std::size_t p = 0; p < g.size(); ++p) on_surface.data[p] = holes[v].mask.data[p] && g[p] >= 0.5f ? 255 : 0;
+          for (std::size_t p = 0; p < g.size(); ++p)
+            on_surface.data[p] = holes[v].mask.data[p] && g[p] >= 0.5f ? 255 : 0;
           report.lift_onto_plane_pixels += depth_onto_plane(m.depth, cameras[v], on_surface, glossy_plane);
         }
         if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)

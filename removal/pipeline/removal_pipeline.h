@@ -93,7 +93,7 @@ struct RemovalReport {
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   MirrorPlane glossy_plane;           // the glossy surface's plane (found = false: none)
   std::size_t reflection_pixels = 0;  // the mirrored target on the glossy surface (planar_reflection.h), all views
-  std::size_t lift_onto_plane_pixels = 0;  // reference-view hole pixels whose depth moved onto the glossy plane (plane_depth.h)
+  std::size_t lift_onto_plane_pixels = 0;  // reference-view hole pixels moved onto the glossy plane (plane_depth.h)
   std::size_t glossy_filled_pixels = 0;  // glossy-mask pixels filled under the target (removed_glossy_masks.h)
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
