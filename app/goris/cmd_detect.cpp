@@ -55,9 +55,7 @@ void run_detect(const Options& o) {
               ck.c_str(), c.state.iteration, 100.0 * det.fraction, 100.0 * s.min_fraction, det.detected, det.scored,
               det.planes, det.on_planes, det.behind_planes, det.in_masks, det.glossy ? "intrinsic" : "radiance");
   // Each plane's tilt from the cameras' mean up: a table or floor is near 0 (or 180), a wall or mirror near 90.
-  std::vector<Camera> cameras;
-  for (const TrainView& v : views) cameras.push_back(v.camera);
-  const glm::dvec3 up = mean_camera_up(cameras);
+  const glm::dvec3 up = mean_camera_up(cameras_of(views));
   for (std::size_t k = 0; k < det.plane_normals.size(); ++k) {
     const double c = std::clamp(std::abs(glm::dot(up, glm::dvec3(det.plane_normals[k]))), 0.0, 1.0);
     std::printf("plane %zu: %.1f degrees from level (the cameras' mean up)\n", k + 1, glm::degrees(std::acos(c)));

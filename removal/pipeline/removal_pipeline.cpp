@@ -506,9 +506,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         if (!reference) ++done;  // the depth map it skipped
         std::vector<float> g = surface_fill ? removed_glossy_mask(views[v], holes[v]) : std::vector<float>();
         if (reference && lift_on_plane && !g.empty() && m.depth.channels == 1) {  // plane_depth.h: not into the air
-          Mask on_surface(cameras[v].width, cameras[v].height);
-          for (std::size_t p = 0; p < g.size(); ++p)
-            on_surface.data[p] = holes[v].mask.data[p] && g[p] >= 0.5f ? 255 : 0;
+          const Mask on_surface =
+              mask_and(holes[v].mask, mask_from_values(g, cameras[v].width, cameras[v].height, 0.5f));
           report.lift_onto_plane_pixels += depth_onto_plane(m.depth, cameras[v], on_surface, glossy_plane);
         }
         if (surface_fill) {  // each side of the glossy surface's edge from its own side alone (region_fill.h)

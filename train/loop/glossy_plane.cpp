@@ -74,11 +74,9 @@ double snap_to_surface_layer(MirrorPlane& plane, const std::vector<float>& pos, 
 // reflection mask lost 0.10 dB on the suite's mean.) found = false without masks or when they agree at no
 // height.
 MirrorPlane level_plane_from_masks(const std::vector<TrainView>& views) {
-  std::vector<Camera> cameras;
-  for (const TrainView& v : views) cameras.push_back(v.camera);
   PlaneFromMasksSettings level;
   level.tilt_steps = 0;
-  return plane_from_glossy_masks(cameras, glossy_masks_of(views), level).plane;
+  return plane_from_glossy_masks(cameras_of(views), glossy_masks_of(views), level).plane;
 }
 
 }  // namespace

@@ -141,12 +141,14 @@ std::vector<const std::vector<float>*> glossy_masks_of(const std::vector<TrainVi
   return masks;
 }
 
-std::vector<Camera> Trainer::cameras() const {
+std::vector<Camera> cameras_of(const std::vector<TrainView>& views) {
   std::vector<Camera> c;
-  c.reserve(views_.size());
-  for (const TrainView& v : views_) c.push_back(v.camera);
+  c.reserve(views.size());
+  for (const TrainView& v : views) c.push_back(v.camera);
   return c;
 }
+
+std::vector<Camera> Trainer::cameras() const { return cameras_of(views_); }
 
 StepStats Trainer::step() {
   if (finished()) throw Error("training: step() called after the last iteration");

@@ -59,6 +59,8 @@ struct TrainView {
 // Each view's glossy mask, null where it has none: the form plane_from_glossy_masks takes
 // (core/scene/plane_from_masks.h). The pointers are into `views`.
 std::vector<const std::vector<float>*> glossy_masks_of(const std::vector<TrainView>& views);
+// Each view's camera, in order.
+std::vector<Camera> cameras_of(const std::vector<TrainView>& views);
 
 // Everything that changes while training; a checkpoint stores exactly this (and the config).
 struct TrainerState {
