@@ -38,8 +38,7 @@ MirrorPlane support_plane_of_click_selection(const SelectionPoints& pts, const S
                                              const std::vector<View>& views,
                                              const std::vector<const std::vector<float>*>& glossy_masks) {
   if (std::none_of(glossy_masks.begin(), glossy_masks.end(), [](const auto* m) { return m != nullptr; })) return {};
-  std::vector<Camera> cameras;
-  for (const View& v : views) cameras.push_back(v.camera);
+  const std::vector<Camera> cameras = cameras_of(views);
   return plane_from_glossy_masks(cameras, glossy_masks, {},
                                  target_rest_heights(cameras, glossy_masks, pts.position, seeds))
       .plane;
