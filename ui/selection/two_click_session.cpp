@@ -49,12 +49,17 @@ std::pair<float, glm::ivec2> deepest_pixel(const Mask& m) {
 
 // The view for the second click. Candidates: the views turned kMinTurn..kMaxTurn from the first one (any
 // other view when none is), the kCandidates that show the first click's object largest (its mask's
-// deepest pixel farthest from the mask's edge). Each is clicked at that pixel as `goris select --click`
-// would, and the one whose click region agrees best with the first click's mask there (IoU) is offered:
-// a click whose region leaks into the table or lands on another object disagrees.
+// deepest pixel farthest from the mask's edge). Each is clicked at that pixel as the flow will click it
+// (the view's glossy mask the region's barrier), and the one whose click region agrees best with the first
+// click's mask there (IoU) is offered: a click whose region leaks into the table or lands on another object
+// disagrees. No candidate either: a pixel that shows a Gaussian the first click did not select, or whose
+// region covers less than a twentieth of the mask (a holed object's mask can close over its hole, whose
+// deepest pixel then shows what lies behind, in a region too small to lift).
 std::optional<FlowClick> offer_second_view(const GaussianModel& model, const std::vector<View>& views,
                                            const DatasetOptions& photos, const std::vector<Mask>& masks,
-                                           std::size_t first, const RasterSettings& raster) {
+                                           const SelectionMask& selected, std::size_t first,
+                                           const RasterSettings& raster,
+                                           const std::vector<const std::vector<float>*>& gloss) {
   constexpr float kMinTurn = 30.0f, kMaxTurn = 100.0f;
   constexpr std::size_t kCandidates = 5;
   struct Candidate {
@@ -83,7 +88,11 @@ std::optional<FlowClick> offer_second_view(const GaussianModel& model, const std
     double agree = 0.0;
     try {
       const Image photo = load_view_image(views[c.view], photos, Device::CPU);
-      agree = mask_iou(click_in_view(model, views[c.view], photo, c.at.x, c.at.y, raster).region.mask, masks[c.view]);
+      const ClickOutcome o = click_in_view(model, views[c.view], photo, c.at.x, c.at.y, raster, true,
+                                           c.view < gloss.size() ? gloss[c.view] : nullptr);
+      if (!o.pick.hit || o.pick.gaussian >= selected.size() || !selected[o.pick.gaussian]) continue;
+      if (o.region.area * 20 < count_set(masks[c.view])) continue;
+      agree = mask_iou(o.region.mask, masks[c.view]);
     } catch (const Error&) {
       continue;  // background there
     }
@@ -158,7 +167,8 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
     }
     if (n_clicks == 1) {
       progress->set_stage("choosing a second view");
-      out->offered = offer_second_view(model, views, photos, out->masks, out->clicks[0].view, raster);
+      out->offered =
+          offer_second_view(model, views, photos, out->masks, cs.result.mask, out->clicks[0].view, raster, gloss);
     }
     out->total = job.model->count();
 
