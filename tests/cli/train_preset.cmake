@@ -13,7 +13,7 @@ goris_ok(train "${RESOURCES}/default_scene" --out "${WORK}/named" --preset plana
 file(READ "${WORK}/named/config.json" cfg)
 foreach(expected "\"intrinsic_glossy_plane\": true" "\"intrinsic_glossy_plane_align\": true"
                  "\"intrinsic_material_losses_in_warmup\": false" "\"intrinsic_trace_glossy_transparent\": 0.5"
-                 "\"intrinsic_env_distance\": 1.2" "\"config_version\": 2")
+                 "\"intrinsic_env_distance\": 1.2" "\"config_version\": 3")
   expect_text("${cfg}" "${expected}")
 endforeach()
 
@@ -36,7 +36,7 @@ goris_fails("unknown preset" train "${RESOURCES}/default_scene" --out "${WORK}/b
 
 # The first run's config.json as a version-1 file with a setting removed since (off): render opens it.
 file(READ "${WORK}/named/config.json" cfg)
-string(REPLACE "\"config_version\": 2," "\"intrinsic_prune_mirror_world_plane\": false," cfg "${cfg}")
+string(REPLACE "\"config_version\": 3," "\"intrinsic_prune_mirror_world_plane\": false," cfg "${cfg}")
 file(WRITE "${WORK}/named/config.json" "${cfg}")
 goris_ok(render "${WORK}/named" --out "${WORK}/renders" --device cpu)
 expect_text("${ERR}" "written by an older version (config_version 1)")

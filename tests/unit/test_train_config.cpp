@@ -122,6 +122,13 @@ TEST(ConfigMigration, VersionWrittenAndChecked) {
   test::expect_error([&] { from_json(newer, back); }, "newer than this build");
   newer["config_version"] = "2";
   test::expect_error([&] { from_json(newer, back); }, "whole number");
+  // A version-2 file predates the colour rate's power: it reads as the fixed rate it trained with.
+  nlohmann::json v2 = j;
+  v2["config_version"] = 2;
+  v2.erase("lr_sh_dc_short_run_power");
+  from_json(v2, back);
+  EXPECT_EQ(back.lr.sh_dc_short_run_power, 0.0f);
+  EXPECT_GT(TrainConfig{}.lr.sh_dc_short_run_power, 0.0f);
 }
 
 // A run folder written at 46a5b55 (with 9 keys removed since: 3 stage-1 settings and the 6 of the adaptive
@@ -138,7 +145,7 @@ TEST(ConfigMigration, RunFolderOfAnOlderVersionOpens) {
   nlohmann::json j = nlohmann::json::parse(read_text_file(old_config("46a5b55")));
   const ConfigMigrationResult m = migrate_config_json(j);
   EXPECT_EQ(m.from_version, 1);
-  EXPECT_EQ(m.notes.size(), 9u);  // one per removed key
+  EXPECT_EQ(m.notes.size(), 10u);  // one per removed key, one for the colour rate's power added since
   EXPECT_FALSE(j.contains("intrinsic_prune_mirror_world_plane"));
   EXPECT_EQ(j.at("config_version"), kConfigVersion);
   // Trained with a removed setting on: refused by name.
@@ -164,6 +171,7 @@ TEST(ConfigMigration, KeysAnOlderFileLacksReadAsItsBehaviour) {
   EXPECT_EQ(c.intrinsic.warmup_min_fraction, 0.0f);
   EXPECT_EQ(c.intrinsic.detect_settled, 0);
   EXPECT_EQ(c.intrinsic.detect_depth_window, 0);
+  EXPECT_EQ(c.lr.sh_dc_short_run_power, 0.0f);  // version 3
   EXPECT_NO_THROW(c.validate("old"));
   // Keys it lacks whose default was the behaviour before them keep the default.
   EXPECT_EQ(c.intrinsic.init_roughness, TrainConfig{}.intrinsic.init_roughness);

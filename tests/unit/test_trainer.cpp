@@ -657,6 +657,26 @@ TEST(TrainConfig, OpacityResetsScaleWithTheDensificationWindow) {
   EXPECT_EQ(c.opacity_reset_every(), 1500);
 }
 
+TEST(TrainConfig, ColourRateRisesInShortRuns) {
+  // 3DGS's rate from the full schedule on; a shorter run x (30000 / iterations)^power; power 0 = fixed.
+  TrainConfig c;
+  c.iterations = 30000;
+  EXPECT_FLOAT_EQ(c.sh_dc_rate(), c.lr.sh_dc);
+  c.iterations = 60000;
+  EXPECT_FLOAT_EQ(c.sh_dc_rate(), c.lr.sh_dc);
+  c.iterations = 2000;  // the default power 0.5: x sqrt(15)
+  EXPECT_NEAR(c.sh_dc_rate(), 2.5e-3 * std::sqrt(15.0), 1e-7);
+  c.iterations = 7500;
+  c.lr.sh_dc_short_run_power = 1.0f;
+  EXPECT_NEAR(c.sh_dc_rate(), 1e-2, 1e-7);
+  c.lr.sh_dc_short_run_power = 0.0f;
+  EXPECT_FLOAT_EQ(c.sh_dc_rate(), c.lr.sh_dc);
+  c.lr.sh_dc_short_run_power = 1.5f;
+  EXPECT_THROW(c.validate("test"), Error);
+  c.lr.sh_dc_short_run_power = -0.5f;
+  EXPECT_THROW(c.validate("test"), Error);
+}
+
 TEST(TrainConfig, MirrorWorldPruneSchedule) {
   // A 4K intrinsic run shades from 2000: the prune runs there, and with _repeat after each later
   // densification, never in radiance mode or with the tolerance at 0.

@@ -17,8 +17,8 @@ using nlohmann::json;
 ConfigMigration dropped(const char* key, json off, const char* reason) {
   return {Kind::Dropped, 2, key, "", std::move(off), reason};
 }
-ConfigMigration added(const char* key, json absent, const char* reason) {
-  return {Kind::Added, 2, key, "", std::move(absent), reason};
+ConfigMigration added(const char* key, json absent, const char* reason, int until = 2) {
+  return {Kind::Added, until, key, "", std::move(absent), reason};
 }
 
 const char* kMeasured = "it measured no better than without (docs/design/deviations.md, Removed settings)";
@@ -52,6 +52,8 @@ const std::vector<ConfigMigration>& config_migrations() {
       added("intrinsic_warmup_min_fraction", 0.0, "the warm-up scaled with the run, from before the setting"),
       added("intrinsic_detect_settled", 0, "detection without the wait for settled geometry, from before the setting"),
       added("intrinsic_detect_depth_window", 0, "detection at each pixel's own depth, from before the setting"),
+      // Version 3: the SH colour's rate raised in runs shorter than the full schedule.
+      added("lr_sh_dc_short_run_power", 0.0, "the colour's fixed rate, from before the setting", 3),
   };
   return kTable;
 }

@@ -19,7 +19,7 @@
 namespace goris {
 
 // The config_version this build writes.
-constexpr int kConfigVersion = 2;
+constexpr int kConfigVersion = 3;
 
 struct ConfigMigration {
   enum class Kind { Renamed, Dropped, Added };

@@ -67,6 +67,7 @@ void visit_fields(Config& c, F&& visit) {
   f("lr_position_final", c.lr.position_final);
   f("lr_position_max_steps", c.lr.position_max_steps);
   f("lr_sh_dc", c.lr.sh_dc);
+  f("lr_sh_dc_short_run_power", c.lr.sh_dc_short_run_power);
   f("lr_sh_rest", c.lr.sh_rest);
   f("lr_opacity", c.lr.opacity);
   f("lr_scale", c.lr.scale);
@@ -278,11 +279,18 @@ void TrainConfig::validate(const std::string& what) const {
   for (float lr : {lr.position_init, lr.position_final, lr.sh_dc, lr.sh_rest, lr.opacity, lr.scale, lr.rotation,
                    lr.materials, lr.region, lr.label})
     if (!(lr >= 0)) fail("learning rates must be >= 0");
+  if (!(lr.sh_dc_short_run_power >= 0 && lr.sh_dc_short_run_power <= 1))
+    fail("lr_sh_dc_short_run_power must be in [0, 1]");
 }
 
 int TrainConfig::scaled_iteration(int full) const {
   if (iterations >= 30000) return full;
   return int(std::lround(double(full) * double(iterations) / 30000.0));
+}
+
+float TrainConfig::sh_dc_rate() const {
+  if (iterations >= 30000 || lr.sh_dc_short_run_power == 0.0f) return lr.sh_dc;
+  return float(double(lr.sh_dc) * std::pow(30000.0 / double(iterations), double(lr.sh_dc_short_run_power)));
 }
 
 int TrainConfig::densify_until() const {

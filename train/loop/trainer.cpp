@@ -271,7 +271,7 @@ void Trainer::optimizer_step(int it) {
       case ParamGroup::Scale: lr = config_.lr.scale; break;
       case ParamGroup::Rotation: lr = config_.lr.rotation; break;
       case ParamGroup::Opacity: lr = config_.lr.opacity; break;
-      case ParamGroup::ShDc: lr = config_.lr.sh_dc; break;
+      case ParamGroup::ShDc: lr = config_.sh_dc_rate(); break;
       case ParamGroup::ShRest: lr = config_.lr.sh_rest; break;
       case ParamGroup::Materials: lr = config_.lr.materials; break;
       case ParamGroup::Region: lr = config_.lr.region; break;
