@@ -666,6 +666,10 @@ TEST(TrainConfig, ColourRateRisesInShortRuns) {
   EXPECT_FLOAT_EQ(c.sh_dc_rate(), c.lr.sh_dc);
   c.iterations = 2000;  // the default power 0.5: x sqrt(15)
   EXPECT_NEAR(c.sh_dc_rate(), 2.5e-3 * std::sqrt(15.0), 1e-7);
+  c.iterations = 500;  // shorter runs keep 2K's factor
+  EXPECT_NEAR(c.sh_dc_rate(), 2.5e-3 * std::sqrt(15.0), 1e-7);
+  c.iterations = 8000;
+  EXPECT_NEAR(c.sh_dc_rate(), 2.5e-3 * std::sqrt(30000.0 / 8000.0), 1e-7);
   c.iterations = 7500;
   c.lr.sh_dc_short_run_power = 1.0f;
   EXPECT_NEAR(c.sh_dc_rate(), 1e-2, 1e-7);

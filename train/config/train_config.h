@@ -45,9 +45,10 @@ struct LearningRates {
   float position_final = 1.6e-6f;
   int position_max_steps = 0;  // decay length; 0 = the whole run (short schedules still anneal)
   // The SH colour's base rate (3DGS's) at the full 30K schedule. A shorter run multiplies it by
-  // (30000 / iterations)^sh_dc_short_run_power (TrainConfig::sh_dc_rate): Adam moves a parameter by about
-  // its rate per step, and at 2K iterations 3DGS's rate leaves a random start's grey fog short of a bright
-  // floor that fills the views (docs/design/deviations.md, The colour's rate in short runs). 0 = the fixed rate.
+  // (30000 / iterations)^sh_dc_short_run_power, runs under 2000 iterations by a 2000-iteration run's factor
+  // (TrainConfig::sh_dc_rate): Adam moves a parameter by about its rate per step, and at 2K iterations 3DGS's
+  // rate leaves a random start's grey fog short of a bright floor that fills the views
+  // (docs/design/deviations.md, The colour's rate in short runs). 0 = the fixed rate.
   float sh_dc = 2.5e-3f;
   float sh_dc_short_run_power = 0.5f;
   float sh_rest = 2.5e-3f / 20.0f;  // 1.25e-4
@@ -299,8 +300,8 @@ struct TrainConfig {
 
   // An iteration number of the full 30K schedule scaled to this run's length (never above it as given).
   int scaled_iteration(int full_schedule_iteration) const;
-  // The SH colour's base learning rate of this run: lr.sh_dc x (30000 / iterations)^lr.sh_dc_short_run_power
-  // for runs shorter than 30000 iterations, lr.sh_dc otherwise.
+  // The SH colour's base learning rate of this run: lr.sh_dc x (30000 / max(iterations, 2000))^
+  // lr.sh_dc_short_run_power for runs shorter than 30000 iterations, lr.sh_dc otherwise.
   float sh_dc_rate() const;
   // Last iteration of adaptive density control: densify.until_iter, but at most densify.until_fraction of
   // the run, so that a shortened schedule ends with a stretch of pure optimisation instead of adding
