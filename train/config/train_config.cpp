@@ -18,6 +18,10 @@ namespace goris {
 
 namespace {
 
+// The run length the schedule's iteration points are given for (3DGS's full schedule); shorter runs scale
+// them (scaled_iteration, shading_phase_iteration) and raise the colour's rate (sh_dc_rate).
+constexpr int kFullSchedule = 30000;
+
 // The one-line documentation of a user-facing setting (ConfigKeyInfo) and the heading it is listed under;
 // empty for the others.
 struct Doc {
@@ -284,17 +288,17 @@ void TrainConfig::validate(const std::string& what) const {
 }
 
 int TrainConfig::scaled_iteration(int full) const {
-  if (iterations >= 30000) return full;
-  return int(std::lround(double(full) * double(iterations) / 30000.0));
+  if (iterations >= kFullSchedule) return full;
+  return int(std::lround(double(full) * double(iterations) / double(kFullSchedule)));
 }
 
 float TrainConfig::sh_dc_rate() const {
   // Measured at 2K and 8K iterations; shorter runs keep 2K's factor (at 60 iterations, x22 left the
   // embedded scene's target no hole of its own to inpaint).
   constexpr double kShortest = 2000.0;
-  if (iterations >= 30000 || lr.sh_dc_short_run_power == 0.0f) return lr.sh_dc;
+  if (iterations >= kFullSchedule || lr.sh_dc_short_run_power == 0.0f) return lr.sh_dc;
   const double run = std::max(double(iterations), kShortest);
-  return float(double(lr.sh_dc) * std::pow(30000.0 / run, double(lr.sh_dc_short_run_power)));
+  return float(double(lr.sh_dc) * std::pow(double(kFullSchedule) / run, double(lr.sh_dc_short_run_power)));
 }
 
 int TrainConfig::densify_until() const {
@@ -328,9 +332,9 @@ bool TrainConfig::depth_distortion_at(int it) const {
 int TrainConfig::shading_phase_iteration(int full) const {
   const int from = shading_from();
   if (full <= intrinsic.warmup) return from;
-  if (intrinsic.warmup >= 30000) return std::max(from, std::min(full, iterations));  // no phase to map onto
-  if (iterations >= 30000) return full;  // the schedule as given (shading_from() is the warm-up itself)
-  const double t = double(full - intrinsic.warmup) / double(30000 - intrinsic.warmup);
+  if (intrinsic.warmup >= kFullSchedule) return std::max(from, std::min(full, iterations));  // no phase to map onto
+  if (iterations >= kFullSchedule) return full;  // the schedule as given (shading_from() is the warm-up itself)
+  const double t = double(full - intrinsic.warmup) / double(kFullSchedule - intrinsic.warmup);
   return from + int(std::lround(t * double(std::max(iterations - from, 0))));
 }
 
