@@ -202,7 +202,7 @@ TEST(GaussianInit, EnvironmentSphereAroundWhatTheCamerasLookAt) {
     ds.train.push_back(v);
   }
   TrainConfig config;
-  EXPECT_EQ(config.intrinsic.env_distance, 1.0f) << "on a sphere by default (session 26)";
+  EXPECT_EQ(config.intrinsic.env_distance, 1.0f) << "on a sphere by default";
   config.intrinsic.env_distance = 0.0f;
   resolve_environment_sphere(ds, config);
   EXPECT_EQ(config.intrinsic.env_radius, 0.0f);

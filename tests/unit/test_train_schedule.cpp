@@ -85,7 +85,7 @@ TEST(TrainConfig, MirrorWorldPruneSchedule) {
   c.mode = TrainMode::Intrinsic;
   const int from = c.shading_from();
   ASSERT_EQ(from, 2000);
-  EXPECT_TRUE(c.prunes_mirror_world_after(from, false)) << "on by default (session 26)";
+  EXPECT_TRUE(c.prunes_mirror_world_after(from, false)) << "on by default";
   EXPECT_TRUE(c.intrinsic.prune_mirror_world_repeat);
   c.intrinsic.prune_mirror_world = 0;
   EXPECT_FALSE(c.prunes_mirror_world_after(from, false)) << "0 = off";

@@ -55,8 +55,9 @@ struct LearningRates {
   float opacity = 0.05f;
   float scale = 5e-3f;
   float rotation = 1e-3f;
-  // F0, roughness, diffuse. 4x the SH colour's rate of a full run: at 2K-4K iterations the colour's rate left steel at
-  // roughness ~0.5 and the table's look in D (docs/design/deviations.md, Learning rates of the materials).
+  // F0, roughness, diffuse. 4x the SH colour's rate of a full run: at 2K-4K iterations the colour's rate left
+  // steel at roughness ~0.5 and the table's look in D (docs/design/deviations.md, Learning rates of the
+  // materials).
   float materials = 0.01f;
   float region = 5e-3f;
   float label = 0.01f;
