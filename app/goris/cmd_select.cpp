@@ -155,8 +155,17 @@ void write_view_masks(const Options& o, const Dataset& ds, const GaussianModel& 
   nlohmann::json per_view = nlohmann::json::array();
   double sum = 0.0, worst = 1.0;
   std::size_t scored = 0;
-  for (const View& v : ds.train) {
-    const Mask m = selection_view_mask(model, sel, v.camera, raster);
+  const SelectionViewMasks masks = selection_view_masks(model, sel, cameras_of(ds.train), raster);
+  if (masks.lowered)
+    std::fprintf(stderr,
+                 "goris select: the selection covers no pixel of any view by more than half (its largest coverage is "
+                 "%.2f): the masks are cut at %.2f instead\n",
+                 masks.peak, masks.threshold);
+  else if (!(masks.peak > 0.0f))
+    std::fprintf(stderr, "goris select: the selection covers no pixel of any training view: every mask is empty\n");
+  for (std::size_t k = 0; k < ds.train.size(); ++k) {
+    const View& v = ds.train[k];
+    const Mask& m = masks.masks[k];
     const fs::path file = dir / object_mask_file_name(v.name);
     check_output_file(file, guard);
     save_mask_png(file, m);

@@ -1,5 +1,6 @@
 #include "removal/selection/selection_view_masks.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,30 @@ Mask coverage_mask(const std::vector<float>& coverage, const Camera& camera, con
 Mask selection_view_mask(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
                          const RasterSettings& raster, const ViewMaskSettings& s) {
   return coverage_mask(render_selection_channel(model, mask, camera, raster).gbuffer.extras.to_host(), camera, s);
+}
+
+SelectionViewMasks selection_view_masks(const GaussianModel& model, const SelectionMask& mask,
+                                        const std::vector<Camera>& cameras, const RasterSettings& raster,
+                                        const ViewMaskSettings& s, const std::function<void(std::size_t)>& on_view) {
+  SelectionViewMasks out;
+  out.threshold = s.threshold;
+  bool any = false;
+  for (std::size_t v = 0; v < cameras.size(); ++v) {
+    if (on_view) on_view(v);
+    const std::vector<float> c = render_selection_channel(model, mask, cameras[v], raster).gbuffer.extras.to_host();
+    for (float x : c) out.peak = std::max(out.peak, x);
+    out.masks.push_back(coverage_mask(c, cameras[v], s));
+    any = any || count_set(out.masks.back()) > 0;
+  }
+  if (any || !(out.peak > 0.0f) || 0.5f * out.peak >= s.threshold) return out;
+  ViewMaskSettings lower = s;
+  lower.threshold = 0.5f * out.peak;
+  out.threshold = lower.threshold;
+  out.lowered = true;
+  for (std::size_t v = 0; v < cameras.size(); ++v)  // rendered again: keeping every view's coverage costs memory
+    out.masks[v] = coverage_mask(render_selection_channel(model, mask, cameras[v], raster).gbuffer.extras.to_host(),
+                                 cameras[v], lower);
+  return out;
 }
 
 Mask selection_silhouette_mask(const GaussianModel& model, const SelectionMask& selection, const Camera& camera,

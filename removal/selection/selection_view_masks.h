@@ -4,7 +4,9 @@
 // everything in front of them: a depth test against the full render), thresholded and cleaned by a small
 // morphological close then open. Written as the data sets' object masks are named (mask_XXX.png for
 // view r_XXX, else <view name>.png), so `goris select --masks DIR`, the label loss and stage 2 read them.
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,22 @@ struct ViewMaskSettings {
 
 Mask selection_view_mask(const GaussianModel& model, const SelectionMask& mask, const Camera& camera,
                          const RasterSettings& raster = {}, const ViewMaskSettings& settings = {});
+
+// Every camera's selection_view_mask, for writing a selection's object masks. A selection whose coverage stays
+// at or under the threshold in every view - a fog of faint Gaussians, as a short radiance run makes of an
+// object over a rough floor - would give an empty mask in every view and a removal with nothing to inpaint: then
+// every view is cut at half the selection's peak coverage over all views instead (`lowered`), so that the
+// masks hold where the selection dominates. A selection no view sees (peak 0) keeps its empty masks.
+struct SelectionViewMasks {
+  std::vector<Mask> masks;  // one per camera
+  float peak = 0.0f;        // the selection's largest coverage of any pixel of any view
+  float threshold = 0.0f;   // the threshold the masks were cut at
+  bool lowered = false;     // threshold = peak / 2 < settings.threshold (every view was empty at the setting's)
+};
+SelectionViewMasks selection_view_masks(const GaussianModel& model, const SelectionMask& mask,
+                                        const std::vector<Camera>& cameras, const RasterSettings& raster = {},
+                                        const ViewMaskSettings& settings = {},
+                                        const std::function<void(std::size_t view)>& on_view = {});
 
 // The selected Gaussians rendered alone (every other one transparent), their coverage thresholded and
 // cleaned as selection_view_mask's is. Unlike the coverage in the full render it also covers the selection's

@@ -176,6 +176,50 @@ TEST(SelectionViewMasks, CoverageWithTheDepthTest) {
   EXPECT_THROW(selection_view_mask(m, SelectionMask(3, 1), s.cam), Error);
 }
 
+TEST(SelectionViewMasks, FaintSelectionCutAtHalfItsPeak) {
+  const Slabs s = slabs();
+  const Camera behind = test::look_at({0, 0, 4}, {0, 0, 0});
+  const Camera away = test::look_at({0, 0, -4}, {0, 0, -8});  // sees neither slab
+  // A solid selection: the same masks as selection_view_mask in every view, at the setting's threshold.
+  GaussianModel m = test::make_model(s.gs);
+  const std::size_t half = s.gs.size() / 2;
+  SelectionMask front(m.count(), 0);
+  for (std::size_t i = 0; i < half; ++i) front[i] = 1;
+  const std::vector<Camera> cams{s.cam, behind, away};
+  std::size_t calls = 0;
+  const SelectionViewMasks solid = selection_view_masks(m, front, cams, {}, {}, [&](std::size_t) { ++calls; });
+  EXPECT_EQ(calls, cams.size());
+  ASSERT_EQ(solid.masks.size(), cams.size());
+  EXPECT_FALSE(solid.lowered);
+  EXPECT_FLOAT_EQ(solid.threshold, 0.5f);
+  EXPECT_GT(solid.peak, 0.9f);
+  for (std::size_t v = 0; v < cams.size(); ++v)
+    EXPECT_EQ(solid.masks[v].data, selection_view_mask(m, front, cams[v]).data) << "view " << v;
+  EXPECT_GT(count_set(solid.masks[0]), 1000u);
+
+  // The front slab made of faint Gaussians: its coverage stays under 0.5 everywhere, so selection_view_mask is
+  // empty in every view; the masks are cut at half its peak and cover the slab where it is seen.
+  std::vector<TestGaussian> faint = s.gs;
+  for (std::size_t i = 0; i < half; ++i) faint[i].opacity = 0.08f;
+  m = test::make_model(faint);
+  for (const Camera& c : cams) EXPECT_EQ(count_set(selection_view_mask(m, front, c)), 0u);
+  const SelectionViewMasks fog = selection_view_masks(m, front, cams);
+  EXPECT_TRUE(fog.lowered);
+  EXPECT_GT(fog.peak, 0.05f);
+  EXPECT_LT(fog.peak, 0.5f);
+  EXPECT_FLOAT_EQ(fog.threshold, 0.5f * fog.peak);
+  EXPECT_GT(count_set(fog.masks[0]), 500u);
+  EXPECT_NE(fog.masks[0].data[64 * 128 + 64], 0);  // the slab's centre
+  EXPECT_GT(mask_iou(fog.masks[0], solid.masks[0]), 0.5);
+  EXPECT_EQ(count_set(fog.masks[2]), 0u);
+
+  // A selection no view sees keeps its empty masks.
+  const SelectionViewMasks unseen = selection_view_masks(m, front, {away});
+  EXPECT_FALSE(unseen.lowered);
+  EXPECT_FLOAT_EQ(unseen.peak, 0.0f);
+  EXPECT_EQ(count_set(unseen.masks[0]), 0u);
+}
+
 TEST(SelectionViewMasks, IouAndFileNames) {
   Mask a(4, 1), b(4, 1);
   a.data = {255, 255, 0, 0};

@@ -157,14 +157,20 @@ std::uint64_t SelectionSession::click_regions(std::vector<View> views, DatasetOp
     ++progress->done;
 
     fs::create_directories(out->dir);
-    out->masks.reserve(views.size());
-    for (const View& v : views) {
-      progress->set_stage("mask of " + v.name);
+    SelectionViewMasks vm = selection_view_masks(model, cs.result.mask, cameras_of(views), raster, {}, [&](std::size_t v) {
+      progress->set_stage("mask of " + views[v].name);
       check_cancel(*progress);
-      out->masks.push_back(selection_view_mask(model, cs.result.mask, v.camera, raster));
-      save_mask_png(out->dir / object_mask_file_name(v.name), out->masks.back());
       ++progress->done;
+    });
+    if (vm.lowered) {
+      char b[200];
+      std::snprintf(b, sizeof b, "two-click: the selection covers no pixel by more than half (at most %.2f): masks cut at %.2f",
+                    double(vm.peak), double(vm.threshold));
+      message(b, false);
     }
+    out->masks = std::move(vm.masks);
+    for (std::size_t v = 0; v < views.size(); ++v)
+      save_mask_png(out->dir / object_mask_file_name(views[v].name), out->masks[v]);
     if (n_clicks == 1) {
       progress->set_stage("choosing a second view");
       out->offered =
