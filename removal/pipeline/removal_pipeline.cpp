@@ -305,11 +305,14 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
 
   // 2. Lighting-aware masks.
   std::vector<Mask> lighting(cameras.size()), reflection(cameras.size());
+  std::optional<EnvironmentImage> environment;  // an intrinsic model's, for the shadow's light
   {
     StepScope s(report, RemovalStep::LightingMasks, on_progress);
     if (intrinsic && !o.ablate.count("lamask")) {
       const auto renderer = load_run_renderer(run_dir, config, extent, device);
       IntrinsicRenderer* ir = as_intrinsic(renderer.get());
+      environment = EnvironmentImage{ir->environment().equirect_image(256), 256, glm::dvec3(config.intrinsic.env_center),
+                                     double(config.intrinsic.env_radius)};
       fs::create_directories(out / "lighting_masks");
       fs::create_directories(out / "lighting_energy");
       if (o.lighting_relative_fresnel) report.lighting_fresnel_reference = glossy_fresnel_reference(model, selected);
@@ -347,7 +350,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
       relit = relight_target_shadow(model, target_only, selected, glossy_plane.found ? &glossy_plane : nullptr, views,
-                                    raster, out / "shadow", intrinsic ? ShadowSampleColour::Model : ShadowSampleColour::Photos);
+                                    raster, out / "shadow", intrinsic ? ShadowSampleColour::Model : ShadowSampleColour::Photos,
+                                    environment ? &*environment : nullptr);
       report.shadow_found = relit.fit.found;
       report.shadow = relit.fit.reason;
       report.shadow_pixels = relit.relit_pixels;

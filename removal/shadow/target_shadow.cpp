@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "core/util/error.h"
 
@@ -54,6 +55,22 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y, con
 }
 
 double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+// How clearly the shadowed samples (s > 0.5) are darker than the unshadowed ones (s < 0.05): the difference of
+// their mean y over its standard error (samples of weight 0 left out; 0 when either side has under 2).
+double shadow_contrast(const std::vector<double>& s, const std::vector<double>& y, const std::vector<double>& w) {
+  double n_in = 0, n_out = 0, s_in = 0, s_out = 0, q_in = 0, q_out = 0;
+  for (std::size_t q = 0; q < s.size(); ++q) {
+    if (!(w[q] > 0)) continue;
+    if (s[q] > 0.5) n_in += 1, s_in += y[q], q_in += y[q] * y[q];
+    else if (s[q] < 0.05) n_out += 1, s_out += y[q], q_out += y[q] * y[q];
+  }
+  if (n_in < 2 || n_out < 2) return 0.0;
+  const double m_in = s_in / n_in, m_out = s_out / n_out;
+  const double v_in = std::max(0.0, q_in / n_in - m_in * m_in), v_out = std::max(0.0, q_out / n_out - m_out * m_out);
+  const double se = std::sqrt(v_in / n_in + v_out / n_out);
+  return se > 1e-12 ? (m_out - m_in) / se : 0.0;
+}
 
 }  // namespace
 
@@ -140,7 +157,7 @@ std::vector<glm::dvec3> cone_of(const glm::dvec3& d, double cone_degrees, const 
 }  // namespace
 
 TargetShadow fit_target_shadow(const ShadowGeometry& geo, const ShadowSamples& samples, const TargetOcclusion& occlusion,
-                               const ShadowSettings& st) {
+                               const ShadowSettings& st, const glm::dvec3* known_light) {
   const std::size_t m = samples.size();
   if (samples.colour.size() != m || samples.weight.size() != m)
     throw Error("target shadow", "the samples' arrays differ in size (" + std::to_string(m) + " positions)");
@@ -194,48 +211,82 @@ TargetShadow fit_target_shadow(const ShadowGeometry& geo, const ShadowSamples& s
   };
   auto better = [](const Scored& a, const Scored& b) { return a.valid && (!b.valid || a.fit.r2 > b.fit.r2); };
 
+  // The light's size around a direction: the cones of step 3, kept where they fit better.
+  auto widen = [&](Scored best, const std::function<bool(const Scored&, const Scored&)>& better_fit) {
+    const glm::dvec3 dir = best.dir;
+    for (double cone : st.cone_degrees) {
+      if (cone <= 0.0) continue;
+      Scored sc = score(dir, cone);
+      if (better_fit(sc, best)) best = std::move(sc);
+    }
+    return best;
+  };
+  // Strength per channel: y_c = b_c - b_c k_c s.
+  // near_light: the known light of step 5 (null for steps 2-4).
+  auto result = [&](const Scored& best, const glm::dvec3* near_light) {
+    TargetShadow r;
+    r.samples = m;
+    glm::dvec3 k(0.0);
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> yc(m);
+      for (std::size_t q = 0; q < m; ++q) yc[q] = lin[q][c];
+      const LineFit f = fit_line(best.s, yc, w);
+      k[c] = f.b > 1e-9 ? std::clamp(-f.beta / f.b, 0.0, st.max_strength) : 0.0;
+    }
+    const double k_lum = best.fit.b > 1e-9 ? std::clamp(-best.fit.beta / best.fit.b, 0.0, st.max_strength) : 0.0;
+    const double z = shadow_contrast(best.s, y, w);
+    r.light_direction = best.dir;
+    r.cone_degrees = best.cone;
+    r.strength = k;
+    r.strength_luminance = k_lum;
+    r.r2 = best.fit.r2;
+    r.from_known_light = near_light != nullptr;
+    r.contrast = z;
+    char near[64] = "";
+    if (near_light)
+      std::snprintf(near, sizeof near, " near the environment's (%.0f deg from it)",
+                    std::acos(std::clamp(glm::dot(best.dir, *near_light), -1.0, 1.0)) * 180.0 / kPi);
+    char line[240];
+    std::snprintf(line, sizeof line, "light (%.2f, %.2f, %.2f)%s, cone %.1f deg, strength %.2f, R^2 %.2f, contrast %.1f",
+                  best.dir.x, best.dir.y, best.dir.z, near, best.cone, k_lum, best.fit.r2, z);
+    r.found = best.fit.beta < 0 && k_lum >= st.min_strength &&
+              (near_light ? z >= st.known_light_min_contrast : best.fit.r2 >= st.min_r2);
+    r.reason = r.found ? std::string(line) : std::string("too weak to be a shadow: ") + line;
+    return r;
+  };
+
   // The light's direction: the hemisphere on the target's side, then a cap around the best.
   Scored best;
   for (const glm::dvec3& d : cap_directions(geo.up, 0.5 * kPi, st.directions / 2)) {
     Scored sc = score(d, 0.0);
     if (better(sc, best)) best = std::move(sc);
   }
-  if (!best.valid) {
+  if (best.valid) {
+    const double spacing = std::sqrt(4.0 * kPi / st.directions);
+    for (const glm::dvec3& d : cap_directions(best.dir, 2.0 * spacing, st.refine_directions)) {
+      Scored sc = score(d, 0.0);
+      if (better(sc, best)) best = std::move(sc);
+    }
+    out = result(widen(std::move(best), better), nullptr);
+    if (out.found || !known_light) return out;
+  } else {
     out.reason = "no light direction puts enough of the support surface in the target's shadow";
-    return out;
-  }
-  const double spacing = std::sqrt(4.0 * kPi / st.directions);
-  for (const glm::dvec3& d : cap_directions(best.dir, 2.0 * spacing, st.refine_directions)) {
-    Scored sc = score(d, 0.0);
-    if (better(sc, best)) best = std::move(sc);
-  }
-  // Its size.
-  const glm::dvec3 dir = best.dir;
-  for (double cone : st.cone_degrees) {
-    if (cone <= 0.0) continue;
-    Scored sc = score(dir, cone);
-    if (better(sc, best)) best = std::move(sc);
+    if (!known_light) return out;
   }
 
-  // Strength per channel: y_c = b_c - b_c k_c s.
-  glm::dvec3 k(0.0);
-  for (int c = 0; c < 3; ++c) {
-    std::vector<double> yc(m);
-    for (std::size_t r = 0; r < m; ++r) yc[r] = lin[r][c];
-    const LineFit f = fit_line(best.s, yc, w);
-    k[c] = f.b > 1e-9 ? std::clamp(-f.beta / f.b, 0.0, st.max_strength) : 0.0;
+  // Step 5: near the known light, by R^2 alone (its shadow may lie mostly under the target: no share of the
+  // samples is asked for), accepted on its strength and contrast.
+  auto darker_fit = [](const Scored& a, const Scored& b) { return a.fit.beta < 0 && a.fit.r2 > b.fit.r2; };
+  const glm::dvec3 known = glm::normalize(*known_light);
+  Scored near = score(known, 0.0);
+  for (const glm::dvec3& d :
+       cap_directions(known, st.known_light_cap_degrees * kPi / 180.0, st.known_light_directions)) {
+    Scored sc = score(d, 0.0);
+    if (darker_fit(sc, near)) near = std::move(sc);
   }
-  const double k_lum = best.fit.b > 1e-9 ? std::clamp(-best.fit.beta / best.fit.b, 0.0, st.max_strength) : 0.0;
-  out.light_direction = best.dir;
-  out.cone_degrees = best.cone;
-  out.strength = k;
-  out.strength_luminance = k_lum;
-  out.r2 = best.fit.r2;
-  char line[200];
-  std::snprintf(line, sizeof line, "light (%.2f, %.2f, %.2f), cone %.1f deg, strength %.2f, R^2 %.2f",
-                best.dir.x, best.dir.y, best.dir.z, best.cone, k_lum, best.fit.r2);
-  out.found = k_lum >= st.min_strength && best.fit.r2 >= st.min_r2;
-  out.reason = out.found ? std::string(line) : std::string("too weak to be a shadow: ") + line;
+  const TargetShadow from_known = result(widen(std::move(near), darker_fit), &known);
+  if (from_known.found) return from_known;
+  out.reason += "; near the environment's light: " + from_known.reason;
   return out;
 }
 

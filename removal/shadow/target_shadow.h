@@ -21,7 +21,15 @@
 //  4. Its strength, per channel: y_c = b_c (1 - k_c s_i) in linear colour (colour^gamma); k_c is the share
 //     of the light the target takes away in full shadow.
 // Relighting (shadow_gain) divides linear colour by (1 - k_c s). A scene where no direction darkens enough
-// samples (k < min_strength or R^2 < min_r2) has no shadow to remove.
+// samples (k < min_strength or R^2 < min_r2) has no shadow to remove - unless the caller knows where the light
+// is (an intrinsic model's environment, environment_light.h):
+//  5. The light near a known one: where steps 2-4 find no shadow, the direction is searched again within a
+//     cap around the known light's, by the same R^2, the cones as in step 3, and a shadow that takes away at
+//     least min_strength of the light there is accepted whatever its R^2, if the samples it shades are
+//     clearly darker than the rest. A light high above the target hides most of its shadow under the target;
+//     the crescent that shows is small beside the surface's texture and its baked reflections, so the search
+//     over the whole sky prefers a low, wrong light and rejects it (docs/design/deviations.md, The target's
+//     cast shadow is removed too).
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -62,6 +70,23 @@ struct ShadowSettings {
   // shadow cast by the suite's area lights measures 0.9 and more where the fit is clear (R^2 > 0.3): a lower cap
   // leaves it half-dark, a cap nearer 1 amplifies the noise of fully shadowed pixels without bound.
   double max_strength = 0.97;
+  // Step 5: the cap's angular radius around the known light, and its directions. A 2000-iteration model's
+  // environment puts its brightest region 5-30 degrees from the true light; with the cones of step 3 (up to
+  // 20 degrees) a 15-degree cap reaches that far, where a 30-degree one let a textured table's low, wrong
+  // light win (docs/lab/2026-12-06-shadow-near-the-environments-light.md).
+  double known_light_cap_degrees = 15.0;
+  int known_light_directions = 160;
+  // ... and accepted only where its shadowed samples are darker than the unshadowed ones by this many standard
+  // errors of the difference (TargetShadow::contrast): the best of the cap's directions always darkens a few
+  // samples of a grainy surface by chance.
+  double known_light_min_contrast = 5.0;
+  // ... and only over a dielectric: where the support surface's learned F0 (opacity-weighted median near the
+  // target) is at most this. A metal shows next to nothing of a cast shadow (its look is the scene's
+  // reflection), and what darkens its colour near the target is the target's own reflection baked in, which
+  // relighting turns into a bright patch. A dielectric's F0 is 0.02-0.08; a 2000-iteration model learns
+  // 0.085-0.09 on the suite's dielectric and marble tables and 0.15-0.35 on its rough metal ones (a mirror-like
+  // metal's F0 stays near 0 at that length: it passes, and its colour holds no shadow to find).
+  double known_light_max_fresnel = 0.12;
   std::size_t min_samples = 50;  // and of support-plane Gaussians near the target
 };
 
@@ -105,11 +130,15 @@ struct TargetShadow {
   double strength_luminance = 0.0;
   double r2 = 0.0;                    // of the luminance fit
   std::size_t samples = 0;            // used in the fit
+  bool from_known_light = false;      // found by step 5
+  double contrast = 0.0;              // shadowed samples' mean luminance below the others', in standard errors
 };
 
-// Fits the light to the samples. Throws goris::Error when the samples' arrays differ in size.
+// Fits the light to the samples; known_light (unit, toward the light from the target, or null) enables step 5.
+// Throws goris::Error when the samples' arrays differ in size.
 TargetShadow fit_target_shadow(const ShadowGeometry& geometry, const ShadowSamples& samples,
-                               const TargetOcclusion& occlusion, const ShadowSettings& settings = {});
+                               const TargetOcclusion& occlusion, const ShadowSettings& settings = {},
+                               const glm::dvec3* known_light = nullptr);
 
 // s in [0, 1] per point: the share of the light's cone the target covers (all 0 when !shadow.found).
 std::vector<float> shadow_fraction(const TargetShadow& shadow, const std::vector<glm::vec3>& points,

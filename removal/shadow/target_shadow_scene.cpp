@@ -70,6 +70,30 @@ void relight(float* data, std::size_t pixel_stride, std::size_t channel_stride, 
   }
 }
 
+// The opacity-weighted median F0 of the support surface's Gaussians near the target (0 without materials).
+double support_fresnel(const GaussianModel& model, const SelectionMask& candidates, const std::vector<float>& opacity,
+                       const std::vector<glm::vec3>& position, const ShadowGeometry& geo) {
+  const ParamTensor& ex = model.tensor(Param::ExtraLogit);
+  if (ex.width != extra::kCount) return 0.0;
+  const std::vector<float> logits = ex.value.to_host();
+  std::vector<std::pair<double, double>> f0_weight;
+  double total = 0.0;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const glm::dvec3 p(position[i]);
+    if (!candidates[i] || opacity[i] < 0.05f || !geo.near_plane(p) || !geo.in_reach(p)) continue;
+    const float* e = &logits[i * extra::kCount];
+    double f0 = 0.0;
+    for (int c = 0; c < 3; ++c) f0 += kernels::sigmoid(e[extra::kFresnel + c]) / 3.0;
+    f0_weight.emplace_back(f0, opacity[i]);
+    total += opacity[i];
+  }
+  std::sort(f0_weight.begin(), f0_weight.end());
+  double acc = 0.0;
+  for (const auto& [f0, w] : f0_weight)
+    if ((acc += w) >= 0.5 * total) return f0;
+  return 0.0;
+}
+
 }  // namespace
 
 void relight_planar(std::vector<float>& image, std::size_t hw, const PlanePixels& px, const std::vector<float>& s,
@@ -85,7 +109,7 @@ void relight_image(Image& image, const PlanePixels& px, const std::vector<float>
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                     const MirrorPlane* fallback, std::vector<TrainView>& views,
                                     const RasterSettings& raster, const std::filesystem::path& out_dir,
-                                    ShadowSampleColour sample_colour) {
+                                    ShadowSampleColour sample_colour, const EnvironmentImage* environment) {
   ShadowRelight out;
   const SelectionPoints pts = selection_points(model);
   const std::vector<float> logit = model.tensor(Param::OpacityLogit).value.to_host();
@@ -120,7 +144,23 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
     for (std::size_t k = 0; k < out.pixels[i].size(); ++k, ++seen)
       if (seen % stride == 0) samples.add(out.pixels[i].point[k], colour[i][k]);
   const TargetOccluder occluder(model, target);
-  out.fit = fit_target_shadow(geo, samples, occluder.function());
+  const EnvironmentLight light = environment ? environment_light(*environment, geo.up) : EnvironmentLight{};
+  const glm::dvec3 known = light.direction_from(geo.centroid);
+  const bool above = light.found && glm::dot(known, geo.up) > 0.0;  // one under the surface casts no shadow on it
+  const ShadowSettings settings;
+  const double f0 = environment ? support_fresnel(model, candidates, opacity, pts.position, geo) : 0.0;
+  const bool dielectric = f0 <= settings.known_light_max_fresnel;
+  out.fit = fit_target_shadow(geo, samples, occluder.function(), settings, above && dielectric ? &known : nullptr);
+  if (environment) {
+    char b[160];
+    std::snprintf(b, sizeof b, "; support F0 %.3f%s", f0,
+                  out.fit.found ? ""
+                  : !light.found ? ", no light in the environment"
+                  : !above     ? ", the environment's light is not above the support surface"
+                  : !dielectric ? ", a metal's colour is its reflections: no search near the environment's light"
+                                : "");
+    out.fit.reason += b;
+  }
   if (!out.fit.found) return out;
 
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);

@@ -15,6 +15,7 @@
 #include "core/io/camera.h"
 #include "core/io/image.h"
 #include "core/scene/gaussians.h"
+#include "removal/shadow/environment_light.h"
 #include "removal/shadow/target_shadow.h"
 #include "render/raster/raster_types.h"
 #include "render/trace/gaussian_tracer.h"
@@ -65,6 +66,8 @@ enum class ShadowSampleColour {
 // most 20K), the fit, then the views' images (the photos) relit in place. With a shadow found and `out_dir`
 // not empty, the share of the light the target took is written per view as grey images (out_dir/VIEW.png).
 // `selected` may hold more than `target` (the mirror twin): none of it is a candidate for the support surface.
+// `environment` (an intrinsic model's, environment_light.h; may be null): its brightest region above the support
+// surface enables the fit's search near that light (target_shadow.h, step 5).
 struct ShadowRelight {
   TargetShadow fit;                     // fit.reason says why nothing was found
   std::vector<PlanePixels> pixels;      // per view
@@ -74,6 +77,7 @@ struct ShadowRelight {
 ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& target, const SelectionMask& selected,
                                     const MirrorPlane* fallback, std::vector<TrainView>& views,
                                     const RasterSettings& raster, const std::filesystem::path& out_dir,
-                                    ShadowSampleColour sample_colour = ShadowSampleColour::Photos);
+                                    ShadowSampleColour sample_colour = ShadowSampleColour::Photos,
+                                    const EnvironmentImage* environment = nullptr);
 
 }  // namespace goris

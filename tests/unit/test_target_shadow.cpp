@@ -49,16 +49,21 @@ struct Floor {
 
 // A 60 x 60 floor over [-2, 2]^2 with a texture, the ball's centres (target), a few centres of another
 // object above the floor. shadow = false renders the floor unshaded; strength: the share of the light the
-// ball takes away, per channel.
-Floor make_floor(bool shadow, const glm::dvec3& strength = kStrength) {
+// ball takes away, per channel; light: the light's direction; grain: the amplitude of a random texture
+// (a marble's veins, a reflection baked into the colour) added to the smooth one.
+Floor make_floor(bool shadow, const glm::dvec3& strength = kStrength, const glm::dvec3& light = kLight,
+                 float grain = 0.0f) {
   Floor f;
   const double gamma = 2.2;
+  std::mt19937 grain_rng(11);
+  std::uniform_real_distribution<float> g(-grain, grain);
   for (int y = 0; y < 60; ++y)
     for (int x = 0; x < 60; ++x) {
       const glm::vec3 p(-2.0f + 4.0f * (x + 0.5f) / 60, -2.0f + 4.0f * (y + 0.5f) / 60, 0.0f);
-      const glm::vec3 base(0.6f + 0.1f * std::sin(17.0f * p.x) * std::cos(13.0f * p.y), 0.55f,
-                       0.5f + 0.05f * std::sin(19.0f * p.y));
-      const bool in = hits_ball(p, glm::vec3(kLight));
+      const float r = grain > 0.0f ? g(grain_rng) : 0.0f;
+      const glm::vec3 base(0.6f + 0.1f * std::sin(17.0f * p.x) * std::cos(13.0f * p.y) + r, 0.55f + r,
+                           0.5f + 0.05f * std::sin(19.0f * p.y) + r);
+      const bool in = hits_ball(p, glm::vec3(light));
       glm::vec3 c = base;
       if (shadow && in)
         for (int k = 0; k < 3; ++k) c[k] = float(std::pow(std::pow(double(base[k]), gamma) * (1.0 - strength[k]), 1.0 / gamma));
@@ -103,14 +108,66 @@ struct Fitted {
   std::vector<std::size_t> index;  // sample -> Gaussian
   TargetShadow fit;
 };
-Fitted fit_floor(const Floor& f) {
+Fitted fit_floor(const Floor& f, const glm::dvec3* known_light = nullptr) {
   Fitted r;
   r.geo = shadow_geometry(f.centres, f.weights, f.target, f.candidates);
   for (std::size_t i = 0; i < f.centres.size(); ++i)
     if (!f.target[i] && r.geo.found && r.geo.near_plane(f.centres[i]) && r.geo.in_reach(f.centres[i]))
       r.samples.add(f.centres[i], f.colours[i], f.weights[i]), r.index.push_back(i);
-  r.fit = fit_target_shadow(r.geo, r.samples, kBallOcclusion);
+  r.fit = fit_target_shadow(r.geo, r.samples, kBallOcclusion, {}, known_light);
   return r;
+}
+
+double degrees_between(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 180.0 / 3.14159265358979;
+}
+
+// A light nearly overhead puts most of the ball's shadow under the ball, where no view sees the floor; the
+// thin crescent that shows is small beside a grainy texture, and the search over the whole sky finds no
+// shadow. Told where the environment's light is (within the cap), the fit finds it near there.
+TEST(TargetShadow, LightOverheadFoundNearTheKnownLight) {
+  const glm::dvec3 overhead = glm::normalize(glm::dvec3(0.25, 0.1, 1.0));
+  const Floor f = make_floor(true, kStrength, overhead, 0.25f);
+  const Fitted blind = fit_floor(f);
+  ASSERT_TRUE(blind.geo.found) << blind.geo.reason;
+  EXPECT_FALSE(blind.fit.found) << blind.fit.reason;
+  // The environment's brightest region 17 degrees off the true light.
+  const glm::dvec3 known = glm::normalize(glm::dvec3(-0.05, 0.1, 1.0));
+  ASSERT_NEAR(degrees_between(known, overhead), 17.0, 1.0);
+  const Fitted told = fit_floor(f, &known);
+  ASSERT_TRUE(told.fit.found) << told.fit.reason;
+  EXPECT_TRUE(told.fit.from_known_light);
+  EXPECT_NE(told.fit.reason.find("near the environment's"), std::string::npos) << told.fit.reason;
+  EXPECT_LT(degrees_between(told.fit.light_direction, overhead), 8.0) << told.fit.reason;
+  EXPECT_NEAR(told.fit.strength_luminance, 0.57, 0.2) << told.fit.reason;
+  // Relighting takes the crescent back toward the unshaded floor.
+  const std::vector<float> frac = shadow_fraction(told.fit, told.samples.position, kBallOcclusion);
+  double before = 0, after = 0;
+  int shaded = 0;
+  for (std::size_t k = 0; k < told.index.size(); ++k) {
+    const std::size_t i = told.index[k];
+    if (!f.shaded[i] || told.geo.in_reach(f.centres[i]) == false) continue;
+    before += glm::length(f.colours[i] - f.lit[i]);
+    after += glm::length(f.colours[i] * shadow_gain(told.fit, frac[k]) - f.lit[i]);
+    ++shaded;
+  }
+  ASSERT_GT(shaded, 10);
+  EXPECT_LT(after, 0.5 * before) << "colour error in the shadow over " << shaded << " samples";
+}
+
+// The known light changes nothing where the search finds the shadow by itself, and finds nothing where the
+// colours hold no shadow.
+TEST(TargetShadow, KnownLightOnlyWhereTheSearchFindsNone) {
+  const glm::dvec3 known = glm::normalize(glm::dvec3(0.0, 0.0, 1.0));
+  const Fitted plain = fit_floor(make_floor(true));
+  const Fitted told = fit_floor(make_floor(true), &known);
+  ASSERT_TRUE(plain.fit.found && told.fit.found) << plain.fit.reason << " / " << told.fit.reason;
+  EXPECT_FALSE(told.fit.from_known_light);
+  EXPECT_EQ(told.fit.light_direction, plain.fit.light_direction);
+  EXPECT_EQ(told.fit.strength, plain.fit.strength);
+  const Fitted none = fit_floor(make_floor(false, kStrength, kLight, 0.25f), &known);
+  EXPECT_FALSE(none.fit.found) << none.fit.reason;
+  EXPECT_NE(none.fit.reason.find("near the environment's light"), std::string::npos) << none.fit.reason;
 }
 
 TEST(TargetShadow, FindsTheLightAndRelightsTheFloor) {
@@ -387,6 +444,20 @@ TEST(TargetShadow, RelightTargetShadowOnRenderedViews) {
 }
 
 
+// Eight 64 px views on a ring around the floor, each image the model's render.
+std::vector<TrainView> ring_of_views(GaussianModel& model, const RasterSettings& raster) {
+  std::vector<TrainView> views;
+  for (int k = 0; k < 8; ++k) {
+    const float a = 0.785398f * float(k);
+    TrainView v;
+    v.name = "v" + std::to_string(k);
+    v.camera = test::look_at({3.0f * std::cos(a), 3.0f * std::sin(a), 2.5f}, {0.0f, 0.0f, 0.1f}, 64, 64, 55.0f);
+    v.image = rasterize(model.view(false), v.camera, raster, Device::CPU).gbuffer.color.to_host();
+    views.push_back(std::move(v));
+  }
+  return views;
+}
+
 // A glossy floor: the ball's shadow is in the floor's own (diffuse) colour, and every photo shows instead a
 // bright reflection that moves from view to view and hides it. Sampled from the photos the fit finds no
 // light; sampled from the model's colour (what an intrinsic model renders as D) it finds the true one, and
@@ -409,13 +480,9 @@ TEST(TargetShadow, ModelColourSamplesSeeAShadowTheReflectionsHide) {
   for (std::size_t i = 625; i < gs.size(); ++i) target[i] = 1;
 
   const RasterSettings raster;
-  std::vector<TrainView> views;
+  std::vector<TrainView> views = ring_of_views(model, raster);
   for (int k = 0; k < 8; ++k) {
-    const float a = 0.785398f * float(k);
-    TrainView v;
-    v.name = "v" + std::to_string(k);
-    v.camera = test::look_at({3.0f * std::cos(a), 3.0f * std::sin(a), 2.5f}, {0.0f, 0.0f, 0.1f}, 64, 64, 55.0f);
-    v.image = rasterize(model.view(false), v.camera, raster, Device::CPU).gbuffer.color.to_host();
+    TrainView& v = views[std::size_t(k)];
     // The photo: the floor unshaded, with a bright band of reflection across it that each view sees elsewhere.
     for (int y = 0; y < 64; ++y)
       for (int x = 0; x < 64; ++x) {
@@ -427,7 +494,6 @@ TEST(TargetShadow, ModelColourSamplesSeeAShadowTheReflectionsHide) {
           pixel = std::min(1.0f, pixel + 0.3f * band);
         }
       }
-    views.push_back(std::move(v));
   }
   const std::vector<TrainView> photos = views;
 
@@ -449,6 +515,70 @@ TEST(TargetShadow, ModelColourSamplesSeeAShadowTheReflectionsHide) {
       gained += by_model[k].image[i] - photos[k].image[i];
     }
   EXPECT_GT(gained, 10.0);
+}
+
+// An intrinsic model's floor whose colour holds the shadow of a high light under a grainy texture:
+// the search over the whole sky finds nothing; given the model's environment, whose brightest region is that
+// light, it is found near there - over a dielectric floor, not over a metal one.
+TEST(TargetShadow, EnvironmentLightSearchedOverADielectricOnly) {
+  const glm::dvec3 overhead = glm::normalize(glm::dvec3(0.45, 0.15, 1.0));
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> grain(-0.15f, 0.15f);
+  std::vector<test::TestGaussian> gs;
+  for (int y = 0; y < 25; ++y)
+    for (int x = 0; x < 25; ++x) {
+      const glm::vec3 p(-1.5f + 0.125f * x, -1.5f + 0.125f * y, 0.0f);
+      glm::vec3 c(0.6f + grain(rng));
+      if (hits_ball(p, glm::vec3(overhead)))
+        for (int k = 0; k < 3; ++k) c[k] = float(std::pow(std::pow(double(c[k]), 2.2) * (1.0 - kStrength[k]), 1.0 / 2.2));
+      gs.push_back({p, 0.07f, 0.95f, c, 0.05f});
+    }
+  for (int i = 0; i < 150; ++i)
+    gs.push_back({kBall + kBallRadius * in_unit_ball(rng), 0.06f, 0.95f, {0.8f, 0.2f, 0.2f}, 0.95f});
+  GaussianModel model = test::make_model(gs);
+  SelectionMask target(gs.size(), 0);
+  for (std::size_t i = 625; i < gs.size(); ++i) target[i] = 1;
+  auto set_fresnel = [&](float f0) {
+    float* ex = model.values(Param::ExtraLogit);
+    for (std::size_t i = 0; i < 625; ++i)
+      for (int c = 0; c < 3; ++c) ex[i * extra::kCount + extra::kFresnel + c] = test::logit_of(f0);
+  };
+  const RasterSettings raster;
+  const std::vector<TrainView> views = ring_of_views(model, raster);
+  // The environment at infinity: dim, with a lamp 15 degrees from the light.
+  EnvironmentImage env;
+  env.width = 128;
+  env.equirect.assign(std::size_t(128) * 64 * 3, 0.05f);
+  const glm::dvec3 lamp = glm::normalize(glm::dvec3(0.2, 0.0, 1.0));
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 128; ++i) {
+      const double t = 3.14159265358979 * (j + 0.5) / 64, ph = 2 * 3.14159265358979 * (i + 0.5) / 128 - 3.14159265358979;
+      const glm::dvec3 d(std::sin(t) * std::sin(ph), std::cos(t), std::sin(t) * std::cos(ph));
+      if (glm::dot(d, lamp) > std::cos(0.1))
+        for (int c = 0; c < 3; ++c) env.equirect[(std::size_t(j) * 128 + i) * 3 + c] = 10.0f;
+    }
+
+  set_fresnel(0.05f);
+  std::vector<TrainView> blind = views;
+  const ShadowRelight none = relight_target_shadow(model, target, target, nullptr, blind, raster, {}, ShadowSampleColour::Model);
+  EXPECT_FALSE(none.fit.found) << none.fit.reason;
+  std::vector<TrainView> told = views;
+  const ShadowRelight found =
+      relight_target_shadow(model, target, target, nullptr, told, raster, {}, ShadowSampleColour::Model, &env);
+  ASSERT_TRUE(found.fit.found) << found.fit.reason;
+  EXPECT_TRUE(found.fit.from_known_light) << found.fit.reason;
+  // Within the soft shadow's cone (20 degrees) of the true light; the lamp itself is 15 degrees off.
+  EXPECT_LT(std::acos(std::clamp(glm::dot(found.fit.light_direction, overhead), -1.0, 1.0)) * 180.0 / 3.14159265, 12.0)
+      << found.fit.reason;
+  EXPECT_GT(found.relit_pixels, 20u);
+
+  set_fresnel(0.5f);
+  std::vector<TrainView> metal = views;
+  const ShadowRelight over_metal =
+      relight_target_shadow(model, target, target, nullptr, metal, raster, {}, ShadowSampleColour::Model, &env);
+  EXPECT_FALSE(over_metal.fit.found) << over_metal.fit.reason;
+  EXPECT_NE(over_metal.fit.reason.find("a metal's colour is its reflections"), std::string::npos) << over_metal.fit.reason;
+  EXPECT_EQ(over_metal.relit_pixels, 0u);
 }
 
 }  // namespace
