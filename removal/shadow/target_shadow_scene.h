@@ -67,7 +67,8 @@ enum class ShadowSampleColour {
 // not empty, the share of the light the target took is written per view as grey images (out_dir/VIEW.png).
 // `selected` may hold more than `target` (the mirror twin): none of it is a candidate for the support surface.
 // `environment` (an intrinsic model's, environment_light.h; may be null): its brightest region above the support
-// surface enables the fit's search near that light (target_shadow.h, step 5).
+// surface enables the fit's search near that light (target_shadow.h, step 5) where the support's learned F0
+// near the target is a dielectric's (ShadowSettings::known_light_max_fresnel); fit.reason then ends with that F0.
 struct ShadowRelight {
   TargetShadow fit;                     // fit.reason says why nothing was found
   std::vector<PlanePixels> pixels;      // per view
