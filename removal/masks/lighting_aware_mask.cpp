@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +30,37 @@ Mask lighting_aware_mask(const std::vector<float>& e, int width, int height, con
   return dilate_mask(m, r);
 }
 
+std::optional<float> fresnel_quantile(const GaussianModel& model, const SelectionMask& among, float quantile) {
+  const ParamTensor& ex = model.tensor(Param::ExtraLogit);
+  if (ex.width != extra::kCount)
+    throw Error("lighting-aware mask", "the model has no material channels (a radiance run): nothing reflects");
+  if (among.size() != model.count())
+    throw Error("lighting-aware mask", "the selection has " + std::to_string(among.size()) + " entries for " +
+                                           std::to_string(model.count()) + " Gaussians");
+  const std::vector<float> logits = ex.value.to_host(), opacity = model.tensor(Param::OpacityLogit).value.to_host();
+  using kernels::sigmoid;
+  std::vector<std::pair<float, float>> f0_weight;  // (mean F0, opacity)
+  double total = 0;
+  for (std::size_t i = 0; i < model.count(); ++i) {
+    if (!among[i]) continue;
+    const float* e = &logits[i * extra::kCount];
+    const float f0 = (sigmoid(e[extra::kFresnel]) + sigmoid(e[extra::kFresnel + 1]) + sigmoid(e[extra::kFresnel + 2])) / 3;
+    const float w = sigmoid(opacity[i]);
+    if (!std::isfinite(f0) || !std::isfinite(w) || w <= 0) continue;
+    f0_weight.emplace_back(f0, w);
+    total += w;
+  }
+  if (f0_weight.empty() || total <= 0) return std::nullopt;
+  std::sort(f0_weight.begin(), f0_weight.end());
+  const double wanted = std::clamp(double(quantile), 0.0, 1.0) * total;
+  double acc = 0;
+  for (const auto& [f0, w] : f0_weight) {
+    acc += w;
+    if (acc >= wanted) return f0;
+  }
+  return f0_weight.back().first;
+}
+
 float glossy_fresnel_reference(const GaussianModel& model, const SelectionMask& target, float quantile) {
   const ParamTensor& ex = model.tensor(Param::ExtraLogit);
   if (ex.width != extra::kCount)
@@ -35,28 +68,12 @@ float glossy_fresnel_reference(const GaussianModel& model, const SelectionMask& 
   if (target.size() != model.count())
     throw Error("lighting-aware mask", "the selection has " + std::to_string(target.size()) + " entries for " +
                                            std::to_string(model.count()) + " Gaussians");
-  const std::vector<float> logits = ex.value.to_host(), opacity = model.tensor(Param::OpacityLogit).value.to_host();
-  using kernels::sigmoid;
-  std::vector<std::pair<float, float>> f0_weight;  // (mean F0, opacity) of the glossy non-target Gaussians
-  double total = 0;
-  for (std::size_t i = 0; i < model.count(); ++i) {
-    const float* e = &logits[i * extra::kCount];
-    if (target[i] || sigmoid(e[extra::kRegion]) >= 0.5f) continue;
-    const float f0 = (sigmoid(e[extra::kFresnel]) + sigmoid(e[extra::kFresnel + 1]) + sigmoid(e[extra::kFresnel + 2])) / 3;
-    const float w = sigmoid(opacity[i]);
-    if (!std::isfinite(f0) || !std::isfinite(w) || w <= 0) continue;
-    f0_weight.emplace_back(f0, w);
-    total += w;
-  }
-  if (f0_weight.empty() || total <= 0) return 1.0f;
-  std::sort(f0_weight.begin(), f0_weight.end());
-  const double wanted = std::clamp(double(quantile), 0.0, 1.0) * total;
-  double acc = 0;
-  for (const auto& [f0, w] : f0_weight) {
-    acc += w;
-    if (acc >= wanted) return std::max(f0, 1e-3f);
-  }
-  return std::max(f0_weight.back().first, 1e-3f);
+  const std::vector<float> logits = ex.value.to_host();
+  SelectionMask glossy(model.count(), 0);  // the glossy non-target Gaussians
+  for (std::size_t i = 0; i < model.count(); ++i)
+    glossy[i] = !target[i] && kernels::sigmoid(logits[i * extra::kCount + extra::kRegion]) < 0.5f;
+  const std::optional<float> f0 = fresnel_quantile(model, glossy, quantile);
+  return f0 ? std::max(*f0, 1e-3f) : 1.0f;
 }
 
 }  // namespace goris

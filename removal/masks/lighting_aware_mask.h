@@ -12,6 +12,8 @@
 // 15,040 px of reflection on steel_snowman with one set of learning rates and 28 px with another. Dividing
 // F by the 90th percentile of the glossy Gaussians' F0 (capped at 1) keeps what the weighting is for - weak
 // reflectors and normal incidence count less than strong ones and grazing angles - without the scale.
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/inpaint/mask.h"
@@ -36,5 +38,10 @@ Mask lighting_aware_mask(const std::vector<float>& reflected_label, int width, i
 // when no Gaussian is glossy. Throws goris::Error when the model has no material channels or the mask's
 // size differs.
 float glossy_fresnel_reference(const GaussianModel& model, const SelectionMask& target, float quantile = 0.9f);
+
+// The opacity-weighted `quantile` of mean-RGB F0 over the Gaussians `among` says (one entry per Gaussian);
+// nothing when none of them has a finite F0 and a positive opacity. Throws goris::Error when the model has no
+// material channels or the mask's size differs.
+std::optional<float> fresnel_quantile(const GaussianModel& model, const SelectionMask& among, float quantile);
 
 }  // namespace goris

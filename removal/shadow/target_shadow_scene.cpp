@@ -9,6 +9,7 @@
 #include "core/scene/selection_points.h"
 #include "core/util/error.h"
 #include "removal/masks/inpaint_mask_scene.h"
+#include "removal/masks/lighting_aware_mask.h"
 #include "render/raster/rasterizer.h"
 
 namespace goris {
@@ -73,25 +74,13 @@ void relight(float* data, std::size_t pixel_stride, std::size_t channel_stride, 
 // The opacity-weighted median F0 of the support surface's Gaussians near the target (0 without materials).
 double support_fresnel(const GaussianModel& model, const SelectionMask& candidates, const std::vector<float>& opacity,
                        const std::vector<glm::vec3>& position, const ShadowGeometry& geo) {
-  const ParamTensor& ex = model.tensor(Param::ExtraLogit);
-  if (ex.width != extra::kCount) return 0.0;
-  const std::vector<float> logits = ex.value.to_host();
-  std::vector<std::pair<double, double>> f0_weight;
-  double total = 0.0;
+  if (model.tensor(Param::ExtraLogit).width != extra::kCount) return 0.0;
+  SelectionMask support(candidates.size(), 0);
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const glm::dvec3 p(position[i]);
-    if (!candidates[i] || opacity[i] < 0.05f || !geo.near_plane(p) || !geo.in_reach(p)) continue;
-    const float* e = &logits[i * extra::kCount];
-    double f0 = 0.0;
-    for (int c = 0; c < 3; ++c) f0 += kernels::sigmoid(e[extra::kFresnel + c]) / 3.0;
-    f0_weight.emplace_back(f0, opacity[i]);
-    total += opacity[i];
+    support[i] = candidates[i] && opacity[i] >= 0.05f && geo.near_plane(p) && geo.in_reach(p);
   }
-  std::sort(f0_weight.begin(), f0_weight.end());
-  double acc = 0.0;
-  for (const auto& [f0, w] : f0_weight)
-    if ((acc += w) >= 0.5 * total) return f0;
-  return 0.0;
+  return fresnel_quantile(model, support, 0.5f).value_or(0.0f);
 }
 
 }  // namespace
