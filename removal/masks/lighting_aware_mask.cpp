@@ -30,13 +30,23 @@ Mask lighting_aware_mask(const std::vector<float>& e, int width, int height, con
   return dilate_mask(m, r);
 }
 
-std::optional<float> fresnel_quantile(const GaussianModel& model, const SelectionMask& among, float quantile) {
+namespace {
+
+// The model's material channels, checked: present, and a mask of one entry per Gaussian.
+const ParamTensor& material_channels(const GaussianModel& model, std::size_t mask_size) {
   const ParamTensor& ex = model.tensor(Param::ExtraLogit);
   if (ex.width != extra::kCount)
     throw Error("lighting-aware mask", "the model has no material channels (a radiance run): nothing reflects");
-  if (among.size() != model.count())
-    throw Error("lighting-aware mask", "the selection has " + std::to_string(among.size()) + " entries for " +
+  if (mask_size != model.count())
+    throw Error("lighting-aware mask", "the selection has " + std::to_string(mask_size) + " entries for " +
                                            std::to_string(model.count()) + " Gaussians");
+  return ex;
+}
+
+}  // namespace
+
+std::optional<float> fresnel_quantile(const GaussianModel& model, const SelectionMask& among, float quantile) {
+  const ParamTensor& ex = material_channels(model, among.size());
   const std::vector<float> logits = ex.value.to_host(), opacity = model.tensor(Param::OpacityLogit).value.to_host();
   using kernels::sigmoid;
   std::vector<std::pair<float, float>> f0_weight;  // (mean F0, opacity)
@@ -62,12 +72,7 @@ std::optional<float> fresnel_quantile(const GaussianModel& model, const Selectio
 }
 
 float glossy_fresnel_reference(const GaussianModel& model, const SelectionMask& target, float quantile) {
-  const ParamTensor& ex = model.tensor(Param::ExtraLogit);
-  if (ex.width != extra::kCount)
-    throw Error("lighting-aware mask", "the model has no material channels (a radiance run): nothing reflects");
-  if (target.size() != model.count())
-    throw Error("lighting-aware mask", "the selection has " + std::to_string(target.size()) + " entries for " +
-                                           std::to_string(model.count()) + " Gaussians");
+  const ParamTensor& ex = material_channels(model, target.size());
   const std::vector<float> logits = ex.value.to_host();
   SelectionMask glossy(model.count(), 0);  // the glossy non-target Gaussians
   for (std::size_t i = 0; i < model.count(); ++i)
