@@ -18,8 +18,17 @@ import cv2
 import numpy as np
 
 
-def load(path):
-    return cv2.medianBlur(cv2.imread(path, cv2.IMREAD_COLOR), 3)[:, :, ::-1].astype(np.float64) / 255.0
+def load(path, background=(0.0, 0.0, 0.0)):
+    """An image as goris eval sees it: RGBA composited on the run's background (the synthetic scenes' photos
+    carry colour where their alpha is 0), quantised to 8 bits, then the 3x3 median."""
+    im = cv2.imread(path, cv2.IMREAD_UNCHANGED)
+    if im.ndim == 2:
+        im = cv2.cvtColor(im, cv2.COLOR_GRAY2BGR)
+    if im.shape[2] == 4:
+        a = im[:, :, 3:].astype(np.float64) / 255.0
+        bg = np.array(background[::-1], np.float64) * 255.0  # BGR
+        im = np.round(im[:, :, :3] * a + bg * (1.0 - a)).astype(np.uint8)
+    return cv2.medianBlur(im, 3)[:, :, ::-1].astype(np.float64) / 255.0
 
 
 def render(goris, run, out):
@@ -47,7 +56,8 @@ def main():
         run = os.path.join(base, a.config, 'run')
         if not os.path.isdir(os.path.join(run, 'removal')):
             continue
-        test = os.path.join(json.load(open(os.path.join(run, 'config.json')))['data'], 'test')
+        config = json.load(open(os.path.join(run, 'config.json')))
+        test, bg = os.path.join(config['data'], 'test'), config.get('background', [0.0, 0.0, 0.0])
         s1 = os.path.join(a.work, s + '_stage1')
         rm = os.path.join(a.work, s + '_removed')
         render(a.goris, run, s1)
@@ -55,7 +65,7 @@ def main():
         floor = imprint = ghost = inside = 0.0
         for full_path in sorted(glob.glob(os.path.join(test, 'full_*.png'))):
             k = full_path[-7:-4]
-            full, after = load(full_path), load(os.path.join(test, 'r_%s.png' % k))
+            full, after = load(full_path, bg), load(os.path.join(test, 'r_%s.png' % k), bg)
             region = cv2.dilate((np.abs(full - after).max(axis=2) > 0.04).astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
             mask = cv2.imread(os.path.join(test, 'mask_%s.png' % k), cv2.IMREAD_GRAYSCALE) > 127
             before_model, after_model = load(os.path.join(s1, 'r_%s.png' % k)), load(os.path.join(rm, 'r_%s.png' % k))
