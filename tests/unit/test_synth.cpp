@@ -77,7 +77,7 @@ TEST(SynthPresets, EveryPresetSerialisesAWellFormedScene) {
         EXPECT_LE(rough, 1.0);
       }
       EXPECT_EQ(targets, 1) << p;
-      EXPECT_EQ(glossy, p == "lambert-room" ? 0 : p == "twin-mirrors" ? 2 : 1) << p;
+      EXPECT_EQ(glossy, p == "lambert-room" || p == "lambert-ground" ? 0 : p == "twin-mirrors" ? 2 : 1) << p;
       for (const auto& obj : j["objects"])
         if (obj["glossy"].get<bool>() && obj["name"] == "table") {
           double rough = obj["material"]["roughness"];
@@ -275,4 +275,27 @@ TEST(SynthPresets, UnknownOverrideValuesListTheKnownOnes) {
   o.preset = "lambert-room";
   o.table_material = "metal";
   EXPECT_THROW(make_scene(o), goris::Error);
+}
+
+TEST(SynthPresets, LambertGroundIsAMatteLawnWithABenchAndABox) {
+  SynthOptions o;
+  o.preset = "lambert-ground";
+  for (uint32_t seed : {1u, 7u, 113u}) {
+    o.seed = seed;
+    const SceneDescription s = make_scene(o);
+    int bench = 0;
+    for (const auto& obj : s.objects) {
+      EXPECT_FALSE(obj.glossy) << obj.name;
+      EXPECT_EQ(obj.material.specular, 0.0) << obj.name << ": nothing reflects";
+      bench += obj.name.rfind("bench", 0) == 0;
+      if (obj.name == "floor") {
+        ASSERT_TRUE(obj.material.texture) << "a lawn, not a plain floor";
+        EXPECT_GE(obj.material.texture->scale, 20.0) << "fine texture: the case auto mode must not take for a glossy plane";
+        EXPECT_GE(obj.scale[0], 6.0);
+      }
+      if (obj.target) EXPECT_EQ(obj.shape, "cube");
+    }
+    EXPECT_EQ(bench, 4);
+    EXPECT_EQ(s.world.kind, "sky");
+  }
 }

@@ -190,6 +190,51 @@ CameraRing lambert_room(Rng& rng, SceneDescription& s) {
   return ring;
 }
 
+// A matte material (no specular lobe) coloured by a noise texture between two colours.
+Material matte_noise(const Vec3& color1, const Vec3& color2, double scale) {
+  Material m;
+  m.roughness = 1.0, m.specular = 0.0;
+  m.color = color1;
+  m.texture = Texture{"noise", color1, color2, scale};
+  return m;
+}
+
+// Outdoors, nothing glossy: a box in front of a bench on a wide textured lawn under a sky. The case where a
+// large flat ground with fine texture must not be taken for a glossy plane (`--mode auto`).
+CameraRing lambert_ground(Rng& rng, SceneDescription& s) {
+  // One draw per statement: the order of the random draws is the scene (arguments have no fixed order).
+  const Vec3 grass1 = hsv(rng.uniform(0.22, 0.30), rng.uniform(0.5, 0.8), rng.uniform(0.25, 0.45));
+  const Vec3 grass2 = hsv(rng.uniform(0.17, 0.25), rng.uniform(0.4, 0.7), rng.uniform(0.45, 0.65));
+  const double blades = rng.uniform(20, 40);
+  s.objects.push_back({"floor", "plane", {0, 0, 0}, {0, 0, 0}, {6, 6, 1}, matte_noise(grass1, grass2, blades), false, false});
+  const Vec3 wood1 = hsv(rng.uniform(0.05, 0.09), rng.uniform(0.5, 0.7), rng.uniform(0.35, 0.5));
+  const Vec3 wood2 = hsv(rng.uniform(0.05, 0.09), rng.uniform(0.4, 0.6), rng.uniform(0.55, 0.7));
+  const Material wood = matte_noise(wood1, wood2, rng.uniform(4, 8));
+  const double turn = rng.uniform(-0.4, 0.4), c = std::cos(turn), sn = std::sin(turn), back = 0.7;
+  auto on_bench = [&](const std::string& name, double along, double z, const Vec3& scale) {
+    return SceneObject{name, "cube", {along * c - back * sn, along * sn + back * c, z}, {0, 0, turn}, scale, wood, false, false};
+  };
+  s.objects.push_back(on_bench("bench_seat", 0.0, 0.45, {0.75, 0.2, 0.04}));
+  s.objects.push_back(on_bench("bench_back", 0.0, 0.75, {0.75, 0.03, 0.2}));
+  for (int side : {-1, 1}) s.objects.push_back(on_bench(side < 0 ? "bench_leg_1" : "bench_leg_2", 0.65 * side, 0.2, {0.04, 0.18, 0.2}));
+  // The target: a cardboard box on the grass in front of the bench.
+  s.objects.push_back(make_target(rng, "cube", rng.uniform(-0.4, 0.4), rng.uniform(-0.3, 0.1), rng.uniform(0.2, 0.28),
+                                  hsv(rng.uniform(0.07, 0.1), rng.uniform(0.4, 0.6), rng.uniform(0.55, 0.75))));
+  scatter_objects(rng, s, rng.integer(1, 3), 1.0, 1.6);
+  for (auto& o : s.objects) o.material.specular = 0.0, o.material.roughness = 1.0;
+  add_environment(rng, s);
+  s.world.kind = "sky";
+  const double elevation = rng.uniform(0.5, 1.1), azimuth = rng.uniform(0, 2 * kPi);
+  s.world.sun_direction = {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
+  s.world.turbidity = rng.uniform(2.0, 4.0);
+  s.world.strength = rng.uniform(0.5, 0.8);
+  CameraRing ring = table_ring();
+  ring.look_at = {0, 0.2, 0.3};
+  ring.radius = 5.5;
+  ring.min_elevation = 0.3, ring.max_elevation = 0.9;
+  return ring;
+}
+
 CameraRing twin_mirrors(Rng& rng, SceneDescription& s) {
   s.objects.push_back(table_top(metal_top(rng, 0.02)));
   Material mirror;
@@ -234,6 +279,7 @@ const std::map<std::string, PresetFn>& presets() {
       {"glossy-table", [](Rng& r, SceneDescription& s) { return glossy_table(r, s, false); }},
       {"marble", [](Rng& r, SceneDescription& s) { return glossy_table(r, s, true); }},
       {"lambert-room", lambert_room},
+      {"lambert-ground", lambert_ground},
       {"twin-mirrors", twin_mirrors},
       {"occluded", occluded},
   };
@@ -333,7 +379,8 @@ const std::vector<std::string>& camera_elevation_names() {
 }
 
 const std::vector<std::string>& preset_names() {
-  static const std::vector<std::string> names{"glossy-table", "marble", "lambert-room", "twin-mirrors", "occluded"};
+  static const std::vector<std::string> names{"glossy-table", "marble", "lambert-room", "lambert-ground", "twin-mirrors",
+                                              "occluded"};
   return names;
 }
 
