@@ -55,7 +55,8 @@ SuiteScene glossy(const char* name, const char* preset, uint32_t seed, const Var
 
 const std::vector<SuiteScene>& generalization() {
   // Seeds are fixed: the suite is the same on every machine. Each row varies several axes at once so that
-  // twelve scenes cover every material, roughness band, surface shape, target shape and elevation.
+  // twelve scenes cover every material, roughness band, surface shape, target shape and elevation; two
+  // Lambertian scenes (a room, a lawn outdoors) and the failure case follow.
   static const std::vector<SuiteScene> s = {
       glossy("metal_round_convex", "glossy-table", 101, {"metal", 0.04, "round", "convex", -1, nullptr}),
       glossy("marble_round_monkey", "marble", 102, {nullptr, 0.12, "round", nullptr, -1, nullptr}),
@@ -70,6 +71,7 @@ const std::vector<SuiteScene>& generalization() {
       glossy("metal_round_sparse_high", "glossy-table", 111, {"metal", 0.10, "round", "convex", 1, "high"}),
       glossy("marble_rect_tall_low", "glossy-table", 112, {"marble", 0.25, "rect", "tall", -1, "low"}),
       {"lambert_room", "lambertian", suite_render("lambert-room", 113)},
+      {"lambert_ground", "lambertian", suite_render("lambert-ground", 115)},
       {"twin_mirrors", "failure", suite_render("twin-mirrors", 114)},
   };
   return s;

@@ -40,7 +40,8 @@ TEST(BenchSuite, GeneralizationCoversEveryAxisWithValidScenes) {
   EXPECT_EQ(shapes, (std::set<std::string>{"floor", "rect", "round"}));
   EXPECT_EQ(targets, (std::set<std::string>{"convex", "holed", "small", "tall", "thin"}));
   EXPECT_TRUE(elevations.count("low") && elevations.count("high"));
-  EXPECT_TRUE(presets.count("lambert-room") && presets.count("twin-mirrors") && presets.count("occluded"));
+  EXPECT_TRUE(presets.count("lambert-room") && presets.count("lambert-ground") && presets.count("twin-mirrors") &&
+              presets.count("occluded"));
   EXPECT_LE(*roughness.begin(), 0.01);
   EXPECT_GE(*roughness.rbegin(), 0.35);
 }
