@@ -290,6 +290,33 @@ TargetShadow fit_target_shadow(const ShadowGeometry& geo, const ShadowSamples& s
   return out;
 }
 
+OthersShadow others_shadow(const TargetShadow& shadow, const ShadowSamples& samples, const TargetOcclusion& target,
+                           const TargetOcclusion& others, const ShadowSettings& st) {
+  const std::size_t m = samples.size();
+  if (samples.colour.size() != m || samples.weight.size() != m)
+    throw Error("target shadow", "the samples' arrays differ in size (" + std::to_string(m) + " positions)");
+  OthersShadow r;
+  if (!shadow.found || m == 0) return r;
+  const std::vector<glm::dvec3> cone = cone_of(shadow.light_direction, shadow.cone_degrees, st);
+  const std::vector<double> s = mean_occlusion(samples.position, cone, target);
+  const std::vector<double> o = mean_occlusion(samples.position, cone, others);
+  std::vector<double> y(m), w(m);
+  double total = 0, shaded = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const glm::dvec3 c = glm::max(glm::dvec3(samples.colour[k]), glm::dvec3(0.0));
+    y[k] = luminance(glm::dvec3(std::pow(c.x, st.gamma), std::pow(c.y, st.gamma), std::pow(c.z, st.gamma)));
+    w[k] = s[k] < 0.05 ? std::max(0.0f, samples.weight[k]) : 0.0;
+    total += w[k];
+    shaded += o[k] > 0.5 ? w[k] : 0.0;
+  }
+  if (total <= 0) return r;
+  r.shaded_share = shaded / total;
+  const LineFit f = fit_line(o, y, w);
+  r.strength = f.b > 1e-9 ? -f.beta / f.b : 0.0;
+  r.contradicts = r.shaded_share >= st.min_shadowed && r.strength < st.min_strength;
+  return r;
+}
+
 std::vector<float> shadow_fraction(const TargetShadow& shadow, const std::vector<glm::vec3>& points,
                                    const TargetOcclusion& occlusion, const ShadowSettings& st) {
   if (!shadow.found) return std::vector<float>(points.size(), 0.0f);

@@ -30,6 +30,8 @@
 //     the crescent that shows is small beside the surface's texture and its baked reflections, so the search
 //     over the whole sky prefers a low, wrong light and rejects it (docs/design/deviations.md, The target's
 //     cast shadow is removed too).
+//  6. The check (others_shadow): the light found must cast the other objects' shadows where the photos are
+//     dark too; the caller drops a light that contradicts them.
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -88,6 +90,10 @@ struct ShadowSettings {
   // metal's F0 stays near 0 at that length: it passes, and its colour holds no shadow to find).
   double known_light_max_fresnel = 0.12;
   std::size_t min_samples = 50;  // and of support-plane Gaussians near the target
+  // The other objects (others_shadow): Gaussians not in the target that stand above the support surface's
+  // plane tolerance with at least this opacity. A short run's fog over a floor is fainter, and counted it
+  // would shade every sample.
+  double others_opacity = 0.5;
 };
 
 struct ShadowGeometry {
@@ -139,6 +145,20 @@ struct TargetShadow {
 TargetShadow fit_target_shadow(const ShadowGeometry& geometry, const ShadowSamples& samples,
                                const TargetOcclusion& occlusion, const ShadowSettings& settings = {},
                                const glm::dvec3* known_light = nullptr);
+
+// Step 6, a check of the light found: the same light casts the other objects' shadows. Over the samples the
+// target leaves lit (s < 0.05), `others` (the occlusion by the other objects) predicts where their shadows
+// fall; a light is contradicted when at least min_shadowed of those samples' weight lies in the others'
+// shadow (> 0.5) and the photos show less than min_strength of a shadow there (k of y = b (1 - k o)). A wrong
+// light that lays the target's shadow over a neighbour's real one (a bench's shadow on a lawn) puts the
+// neighbour's own shadow on lit ground. Without other objects near the target the check says nothing.
+struct OthersShadow {
+  double shaded_share = 0.0;  // of the samples' weight the target leaves lit, in the others' shadow
+  double strength = 0.0;      // k of the others' shadow in those samples' luminance
+  bool contradicts = false;
+};
+OthersShadow others_shadow(const TargetShadow& shadow, const ShadowSamples& samples, const TargetOcclusion& target,
+                           const TargetOcclusion& others, const ShadowSettings& settings = {});
 
 // s in [0, 1] per point: the share of the light's cone the target covers (all 0 when !shadow.found).
 std::vector<float> shadow_fraction(const TargetShadow& shadow, const std::vector<glm::vec3>& points,

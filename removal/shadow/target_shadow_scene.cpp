@@ -151,6 +151,24 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
     out.fit.reason += b;
   }
   if (!out.fit.found) return out;
+  SelectionMask other_objects(candidates.size(), 0);  // step 6: what else stands on the support surface
+  const double up_sign = glm::dot(geo.plane.normal, geo.up) > 0 ? 1.0 : -1.0;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    other_objects[i] = candidates[i] && opacity[i] >= settings.others_opacity &&
+                       up_sign * geo.plane.signed_distance(glm::dvec3(pts.position[i])) > geo.plane.tolerance;
+  if (count_selected(other_objects) > 0) {
+    const TargetOccluder others(model, other_objects);
+    const OthersShadow check = others_shadow(out.fit, samples, occluder.function(), others.function(), settings);
+    if (check.contradicts) {
+      char b[200];
+      std::snprintf(b, sizeof b, "the light puts the other objects' shadows on %.0f %% of the lit samples, "
+                    "where the photos show a shadow of %.2f: not the light (",
+                    100.0 * check.shaded_share, check.strength);
+      out.fit.found = false;
+      out.fit.reason = b + out.fit.reason + ")";
+      return out;
+    }
+  }
 
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
   out.s.resize(views.size());

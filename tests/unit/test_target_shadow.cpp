@@ -252,6 +252,48 @@ TEST(TargetShadow, NoShadowInTheColoursFindsNone) {
   for (float v : shadow_fraction(r.fit, r.samples.position, kBallOcclusion)) ASSERT_EQ(v, 0.0f);
 }
 
+// Step 6: the light found must cast the other objects' shadows as well. A neighbour (a second ball beside the
+// target) darkens the floor under the true light: at the true light its shadow is where the photos are dark;
+// at a wrong light its shadow falls on lit floor, and the check says so. Without a neighbour's shadow among the
+// samples it says nothing.
+TEST(TargetShadow, TheLightMustCastTheOtherObjectsShadowsToo) {
+  const glm::vec3 neighbour(0.5f, 0.4f, 0.25f);
+  constexpr float kNeighbourRadius = 0.2f;
+  auto hits_neighbour = [&](const glm::vec3& o, const glm::vec3& d) {
+    const glm::vec3 oc = o - neighbour;
+    const float b = glm::dot(oc, d), c = glm::dot(oc, oc) - kNeighbourRadius * kNeighbourRadius;
+    return b * b - c > 0 && -b + std::sqrt(b * b - c) > 0;
+  };
+  const TargetOcclusion neighbour_occlusion = [&](const std::vector<glm::vec3>& o, const std::vector<glm::vec3>& d,
+                                                  std::vector<float>& alpha) {
+    for (std::size_t i = 0; i < o.size(); ++i) alpha[i] = hits_neighbour(o[i], d[i]) ? 1.0f : 0.0f;
+  };
+  const TargetOcclusion nothing = [](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&,
+                                     std::vector<float>& alpha) { std::fill(alpha.begin(), alpha.end(), 0.0f); };
+  Floor f = make_floor(true);
+  for (std::size_t i = 0; i < f.centres.size(); ++i)  // the neighbour's shadow under the same light, as deep
+    if (!f.target[i] && std::abs(f.centres[i].z) < 1e-6f && hits_neighbour(f.centres[i], glm::vec3(kLight)))
+      for (int c = 0; c < 3; ++c)
+        f.colours[i][c] = float(std::pow(std::pow(double(f.lit[i][c]), 2.2) * (1.0 - kStrength[c]), 1.0 / 2.2));
+  const Fitted r = fit_floor(f);
+  ASSERT_TRUE(r.fit.found) << r.fit.reason;
+  const OthersShadow at_true = others_shadow(r.fit, r.samples, kBallOcclusion, neighbour_occlusion);
+  EXPECT_GT(at_true.shaded_share, 0.02) << "the neighbour's shadow lies among the samples";
+  EXPECT_NEAR(at_true.strength, 0.55, 0.15);
+  EXPECT_FALSE(at_true.contradicts);
+
+  TargetShadow wrong = r.fit;  // a lower light from across the sky: the neighbour's shadow on lit floor
+  wrong.light_direction = glm::normalize(glm::dvec3(-kLight.x, -kLight.y, 0.5 * kLight.z));
+  const OthersShadow at_wrong = others_shadow(wrong, r.samples, kBallOcclusion, neighbour_occlusion);
+  EXPECT_GT(at_wrong.shaded_share, 0.02);
+  EXPECT_LT(at_wrong.strength, 0.15);
+  EXPECT_TRUE(at_wrong.contradicts);
+
+  const OthersShadow alone = others_shadow(wrong, r.samples, kBallOcclusion, nothing);
+  EXPECT_EQ(alone.shaded_share, 0.0);
+  EXPECT_FALSE(alone.contradicts) << "no neighbour, no evidence against the light";
+}
+
 TEST(TargetShadow, NoSupportPlaneNoShadow) {
   Floor f = make_floor(true);
   std::fill(f.candidates.begin(), f.candidates.end(), 0);  // nothing may carry the shadow
