@@ -56,6 +56,12 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y, con
 
 double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+// A display colour (negatives clamped) in linear radiance: shadows scale radiance.
+glm::dvec3 to_linear(const glm::vec3& display, double gamma) {
+  const glm::dvec3 c = glm::max(glm::dvec3(display), glm::dvec3(0.0));
+  return {std::pow(c.x, gamma), std::pow(c.y, gamma), std::pow(c.z, gamma)};
+}
+
 // How clearly the shadowed samples (s > 0.5) are darker than the unshadowed ones (s < 0.05): the difference of
 // their mean y over its standard error (samples of weight 0 left out; 0 when either side has under 2).
 double shadow_contrast(const std::vector<double>& s, const std::vector<double>& y, const std::vector<double>& w) {
@@ -174,8 +180,7 @@ TargetShadow fit_target_shadow(const ShadowGeometry& geo, const ShadowSamples& s
   std::vector<glm::dvec3> lin(m);
   std::vector<double> y(m), w(m);
   for (std::size_t k = 0; k < m; ++k) {
-    const glm::dvec3 c = glm::max(glm::dvec3(samples.colour[k]), glm::dvec3(0.0));
-    lin[k] = glm::dvec3(std::pow(c.x, st.gamma), std::pow(c.y, st.gamma), std::pow(c.z, st.gamma));
+    lin[k] = to_linear(samples.colour[k], st.gamma);
     y[k] = luminance(lin[k]);
     w[k] = std::max(0.0f, samples.weight[k]);
   }
@@ -303,8 +308,7 @@ OthersShadow others_shadow(const TargetShadow& shadow, const ShadowSamples& samp
   std::vector<double> y(m), w(m);
   double total = 0, shaded = 0;
   for (std::size_t k = 0; k < m; ++k) {
-    const glm::dvec3 c = glm::max(glm::dvec3(samples.colour[k]), glm::dvec3(0.0));
-    y[k] = luminance(glm::dvec3(std::pow(c.x, st.gamma), std::pow(c.y, st.gamma), std::pow(c.z, st.gamma)));
+    y[k] = luminance(to_linear(samples.colour[k], st.gamma));
     w[k] = s[k] < 0.05 ? std::max(0.0f, samples.weight[k]) : 0.0;
     total += w[k];
     shaded += o[k] > 0.5 ? w[k] : 0.0;
