@@ -105,6 +105,10 @@ struct ShadowGeometry {
   double radius = 0.0;       // 90th percentile of their distances to the centroid
   double reach = 0.0;        // samples within this distance of the centroid (radius_ratio x radius)
   bool near_plane(const glm::dvec3& p) const { return std::abs(plane.signed_distance(p)) <= plane.tolerance; }
+  // Signed distance from the support plane, positive on the target's side.
+  double height(const glm::dvec3& p) const {
+    return glm::dot(plane.normal, up) > 0 ? plane.signed_distance(p) : -plane.signed_distance(p);
+  }
   bool in_reach(const glm::dvec3& p) const { return glm::length(p - centroid) <= reach; }
 };
 

@@ -83,6 +83,21 @@ double support_fresnel(const GaussianModel& model, const SelectionMask& candidat
   return fresnel_quantile(model, support, 0.5f).value_or(0.0f);
 }
 
+// Step 6 of target_shadow.h: the fitted light against the other objects standing on the support surface
+// (non-target Gaussians above its plane's tolerance, opaque enough not to be a short run's fog).
+OthersShadow check_against_others(const GaussianModel& model, const SelectionMask& candidates,
+                                  const std::vector<float>& opacity, const std::vector<glm::vec3>& position,
+                                  const ShadowGeometry& geo, const TargetShadow& fit, const ShadowSamples& samples,
+                                  const TargetOccluder& target, const ShadowSettings& settings) {
+  SelectionMask other_objects(candidates.size(), 0);
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    other_objects[i] = candidates[i] && opacity[i] >= settings.others_opacity &&
+                       geo.height(glm::dvec3(position[i])) > geo.plane.tolerance;
+  if (count_selected(other_objects) == 0) return {};
+  const TargetOccluder others(model, other_objects);
+  return others_shadow(fit, samples, target.function(), others.function(), settings);
+}
+
 }  // namespace
 
 void relight_planar(std::vector<float>& image, std::size_t hw, const PlanePixels& px, const std::vector<float>& s,
@@ -151,23 +166,16 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
     out.fit.reason += b;
   }
   if (!out.fit.found) return out;
-  SelectionMask other_objects(candidates.size(), 0);  // step 6: what else stands on the support surface
-  const double up_sign = glm::dot(geo.plane.normal, geo.up) > 0 ? 1.0 : -1.0;
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    other_objects[i] = candidates[i] && opacity[i] >= settings.others_opacity &&
-                       up_sign * geo.plane.signed_distance(glm::dvec3(pts.position[i])) > geo.plane.tolerance;
-  if (count_selected(other_objects) > 0) {
-    const TargetOccluder others(model, other_objects);
-    const OthersShadow check = others_shadow(out.fit, samples, occluder.function(), others.function(), settings);
-    if (check.contradicts) {
-      char b[200];
-      std::snprintf(b, sizeof b, "the light puts the other objects' shadows on %.0f %% of the lit samples, "
-                    "where the photos show a shadow of %.2f: not the light (",
-                    100.0 * check.shaded_share, check.strength);
-      out.fit.found = false;
-      out.fit.reason = b + out.fit.reason + ")";
-      return out;
-    }
+  const OthersShadow check =
+      check_against_others(model, candidates, opacity, pts.position, geo, out.fit, samples, occluder, settings);
+  if (check.contradicts) {
+    char b[200];
+    std::snprintf(b, sizeof b, "the light puts the other objects' shadows on %.0f %% of the lit samples, "
+                  "where the photos show a shadow of %.2f: not the light (",
+                  100.0 * check.shaded_share, check.strength);
+    out.fit.found = false;
+    out.fit.reason = b + out.fit.reason + ")";
+    return out;
   }
 
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);

@@ -69,6 +69,8 @@ enum class ShadowSampleColour {
 // `environment` (an intrinsic model's, environment_light.h; may be null): its brightest region above the support
 // surface enables the fit's search near that light (target_shadow.h, step 5) where the support's learned F0
 // near the target is a dielectric's (ShadowSettings::known_light_max_fresnel); fit.reason then ends with that F0.
+// A light whose shadows of the other objects on the support surface the photos do not show is dropped
+// (target_shadow.h, step 6): fit.found is then false and fit.reason says so.
 struct ShadowRelight {
   TargetShadow fit;                     // fit.reason says why nothing was found
   std::vector<PlanePixels> pixels;      // per view
