@@ -1,4 +1,4 @@
-// `goris remove RUN [--inpainter NAME | --inpainted DIR] [--ablate PART,...] [--iters N]`: stage 2 on a
+// `goris remove RUN [--inpainter NAME | --inpainted DIR] [--ablate material|lamask] [--iters N]`: stage 2 on a
 // trained run (removal/pipeline/removal_pipeline.h): each step with its progress, every intermediate in
 // RUN/removal/, the cleaned scene as the run folder RUN/removal (render / eval / export take it). SIGINT,
 // SIGTERM or SIGHUP stops at the next safe point with exit status 130, 143 or 129; running the command
@@ -107,8 +107,7 @@ void setup_remove(CLI::App& root) {
                  "reflections nor shadow), twins (keep the target's mirror twin below a planar glossy surface), shadows "
                  "(keep the target's cast shadow), glossfill (fine-tune with the photos' glossy masks under the target instead of "
                  "masks filled from around it), reflection (no mask of the target mirrored through the glossy plane, and the glossy surface's part of the hole "
-                 "filled like the rest instead of from the surface alone), reflectionfit (the planar reflection filled in 2D in every "
-                 "view, never the photo less the target's fitted mirror image)");
+                 "filled like the rest instead of from the surface alone)");
   c->add_option("--lighting-fresnel", o->lighting_fresnel,
                  "F in the lighting-aware mask: relative (to the glossy surfaces' F0, default) or absolute (the paper)")
       ->check(CLI::IsMember({"relative", "absolute"}));

@@ -22,7 +22,6 @@
 #include "core/inpaint/region_fill.h"
 #include "core/scene/plane_from_masks.h"
 #include "removal/masks/planar_reflection.h"
-#include "removal/masks/planar_dereflect_scene.h"
 #include "removal/selection/selection_file.h"
 #include "removal/selection/selection_labels.h"
 #include "core/scene/selection_points.h"
@@ -163,7 +162,6 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
   j["view_fill_weight"] = o.view_fill_weight;
-  j["reflection_fit"] = !o.ablate.count("reflectionfit");  // absent from older runs: their fills are not reused
   return j;
 }
 
@@ -192,11 +190,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              "--ablate " + a + " is a stage-1 choice: train the run with " +
                                  (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
                                  " and remove from that run"));
-    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows" && a != "glossfill" && a != "reflection" &&
-        a != "reflectionfit")
+    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows" && a != "glossfill" && a != "reflection")
       throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a +
-                                                         "' (expected material, lamask, twins, shadows, glossfill, "
-                                                         "reflection or reflectionfit)"));
+                                                         "' (expected material, lamask, twins, shadows, glossfill or "
+                                                         "reflection)"));
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config_with_data(run_dir, o.data);
@@ -374,7 +371,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
 
   // 3. Inpainting masks.
   std::vector<InpaintMaskView> holes;
-  PlanarDereflectScene planar;
   {
     StepScope s(report, RemovalStep::InpaintMasks, on_progress);
     InpaintMaskSettings ms;
@@ -396,14 +392,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         report.reflection_pixels += count_set(reflection[i]);
         save_mask_png(out / "reflection_masks" / (ds.train[i].name + ".png"), reflection[i]);
       }
-      // Where the target's mirror image explains a view's photo, the photo less it becomes the target of the
-      // planar reflection there instead of the 2D fill (planar_dereflect_scene.h).
-      if (!o.ablate.count("reflectionfit") && !cancelled()) {
-        planar = dereflect_planar_views(model, target_only, selected, glossy_plane, views, reflection, raster);
-        write_planar_dereflect(out / "reflection_fit", planar, views);
-        report.reflection_fit_views = planar.views;
-        report.reflection_fit_pixels = planar.pixels;
-      }
     }
     fs::create_directories(out / "inpaint_masks");
     for (std::size_t i = 0; i < holes.size(); ++i) {
@@ -412,10 +400,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       save_mask_png(out / "inpaint_masks" / (ds.train[i].name + ".png"), holes[i].mask);
     }
     const std::string reflection_note =
-        report.reflection_pixels
-            ? " (" + std::to_string(report.reflection_pixels) + " in the planar reflection; the photo less the target's " +
-                  "mirror image in " + std::to_string(report.reflection_fit_views) + " views)"
-            : "";
+        report.reflection_pixels ? " (" + std::to_string(report.reflection_pixels) + " in the planar reflection)" : "";
     s.finish(std::to_string(report.inpaint_pixels) + " pixels" + reflection_note);
   }
 
@@ -458,7 +443,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       opts["lift_not_in_front_of"] = {glossy_plane.normal.x, glossy_plane.normal.y, glossy_plane.normal.z,
                                       glossy_plane.offset};
     opts["views"] = report.reference_views;
-    opts["reflection_fit"] = {{"views", planar.views}, {"pixels", planar.pixels}, {"offset", planar.offset}};
     // inpainted[k]: the reference views, then the other views' fills, kept apart from the reference views'
     // maps (the lift's input) under their own file stem.
     auto view_of = [&](std::size_t k) {
@@ -538,7 +522,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
             m.rgb = refill_inside_region(fill_with, maps.rgb, m.rgb, holes[v].mask, g, info);
           }
         }
-        paste_planar_dereflect(m.rgb, planar, v);  // the dereflected photo where the fit applied
         save_inpainted_maps(dir, stem, m, /*previews=*/reference);
       }
     } catch (const Stopped&) {
@@ -665,7 +648,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["lighting_mask_pixels"] = report.lighting_pixels;
     j["mirror_twins"] = report.mirror_twins;
     j["reflection_pixels"] = report.reflection_pixels;
-    j["reflection_fit"] = {{"views", report.reflection_fit_views}, {"pixels", report.reflection_fit_pixels}};
     j["lift_onto_plane_pixels"] = report.lift_onto_plane_pixels;
     if (report.glossy_plane.found)
       j["glossy_plane"] = {{"normal", {report.glossy_plane.normal.x, report.glossy_plane.normal.y, report.glossy_plane.normal.z}},

@@ -58,10 +58,7 @@ struct RemovalOptions {
   std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
                                     // "twins" (keep the target's mirror twin, core/scene/mirror_twins.h),
                                     // "shadows" (keep the target's cast shadow, removal/shadow/target_shadow.h),
-                                    // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h),
-                                    // "reflection" (no planar reflection mask, planar_reflection.h),
-                                    // "reflectionfit" (the planar reflection filled in 2D in every view, never
-                                    // the photo less the target's mirror image, planar_dereflect_scene.h)
+                                    // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   // Every other training view's hole (its unseen pixels and the target's planar reflection) is inpainted in
   // 2D as well, and the fine-tune trains it towards that fill with this weight where no lifted reference
@@ -96,8 +93,6 @@ struct RemovalReport {
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   MirrorPlane glossy_plane;           // the glossy surface's plane (found = false: none)
   std::size_t reflection_pixels = 0;  // the mirrored target on the glossy surface (planar_reflection.h), all views
-  // Of them: views and pixels whose target is the photo less the target's mirror image (planar_dereflect.h).
-  std::size_t reflection_fit_views = 0, reflection_fit_pixels = 0;
   std::size_t lift_onto_plane_pixels = 0;  // reference-view hole pixels moved onto the glossy plane (plane_depth.h)
   std::size_t glossy_filled_pixels = 0;  // glossy-mask pixels filled under the target (removed_glossy_masks.h)
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
