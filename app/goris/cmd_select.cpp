@@ -60,7 +60,7 @@ struct Options {
   int dilate = 0, shrink = 0;
   std::string write_masks, masks_iou;
   bool masks_iou_given = false;
-  float threshold = 0.3f, min_fraction = 0.5f, max_fraction = 0.5f;
+  float threshold = 0.3f, min_fraction = MaskVoteSettings{}.min_fraction, max_fraction = 0.5f;
   std::optional<float> grow;
   int previews = 4;
 };
