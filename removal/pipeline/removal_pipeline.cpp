@@ -487,7 +487,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         }
         if (!inp) {
           // The cache is being rewritten: no map of an earlier run (other reference views) stays beside it.
-          fs::remove_all(dir), fs::create_directories(dir);
+          fs::remove_all(dir);
+          fs::create_directories(dir);
           inp = make_inpainter(o.inpainter);
         }
         MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
