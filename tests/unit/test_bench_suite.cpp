@@ -46,6 +46,19 @@ TEST(BenchSuite, GeneralizationCoversEveryAxisWithValidScenes) {
   EXPECT_GE(*roughness.rbegin(), 0.35);
 }
 
+TEST(BenchSuite, TheHeldOutScenesAreGlossyAndNoneIsInTheGeneralizationSuite) {
+  // The held-out scenes judge a choice made on the generalization suite: neither a name nor a seed may be shared.
+  const auto& held = suite_scenes("heldout");
+  EXPECT_EQ(held.size(), 4u);
+  for (const auto& h : held) {
+    EXPECT_EQ(h.kind, "glossy") << h.name;
+    for (const auto& s : suite_scenes("generalization")) {
+      EXPECT_NE(h.name, s.name);
+      EXPECT_NE(h.synth.seed, s.synth.seed) << h.name << " and " << s.name;
+    }
+  }
+}
+
 TEST(BenchSuite, FastIsASubsetAndUnknownSuitesAreNamed) {
   const auto& all = suite_scenes("generalization");
   const auto& fast = suite_scenes("fast");
@@ -60,6 +73,7 @@ TEST(BenchSuite, FastIsASubsetAndUnknownSuitesAreNamed) {
     FAIL();
   } catch (const goris::Error& e) {
     EXPECT_NE(std::string(e.what()).find("generalization"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("heldout"), std::string::npos) << e.what();
   }
 }
 
