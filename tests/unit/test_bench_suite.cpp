@@ -52,6 +52,7 @@ TEST(BenchSuite, TheHeldOutScenesAreGlossyAndNoneIsInTheGeneralizationSuite) {
   EXPECT_EQ(held.size(), 4u);
   for (const auto& h : held) {
     EXPECT_EQ(h.kind, "glossy") << h.name;
+    EXPECT_NO_THROW(goris::synth::make_scene(h.synth)) << h.name;
     for (const auto& s : suite_scenes("generalization")) {
       EXPECT_NE(h.name, s.name);
       EXPECT_NE(h.synth.seed, s.synth.seed) << h.name << " and " << s.name;
