@@ -11,7 +11,7 @@ goris_fails("unknown configuration 'nope'" bench pipeline --data "${RESOURCES}/d
             --out "${OUTDIR}" --schedule tiny --device cpu)
 goris_fails("not a data set folder" bench pipeline --data "${WORK}/missing" --configs baseline --out "${OUTDIR}"
             --schedule tiny --device cpu)
-goris_fails("unknown suite 'nope' (generalization, fast)" bench pipeline --suite nope --out "${OUTDIR}")
+goris_fails("unknown suite 'nope' (generalization, fast, heldout)" bench pipeline --suite nope --out "${OUTDIR}")
 goris_fails("give --data DIR... or --suite NAME" bench pipeline --out "${OUTDIR}")
 
 goris_ok(bench pipeline --data "${RESOURCES}/default_scene" --configs baseline,full --out "${OUTDIR}"
