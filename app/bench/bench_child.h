@@ -46,8 +46,9 @@ std::string failure_message(const std::filesystem::path& log);
 struct Metrics {
   double psnr, ssim, m_psnr, m_ssim, gaussians;
   // What the removal had to fix (goris eval's "removal" block, on data sets with full_ images): PSNR / SSIM /
-  // FLIP inside the changed region, the ghost ratio over it, and FLIP over the whole image.
-  double region_psnr, region_ssim, region_flip, ghost_ratio, flip, region_fraction;
+  // FLIP inside the changed region, the ghost ratio over it, its floor (stage 1's own distance from the views
+  // with the target there, in the same units), and FLIP over the whole image.
+  double region_psnr, region_ssim, region_flip, ghost_ratio, ghost_floor, flip, region_fraction;
   std::string device;  // the device the evaluation rendered on
   Metrics();
 };

@@ -199,7 +199,7 @@ std::string scene_images_fingerprint(const fs::path& scene) {
 
 SuiteResult::SuiteResult()
     : psnr(nan()), region_psnr(nan()), region_ssim(nan()), region_flip(nan()), flip(nan()), ghost_ratio(nan()),
-      seconds(nan()) {}
+      seconds(nan()), ghost_floor(nan()) {}
 
 SuiteSummary summarize_suite(const std::string& suite, const std::string& schedule,
                              const std::vector<SuiteResult>& results, const std::string& reference) {
@@ -224,10 +224,13 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
   std::string md = "# Generalization suite `" + suite + "`, schedule " + schedule + "\n\n";
   md += "Changed region: the pixels where the test views with the target (`full_`) and without it (`r_`) differ "
         "(after a 3x3 median, so that path-tracing noise is no change; threshold 0.04, dilated 2 px). Ghost = "
-        "sum |render - r_| / sum |full_ - r_| over it (1 = nothing removed, 0 = all of it). FLIP: LDR-FLIP, "
-        "0 = identical. Delta: against `" + reference + "` on the same scene.\n\n";
-  md += "| scene | kind | config | PSNR | region PSNR | Δ region | region SSIM | region FLIP | ghost | time s | "
-        "time × |\n|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+        "sum |render - r_| / sum |full_ - r_| over it (1 = nothing removed, 0 = all of it). Floor: the same sum "
+        "for stage 1's own render of the scene with the target against `full_`, over the imprint: how far the "
+        "model the removal starts from already is from the photos there, a part of the ghost no removal through "
+        "that model takes away. FLIP: LDR-FLIP, 0 = identical. Delta: against `" + reference +
+        "` on the same scene.\n\n";
+  md += "| scene | kind | config | PSNR | region PSNR | Δ region | region SSIM | region FLIP | ghost | floor | time s | "
+        "time × |\n|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& s : scenes)
     for (const auto& c : configs) {
       const SuiteResult* r = at.count({s, c}) ? at[{s, c}] : nullptr;
@@ -238,8 +241,9 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
       md += "| " + s + " | " + r->kind + " | " + c + " | " +
             (r->ok ? fmt(r->psnr, "%.2f") + " | " + fmt(r->region_psnr, "%.2f") + " | " + fmt(d, "%+.2f") + " | " +
                          fmt(r->region_ssim, "%.3f") + " | " + fmt(r->region_flip, "%.3f") + " | " +
-                         fmt(r->ghost_ratio, "%.2f") + " | " + fmt(r->seconds, "%.0f") + " | " + fmt(tx, "%.2f")
-                   : std::string("failed | | | | | | |")) +
+                         fmt(r->ghost_ratio, "%.2f") + " | " + fmt(r->ghost_floor, "%.2f") + " | " +
+                         fmt(r->seconds, "%.0f") + " | " + fmt(tx, "%.2f")
+                   : std::string("failed | | | | | | | |")) +
             " |\n";
       rows.push_back({{"scene", s},
                       {"kind", r->kind},
@@ -251,6 +255,7 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
                       {"region_flip", num(r->region_flip)},
                       {"flip", num(r->flip)},
                       {"ghost_ratio", num(r->ghost_ratio)},
+                      {"ghost_floor", num(r->ghost_floor)},
                       {"seconds", num(r->seconds)}});
       if (!r->scene_images.empty()) rows.back()["scene_images"] = r->scene_images;
     }
@@ -260,10 +265,11 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
   // Lambertian scenes' PSNR difference and time ratio - the goals a default must meet.
   json goals = json::object();
   md += "\n| config | glossy scenes | mean Δ region dB | worst Δ region dB (scene) | worst ghost (scene) | "
-        "Lambertian ΔPSNR | Lambertian time × |\n|---|--:|--:|--:|--:|--:|--:|\n";
+        "worst ghost above its floor (scene) | Lambertian ΔPSNR | Lambertian time × |\n"
+        "|---|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& c : configs) {
     if (c == reference) continue;
-    std::vector<std::pair<std::string, double>> gain, ghost, lam_d, lam_t;
+    std::vector<std::pair<std::string, double>> gain, ghost, above, lam_d, lam_t;
     int glossy_total = 0;
     for (const auto& s : scenes) {
       const SuiteResult *r = get(s, c), *ref = get(s, reference);
@@ -271,18 +277,19 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
         ++glossy_total;
         gain.push_back({s, r && ref ? r->region_psnr - ref->region_psnr : nan()});
         ghost.push_back({s, r ? r->ghost_ratio : nan()});
+        above.push_back({s, r ? r->ghost_ratio - r->ghost_floor : nan()});
       } else if (kind[s] == "lambertian" && r && ref) {
         lam_d.push_back({s, r->psnr - ref->psnr});
         lam_t.push_back({s, ref->seconds > 0 ? r->seconds / ref->seconds : nan()});
       }
     }
-    const Stats g = stats_of(gain), gh = stats_of(ghost, false), ld = stats_of(lam_d), lt = stats_of(lam_t, false);
+    const Stats g = stats_of(gain), gh = stats_of(ghost, false), ab = stats_of(above, false), ld = stats_of(lam_d), lt = stats_of(lam_t, false);
     int measured = 0;
     for (const auto& x : gain) measured += std::isfinite(x.second);
     md += "| " + c + " | " + std::to_string(measured) + " of " + std::to_string(glossy_total) + " | " +
           fmt(g.mean, "%+.2f") + " | " + fmt(g.worst, "%+.2f") + (g.worst_scene.empty() ? "" : " (" + g.worst_scene + ")") +
           " | " + fmt(gh.worst, "%.2f") + (gh.worst_scene.empty() ? "" : " (" + gh.worst_scene + ")") + " | " +
-          fmt(ld.worst, "%+.2f") + " | " + fmt(lt.worst, "%.2f") + " |\n";
+          fmt(ab.worst, "%+.2f") + (ab.worst_scene.empty() ? "" : " (" + ab.worst_scene + ")") + " | " + fmt(ld.worst, "%+.2f") + " | " + fmt(lt.worst, "%.2f") + " |\n";
     const bool complete = measured == glossy_total && glossy_total > 0;
     goals[c] = {{"glossy_measured", measured},
                 {"glossy_scenes", glossy_total},
@@ -291,6 +298,8 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
                 {"worst_region_gain_scene", g.worst_scene},
                 {"worst_ghost_ratio", num(gh.worst)},
                 {"worst_ghost_scene", gh.worst_scene},
+                {"worst_ghost_above_floor", num(ab.worst)},
+                {"worst_ghost_above_floor_scene", ab.worst_scene},
                 {"lambertian_worst_psnr_delta_db", num(ld.worst)},
                 {"lambertian_worst_time_ratio", num(lt.worst)},
                 {"meets_goals", complete && g.mean >= 3.0 && g.worst >= 1.0 && gh.worst <= 0.25 &&

@@ -41,6 +41,7 @@ struct SuiteResult {
   std::string scene, kind, config;
   bool ok = false;
   double psnr, region_psnr, region_ssim, region_flip, flip, ghost_ratio, seconds;
+  double ghost_floor;  // stage 1's own share of the ghost (goris eval); NaN when not measured
   std::string contact_sheet;  // relative to the bench folder; "" when none
   std::string scene_images;   // scene_images_fingerprint of the scene it ran on; "" when unknown
   SuiteResult();

@@ -11,8 +11,9 @@
 // truth of a GOR-IS-style set (test views with full_XXX.png) the "removal" block measures what the removal
 // had to fix (core/metrics/removal_metrics.h): PSNR, SSIM and FLIP inside the changed region (where full_ and
 // r_ differ), the ghost ratio over it (pooled over the views: sum |render - r_| / sum |full_ - r_|, after a
-// 3x3 median), and a
-// contact sheet of the views with the largest changed regions (METRICS_removal.png beside the metrics file).
+// 3x3 median), for a removal folder its floor (the same sum for its stage-1 run RUN/.. against full_: how far
+// the model the removal started from is from the photos there), and a contact sheet of the views with the
+// largest changed regions (METRICS_removal.png beside the metrics file).
 //
 // Runs with material channels on a data set with true normals (`goris synth`: train/gt/normal_XXX.exr) also
 // get "intrinsic_ground_truth": normal angular error, roughness and F0 on the training views' glossy
@@ -231,6 +232,36 @@ void run_eval(const Options& o) {
   GaussianModel model = load_run_model(run_dir, device, &source);
   const auto renderer = load_run_renderer(run_dir, config, scene_extent(ds), device);
 
+  // A removal folder's stage-1 run is RUN/..: its own render of the scene with the target, against full_
+  // over the changed region, is the ghost's floor (region_residual, core/metrics/removal_metrics.h).
+  const bool removal = fs::exists(run_dir / "report.json");
+  struct Stage1 {
+    GaussianModel model;
+    std::shared_ptr<DifferentiableRenderer> renderer;
+    std::string source;
+  };
+  std::optional<Stage1> stage1;
+  std::string floor_note;
+  if (o.gt == "after" && removal) {
+    try {
+      const fs::path parent = run_dir.parent_path();
+      const TrainConfig c1 = read_run_config_with_data(parent, o.data);
+      Stage1 s1;
+      s1.model = load_run_model(parent, device, &s1.source);
+      s1.renderer = load_run_renderer(parent, c1, scene_extent(ds), device);
+      stage1 = std::move(s1);
+    } catch (const Error& e) {  // a removal folder without its stage-1 run beside it: no floor, no failure
+      floor_note = e.what();
+    }
+  }
+  auto render_view = [&](GaussianModel& m, DifferentiableRenderer& rr, const Camera& cam) {
+    const RenderedImages r = rr.forward(m.view(rr.wants_extras()), cam);
+    std::vector<float> img(3 * size_t(cam.width) * cam.height);
+    device_copy(img.data(), Device::CPU, r.color, device, img.size() * sizeof(float));
+    return img;
+  };
+  double floor_num = 0;
+
   nlohmann::json per_view = nlohmann::json::array();
   std::vector<double> psnrs, ssims, m_psnrs, m_ssims, flips, region_psnrs, region_ssims, region_flips, region_fractions;
   double ghost_num = 0, ghost_den = 0;  // pooled over the views
@@ -245,9 +276,7 @@ void run_eval(const Options& o) {
     if (gt_img.width != w || gt_img.height != h) throw Error(v.image.string(), "ground truth size differs from the camera");
     const std::vector<float> gt = to_planar_rgb(gt_img);
     const auto t0 = std::chrono::steady_clock::now();
-    const RenderedImages r = renderer->forward(model.view(renderer->wants_extras()), v.camera);
-    std::vector<float> pred(3 * size_t(w) * h);
-    device_copy(pred.data(), Device::CPU, r.color, device, pred.size() * sizeof(float));
+    const std::vector<float> pred = render_view(model, *renderer, v.camera);
     render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     non_finite += size_t(std::count_if(pred.begin(), pred.end(), [](float x) { return !std::isfinite(x); }));
     std::vector<float> clamped(pred.size());
@@ -276,6 +305,11 @@ void run_eval(const Options& o) {
         jv["region_flip"] = rm.region_flip;
         jv["ghost_ratio"] = number_or_null(rm.ghost_ratio);
         ghost_num += rm.ghost_residual, ghost_den += rm.ghost_imprint;
+        if (stage1) {
+          std::vector<float> s1 = render_view(stage1->model, *stage1->renderer, v.camera);
+          for (float& x : s1) x = std::clamp(x, 0.0f, 1.0f);
+          floor_num += region_residual(s1.data(), before.data(), rm.region, w, h);
+        }
       }
       sheet.push_back({rm.region_fraction, before, gt, clamped});
     } else {
@@ -323,9 +357,11 @@ void run_eval(const Options& o) {
                     {"region_ssim", number_or_null(mean_of(region_ssims))},
                     {"region_flip", number_or_null(mean_of(region_flips))},
                     {"ghost_ratio", number_or_null(ghost_den > 1e-9 ? ghost_num / ghost_den : std::nan(""))},
+                    {"ghost_floor", number_or_null(stage1 && ghost_den > 1e-9 ? floor_num / ghost_den : std::nan(""))},
                     {"contact_sheet", sheet_path.filename().string()},
                     {"region", "pixels where full_ and r_ differ by > 0.04 (max over RGB) after a 3x3 median, "
                                "dilated 2 px; means over the views with such pixels, the ghost ratio pooled"}};
+    j["removal"]["ghost_floor_model"] = stage1 ? stage1->source : "not measured: " + (removal ? floor_note : "not a removal folder");
     write_removal_sheet(std::move(sheet), views[0].camera.width, views[0].camera.height, sheet_path);
   }
   j["non_finite_values"] = non_finite;
@@ -344,7 +380,6 @@ void run_eval(const Options& o) {
     for (int k = 0; k < 4 && pos != std::string::npos; ++k) pos = last.find(',', pos) + 1;
     return pos ? std::optional<double>(std::atof(last.c_str() + pos)) : std::nullopt;
   };
-  const bool removal = fs::exists(run_dir / "report.json");
   nlohmann::json stages = nlohmann::json::object();
   if (const auto t = training_seconds(removal ? run_dir.parent_path() : run_dir)) stages["stage 1 training"] = *t;
   if (removal) {
@@ -369,6 +404,9 @@ void run_eval(const Options& o) {
                 "(contact sheet %s)\n",
                 100 * mean_of(region_fractions), region_psnrs.size(), mean_of(region_psnrs), mean_of(region_ssims),
                 mean_of(region_flips), ghost_den > 1e-9 ? ghost_num / ghost_den : std::nan(""), sheet_path.c_str());
+  if (j.contains("removal") && stage1 && ghost_den > 1e-9)
+    std::printf("ghost floor %.3f: stage 1 (%s) against the views with the target over the same region\n",
+                floor_num / ghost_den, stage1->source.c_str());
   if (acc) {
     std::printf("against the true intrinsics (%zu training views, %zu glossy pixels): normal error %.1f deg mean, %.1f "
                 "median", acc->views, acc->pixels, acc->normal_mean_deg, acc->normal_median_deg);

@@ -143,6 +143,23 @@ std::vector<float> ssim_map(const float* a, const float* b, int width, int heigh
   return out;
 }
 
+double region_residual(const float* a, const float* b, const std::vector<uint8_t>& region, int width, int height,
+                       int median) {
+  check(a, width, height, "region_residual");
+  check(b, width, height, "region_residual");
+  const size_t n = size_t(width) * height;
+  if (region.size() != n) throw std::invalid_argument("region_residual: the region is not the images' size");
+  const int mr = median > 1 ? median / 2 : 0;
+  double sum = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::vector<float> fa = mr > 0 ? median_plane(a + c * n, width, height, mr) : std::vector<float>(a + c * n, a + (c + 1) * n);
+    const std::vector<float> fb = mr > 0 ? median_plane(b + c * n, width, height, mr) : std::vector<float>(b + c * n, b + (c + 1) * n);
+    for (size_t p = 0; p < n; ++p)
+      if (region[p]) sum += std::abs(double(fa[p]) - fb[p]);
+  }
+  return sum;
+}
+
 RemovalMetrics removal_metrics(const float* render, const float* after, const float* before, int width, int height,
                                const ChangedRegionOptions& options, double ppd) {
   check(render, width, height, "removal_metrics");
@@ -154,29 +171,14 @@ RemovalMetrics removal_metrics(const float* render, const float* after, const fl
 
   const std::vector<float> flip_map = flip_error_map(render, after, width, height, ppd, &m.flip);
   size_t count = 0;
-  double se = 0, ssim_sum = 0, flip_sum = 0, ghost_num = 0, ghost_den = 0;
+  double se = 0, ssim_sum = 0, flip_sum = 0;
   const std::vector<float> ssim = ssim_map(render, after, width, height, 3);
-  // The ghost compares the images after the region's median: the ground truth's path-tracing noise is in
-  // |render - after| wherever the render is clean, and would count as ghost on a dim reflection.
-  const int mr = options.median > 1 ? options.median / 2 : 0;
-  auto filtered = [&](const float* img) {
-    std::vector<float> out(img, img + 3 * n);
-    if (mr > 0)
-      for (int c = 0; c < 3; ++c) {
-        const std::vector<float> f = median_plane(img + c * n, width, height, mr);
-        std::copy(f.begin(), f.end(), out.begin() + long(c * n));
-      }
-    return out;
-  };
-  const std::vector<float> fr = filtered(render), fa = filtered(after), fb = filtered(before);
   for (size_t p = 0; p < n; ++p) {
     if (!m.region[p]) continue;
     ++count;
     for (int c = 0; c < 3; ++c) {
       const double d = double(render[c * n + p]) - after[c * n + p];
       se += d * d;
-      ghost_num += std::abs(double(fr[c * n + p]) - fa[c * n + p]);
-      ghost_den += std::abs(double(fb[c * n + p]) - fa[c * n + p]);
     }
     ssim_sum += ssim[p];
     flip_sum += flip_map[p];
@@ -185,6 +187,10 @@ RemovalMetrics removal_metrics(const float* render, const float* after, const fl
     m.region_psnr = m.region_ssim = m.ghost_ratio = m.region_flip = kNaN;
     return m;
   }
+  // The ghost compares the images after the region's median: the ground truth's path-tracing noise is in
+  // |render - after| wherever the render is clean, and would count as ghost on a dim reflection.
+  const double ghost_num = region_residual(render, after, m.region, width, height, options.median);
+  const double ghost_den = region_residual(before, after, m.region, width, height, options.median);
   const double mse = se / double(3 * count);
   m.region_psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
   m.region_ssim = ssim_sum / double(count);

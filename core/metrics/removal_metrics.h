@@ -46,6 +46,13 @@ struct RemovalMetrics {
   std::vector<uint8_t> region;  // the changed region, [H][W], 1 = changed
 };
 
+// sum |a - b| over the region's pixels and 3 channels, each image after a median of side `median` (as the
+// ghost ratio compares them; <= 1: none). The ghost's residual is region_residual(render, after), its
+// imprint region_residual(before, after); the same sum between the render of the model a removal started from
+// and `before` is how far that model was from the photos where the target changed them (its ghost floor).
+double region_residual(const float* a, const float* b, const std::vector<uint8_t>& region, int width, int height,
+                       int median = ChangedRegionOptions{}.median);
+
 // Every region metric is NaN when the region is empty; ghost_ratio is also NaN when before and after are
 // (nearly) equal over the region. Throws std::invalid_argument on null images or a non-positive size.
 RemovalMetrics removal_metrics(const float* render, const float* after, const float* before, int width, int height,

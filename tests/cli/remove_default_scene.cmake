@@ -89,6 +89,16 @@ string(JSON mem GET "${metrics}" removal_peak_host_memory_mib)
 if(NOT t1 GREATER 0 OR NOT t2 GREATER 0 OR NOT mem GREATER 0)
   message(FATAL_ERROR "metrics.json lacks the time per stage or the peak memory:\n${metrics}")
 endif()
+# The data set has full_ views: the ghost and its floor, stage 1 (the removal folder's RUN/..) rendered against
+# them over the changed region. A 60-iteration stage 1 is far from its photos, but not infinitely.
+string(JSON ghost GET "${metrics}" removal ghost_ratio)
+string(JSON floor GET "${metrics}" removal ghost_floor)
+string(JSON floor_model GET "${metrics}" removal ghost_floor_model)
+string(FIND "${floor_model}" "${RUN}/" at)
+if(NOT floor GREATER 0 OR NOT floor LESS 5 OR NOT ghost GREATER 0 OR NOT at EQUAL 0
+   OR NOT OUT MATCHES "ghost floor [0-9.]+: stage 1")
+  message(FATAL_ERROR "eval of a removal folder reported no ghost floor (${floor}, ${floor_model}):\n${OUT}")
+endif()
 # An intrinsic run on a data set with glossy masks: the materials on the glossy surface against the rest.
 string(JSON auc ERROR_VARIABLE auc_err GET "${metrics}" materials roughness_auc)
 if(auc_err OR auc LESS 0 OR auc GREATER 1 OR NOT OUT MATCHES "roughness separates them with AUC")

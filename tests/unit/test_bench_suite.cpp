@@ -105,6 +105,14 @@ TEST(BenchSuite, SummaryGivesMeanWorstAndGoals) {
   EXPECT_TRUE(g["meets_goals"].get<bool>());
   EXPECT_NE(s.markdown.find("| a | glossy | default |"), std::string::npos) << s.markdown;
 
+  EXPECT_TRUE(g["worst_ghost_above_floor"].is_null());  // no floor measured: no distance above it
+  rs[1].ghost_floor = 0.05, rs[3].ghost_floor = 0.15;  // a's ghost 0.1 is 0.05 above its floor, b's 0.2 as well
+  rs[3].ghost_ratio = 0.25;
+  const SuiteSummary f = summarize_suite("generalization", "medium", rs, "baseline");
+  EXPECT_NEAR(f.json["goals"]["default"]["worst_ghost_above_floor"].get<double>(), 0.1, 1e-9);
+  EXPECT_EQ(f.json["goals"]["default"]["worst_ghost_above_floor_scene"], "b");
+  EXPECT_NE(f.markdown.find("| 0.25 | 0.15 |"), std::string::npos) << f.markdown;  // ghost | floor of b's default row
+  EXPECT_NE(f.markdown.find("| +0.10 (b) |"), std::string::npos) << f.markdown;
   rs[3].ghost_ratio = 0.3;  // a ghost left on one scene fails the goals
   EXPECT_FALSE(summarize_suite("generalization", "medium", rs, "baseline").json["goals"]["default"]["meets_goals"].get<bool>());
   rs[3].ghost_ratio = 0.2;

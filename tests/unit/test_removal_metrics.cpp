@@ -289,6 +289,33 @@ TEST(RemovalMetrics, UnremovedTargetScoresWorseInsideTheRegion) {
   EXPECT_NEAR(m.region_psnr, 10 * std::log10(3.0 * count / se), 1e-9);
 }
 
+// The ghost's two sums are region residuals, and a third image (a model's render with the target) measures
+// against `before` in the same units: half the imprint away from it is a floor of one half.
+TEST(RegionResidual, IsTheGhostsSumAndMeasuresAFloor) {
+  Img after(1, 1), before(1, 1);
+  scene(after, before);
+  Img half = after;
+  for (size_t i = 0; i < half.v.size(); ++i) half.v[i] = 0.5f * (after.v[i] + before.v[i]);
+  const RemovalMetrics m = removal_metrics(half.data(), after.data(), before.data(), kW, kH);
+  EXPECT_DOUBLE_EQ(region_residual(half.data(), after.data(), m.region, kW, kH), m.ghost_residual);
+  EXPECT_DOUBLE_EQ(region_residual(before.data(), after.data(), m.region, kW, kH), m.ghost_imprint);
+  EXPECT_NEAR(region_residual(half.data(), before.data(), m.region, kW, kH) / m.ghost_imprint, 0.5, 0.02);
+  EXPECT_EQ(region_residual(before.data(), before.data(), m.region, kW, kH), 0.0);
+  // Without the median: the plain sum over the region's pixels and channels.
+  double direct = 0;
+  const size_t n = size_t(kW) * kH;
+  for (size_t p = 0; p < n; ++p)
+    if (m.region[p])
+      for (int c = 0; c < 3; ++c) direct += std::abs(double(half.v[c * n + p]) - before.v[c * n + p]);
+  EXPECT_NEAR(region_residual(half.data(), before.data(), m.region, kW, kH, 1), direct, 1e-9 * direct);
+  // Pixels outside the region never count.
+  Img far = before;
+  far.at(1, 2, 2) = 1.0f - far.at(1, 2, 2);
+  ASSERT_EQ(m.region[2 * kW + 2], 0);
+  EXPECT_EQ(region_residual(far.data(), before.data(), m.region, kW, kH, 1), 0.0);
+  EXPECT_THROW(region_residual(half.data(), before.data(), std::vector<uint8_t>(7), kW, kH), std::invalid_argument);
+}
+
 TEST(RemovalMetrics, EmptyRegionIsNaN) {
   const Img after = textured(kW, kH, 5);
   const Img render = textured(kW, kH, 6);
