@@ -7,21 +7,22 @@ namespace goris::bench::pipeline {
 
 const std::vector<ConfigSpec>& ladder() {
   static const std::vector<ConfigSpec> specs = {
-      {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask,twins", false,
+      {"baseline", "radiance", {"--mode", "radiance"}, "material,lamask,twins,underside", false,
        "radiance stage 1; RGB-only inpainting, no lighting-aware mask, no mirror twin, the hole supervised by the "
        "reference views alone (3DGIC's rule)",
        {"--view-fill", "0"}},
       {"default", "default", {}, "", false,
        "`goris train` and `goris remove` with no options (--mode auto: intrinsic for a glossy scene, radiance "
        "otherwise): what a user gets"},
-      {"default-noplanar", "default", {}, "twins,reflection", false,
-       "default without what the glossy plane gives the removal (no planar reflection mask, no mirror twin)"},
+      {"default-noplanar", "default", {}, "twins,reflection,underside", false,
+       "default without what the glossy plane gives the removal (no planar reflection mask, no mirror twin, nothing "
+       "taken from under the target)"},
       {"default-nofill", "default", {}, "", false,
        "default without every other view's own fill of its hole (--view-fill 0): the reference views alone "
        "supervise it", {"--view-fill", "0"}},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
-       "material,lamask,twins", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
-      {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins", false,
+       "material,lamask,twins,underside", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
+      {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins,underside", false,
        "intrinsic stage 1 with the screen-space filter"},
       {"full", "intrinsic", {"--mode", "intrinsic"}, "", false, "+ material inpainting, lighting-aware masks (reflections and the target's shadow) and the target's mirror twin"},
       {"planar", "intrinsic_planar", {"--mode", "intrinsic", "--preset", "planar-glossy"}, "", false,

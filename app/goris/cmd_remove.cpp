@@ -107,7 +107,8 @@ void setup_remove(CLI::App& root) {
                  "reflections nor shadow), twins (keep the target's mirror twin below a planar glossy surface), shadows "
                  "(keep the target's cast shadow), glossfill (fine-tune with the photos' glossy masks under the target instead of "
                  "masks filled from around it), reflection (no mask of the target mirrored through the glossy plane, and the glossy surface's part of the hole "
-                 "filled like the rest instead of from the surface alone)");
+                 "filled like the rest instead of from the surface alone), underside (keep the Gaussians that stand on the glossy surface "
+                 "under the target)");
   c->add_option("--lighting-fresnel", o->lighting_fresnel,
                  "F in the lighting-aware mask: relative (to the glossy surfaces' F0, default) or absolute (the paper)")
       ->check(CLI::IsMember({"relative", "absolute"}));

@@ -58,7 +58,8 @@ struct RemovalOptions {
   std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
                                     // "twins" (keep the target's mirror twin, core/scene/mirror_twins.h),
                                     // "shadows" (keep the target's cast shadow, removal/shadow/target_shadow.h),
-                                    // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h)
+                                    // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h),
+                                    // "underside" (keep what stands under the target, target_underside.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   // Every other training view's hole (its unseen pixels and the target's planar reflection) is inpainted in
   // 2D as well, and the fine-tune trains it towards that fill with this weight where no lifted reference
@@ -90,6 +91,7 @@ struct RemovalReport {
   double seconds[kRemovalStepCount] = {};   // per step
   std::size_t gaussians_before = 0, selected = 0, added = 0, gaussians_after = 0;
   std::size_t mirror_twins = 0;  // of `selected`: the target's twin below a planar glossy surface
+  std::size_t underside = 0;     // of `selected`: kept Gaussians under the target (target_underside.h)
   std::size_t lighting_pixels = 0, inpaint_pixels = 0;
   MirrorPlane glossy_plane;           // the glossy surface's plane (found = false: none)
   std::size_t reflection_pixels = 0;  // the mirrored target on the glossy surface (planar_reflection.h), all views
