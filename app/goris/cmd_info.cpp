@@ -169,9 +169,10 @@ void print_run(const fs::path& run, bool nested = false) {
     nlohmann::json r;
     try {
       r = nlohmann::json::parse(rf);
-      std::printf("  selected %d of %d Gaussians, %d after the fine-tune; %d mirror twins, %d reflection pixels\n",
+      std::printf("  selected %d of %d Gaussians, %d after the fine-tune; %d mirror twins, %d under the target, %d "
+                  "reflection pixels\n",
                   r.value("selected", 0), r.value("gaussians_before", 0), r.value("gaussians_after", 0),
-                  r.value("mirror_twins", 0), r.value("reflection_pixels", 0));
+                  r.value("mirror_twins", 0), r.value("underside", 0), r.value("reflection_pixels", 0));
     } catch (const nlohmann::json::exception&) {
       std::printf("  report.json: not readable JSON\n");
     }

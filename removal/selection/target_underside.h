@@ -19,8 +19,8 @@
 namespace goris {
 
 struct UndersideSettings {
-  // 0.7 of the 90 % radius: on the generalization suite, 1.0 reached a neighbouring object's foot on one scene
-  // (-0.36 dB) where 0.7 took nothing from any object (docs/design/deviations.md, "The target's underside").
+  // 0.7 of the 90 % radius: on the generalization suite 1.0 reached a neighbouring object's foot on one scene
+  // (-0.35 dB), 0.7 lowered none (docs/design/deviations.md, "The target's underside").
   double radius_ratio = 0.7;
   double radius_quantile = 0.9;
 };

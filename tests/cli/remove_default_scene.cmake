@@ -75,7 +75,7 @@ endforeach()
 
 # The cleaned scene is a run: eval reads it (after-removal ground truth), render shades it.
 goris_ok(info "${RUN}")
-foreach(line "removal:     ${R}" "mirror twins" "  progress:    finished, 20 iterations")
+foreach(line "removal:     ${R}" "mirror twins" "under the target" "  progress:    finished, 20 iterations")
   expect_text("${OUT}" "${line}")
 endforeach()
 goris_ok(eval "${R}" --split test --device cpu)
