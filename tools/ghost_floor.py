@@ -4,7 +4,9 @@ the ghost left after the removal, inside the changed region of every test view.
 
     tools/ghost_floor.py BENCH_OUT [--config default] [--schedule medium] [--work DIR] [--goris BIN] [SCENE ...]
 
-BENCH_OUT is a `goris bench pipeline --suite ...` output folder; the scenes' data sets are read from each
+`goris eval` reports the floor and the ghost of a removal folder itself (and the suite tables show them); this
+script adds the share of the ghost inside the target's own mask. BENCH_OUT is a `goris bench pipeline --suite
+...` output folder; the scenes' data sets are read from each
 stage-1 run's config.json. Per scene (Markdown table on stdout):
   floor   sum |stage-1 render - full_| / sum |full_ - r_|: how far stage 1 itself is from the photos where
           the target changed them (a removal that reproduced r_ exactly through this model would still be off

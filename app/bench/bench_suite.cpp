@@ -283,13 +283,15 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
         lam_t.push_back({s, ref->seconds > 0 ? r->seconds / ref->seconds : nan()});
       }
     }
-    const Stats g = stats_of(gain), gh = stats_of(ghost, false), ab = stats_of(above, false), ld = stats_of(lam_d), lt = stats_of(lam_t, false);
+    const Stats g = stats_of(gain), gh = stats_of(ghost, false), ab = stats_of(above, false), ld = stats_of(lam_d),
+                lt = stats_of(lam_t, false);
     int measured = 0;
     for (const auto& x : gain) measured += std::isfinite(x.second);
     md += "| " + c + " | " + std::to_string(measured) + " of " + std::to_string(glossy_total) + " | " +
           fmt(g.mean, "%+.2f") + " | " + fmt(g.worst, "%+.2f") + (g.worst_scene.empty() ? "" : " (" + g.worst_scene + ")") +
           " | " + fmt(gh.worst, "%.2f") + (gh.worst_scene.empty() ? "" : " (" + gh.worst_scene + ")") + " | " +
-          fmt(ab.worst, "%+.2f") + (ab.worst_scene.empty() ? "" : " (" + ab.worst_scene + ")") + " | " + fmt(ld.worst, "%+.2f") + " | " + fmt(lt.worst, "%.2f") + " |\n";
+          fmt(ab.worst, "%+.2f") + (ab.worst_scene.empty() ? "" : " (" + ab.worst_scene + ")") + " | " +
+          fmt(ld.worst, "%+.2f") + " | " + fmt(lt.worst, "%.2f") + " |\n";
     const bool complete = measured == glossy_total && glossy_total > 0;
     goals[c] = {{"glossy_measured", measured},
                 {"glossy_scenes", glossy_total},

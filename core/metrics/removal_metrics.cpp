@@ -151,9 +151,12 @@ double region_residual(const float* a, const float* b, const std::vector<uint8_t
   if (region.size() != n) throw std::invalid_argument("region_residual: the region is not the images' size");
   const int mr = median > 1 ? median / 2 : 0;
   double sum = 0;
+  auto plane = [&](const float* img, int c) {
+    const float* p = img + size_t(c) * n;
+    return mr > 0 ? median_plane(p, width, height, mr) : std::vector<float>(p, p + n);
+  };
   for (int c = 0; c < 3; ++c) {
-    const std::vector<float> fa = mr > 0 ? median_plane(a + c * n, width, height, mr) : std::vector<float>(a + c * n, a + (c + 1) * n);
-    const std::vector<float> fb = mr > 0 ? median_plane(b + c * n, width, height, mr) : std::vector<float>(b + c * n, b + (c + 1) * n);
+    const std::vector<float> fa = plane(a, c), fb = plane(b, c);
     for (size_t p = 0; p < n; ++p)
       if (region[p]) sum += std::abs(double(fa[p]) - fb[p]);
   }

@@ -268,7 +268,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              std::to_string(report.selected) + " of " + std::to_string(model.count()) +
                                  " Gaussians are selected (more than half the scene): the labels are not learned well "
                                  "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
-    std::string twin_note;
+    std::string selection_note;
     target_only = selected;
     // The glossy plane serves the twin and the planar reflection (and the shadow's support plane): it is
     // found unless both are switched off.
@@ -287,15 +287,15 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       report.selected += t.count;
       record.parameters["mirror_twins"] = t.count;
       if (t.plane.found && t.count > 0)
-        twin_note = " (" + std::to_string(t.count) + " of them the target's mirror twin)";
+        selection_note = " (" + std::to_string(t.count) + " of them the target's mirror twin)";
       else if (t.plane.found && t.candidates > 0)
-        twin_note = "; no mirror twin (" + std::to_string(t.candidates) + " Gaussians mirror " +
+        selection_note = "; no mirror twin (" + std::to_string(t.candidates) + " Gaussians mirror " +
                     std::to_string(t.target_above) + " of the target's: not a mirror world)";
       else if (!t.plane.found && t.plane.candidates > 0)
-        twin_note = "; no mirror twin (no glossy plane: at most " + std::to_string(t.plane.inliers) + " of " +
+        selection_note = "; no mirror twin (no glossy plane: at most " + std::to_string(t.plane.inliers) + " of " +
                     std::to_string(t.plane.candidates) + " flat glossy Gaussians lie in one)";
       else if (!t.plane.found)
-        twin_note = "; no mirror twin (no glossy plane: " + std::to_string(t.plane.glossy) + " glossy Gaussians, " +
+        selection_note = "; no mirror twin (no glossy plane: " + std::to_string(t.plane.glossy) + " glossy Gaussians, " +
                     std::to_string(t.plane.candidates) + " of them flat)";
     }
     shadow_excluded = selected;
@@ -305,13 +305,13 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= under[i];
       report.selected += report.underside;
       record.parameters["underside"] = report.underside;
-      if (report.underside) twin_note += "; " + std::to_string(report.underside) + " under the target";
+      if (report.underside) selection_note += "; " + std::to_string(report.underside) + " under the target";
     }
     record.model_fingerprint = model_fingerprint(model);
     write_selection(out / "selection.json", record, selected);
     made_from["selection"] = {{"gaussians", report.selected}, {"fingerprint", selection_fingerprint(selected)}};
     apply_selection_to_labels(model, selected);
-    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + twin_note);
+    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + selection_note);
   }
 
   // The scene without the target (and twin): the dereflection's and the inpainting's renders, the lift's base.
