@@ -23,7 +23,7 @@
 #include "core/scene/plane_from_masks.h"
 #include "removal/masks/planar_reflection.h"
 #include "removal/selection/selection_file.h"
-#include "removal/selection/target_underside.h"
+#include "removal/pipeline/removal_selection.h"
 #include "removal/selection/selection_labels.h"
 #include "core/scene/selection_points.h"
 #include "train/loop/checkpoint.h"
@@ -93,33 +93,6 @@ Mask mask_from_values(const std::vector<float>& v, int w, int h, float threshold
   Mask m(w, h);
   for (std::size_t p = 0; p < v.size(); ++p) m.data[p] = v[p] > threshold ? 255 : 0;
   return m;
-}
-
-// The target's mirror twin below a planar glossy surface (core/scene/mirror_twins.h). On an intrinsic model
-// the plane is fitted to the flat glossy Gaussians (region < 0.5); on a radiance model it comes from the
-// photos' glossy masks.
-MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target, bool intrinsic,
-                            const std::vector<Camera>& cameras, const std::vector<TrainView>& views) {
-  const std::vector<glm::vec3> centres = selection_points(model).position;
-  // The plane comes from the photos' glossy masks where there are any (plane_from_masks.h), in both modes:
-  // a radiance model of a mirror-like surface has no Gaussians on the surface to fit a plane to (it shows a
-  // mirror world behind it), and an intrinsic model's flat glossy Gaussians can lie in another plane (the
-  // tops of the objects on a mirror table) when few of them make the surface.
-  const std::vector<const std::vector<float>*> masks = glossy_masks_of(views);
-  if (std::any_of(masks.begin(), masks.end(), [](const auto* m) { return m != nullptr; })) {
-    const PlaneFromMasks pm =
-        plane_from_glossy_masks(cameras, masks, {}, target_rest_heights(cameras, masks, centres, target));
-    if (pm.plane.found || !intrinsic) return twins_below_plane(centres, target, pm.plane);
-  }
-  // No masks, or no plane through them: the plane of the intrinsic model's flat glossy Gaussians (its region
-  // channel).
-  std::vector<std::uint8_t> glossy(model.count(), 0);
-  if (intrinsic) {
-    const std::vector<float> ex = model.tensor(Param::ExtraLogit).value.to_host();
-    if (model.tensor(Param::ExtraLogit).width == extra::kCount)
-      for (std::size_t i = 0; i < model.count(); ++i) glossy[i] = ex[i * extra::kCount + extra::kRegion] < 0.0f;
-  }
-  return select_mirror_twins(centres, glossy, target, {}, flat_normals(model));
 }
 
 bool any_glossy_mask(const std::vector<TrainView>& views) {
@@ -237,82 +210,24 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     load_glossy_mask_folder(config.input.glossy_mask_dir, views);
   const bool glossy_masks = any_glossy_mask(views);
 
-  // 1. Selection.
-  SelectionMask selected, twins, target_only;  // target_only: without the twin (the shadow's occluder)
-  // What the shadow fit keeps out of its support surface: the selection without the target's underside, which
-  // stands on the surface at the target's foot (with it left out, the fit chose another light on the suite's
-  // worst scene: docs/design/deviations.md, "The target's underside").
-  SelectionMask shadow_excluded;
-  MirrorPlane glossy_plane;                    // the glossy surface's plane, when the twin step found one
-  {
+  // 1. Selection (removal_selection.h).
+  const RemovalSelection sel = [&] {
     StepScope s(report, RemovalStep::Selection, on_progress);
-    SelectionRecord record;
-    if (fs::exists(selection_json_path(run_dir))) {
-      StoredSelection st = read_selection(run_dir, model);
-      selected = std::move(st.mask);
-      record = st.record;
-    } else {
-      const SelectionResult r = select_by_label(selection_points(model), {o.label_threshold, {}});
-      selected = r.mask;
-      record.method = "labels";
-      record.parameters = {{"threshold", o.label_threshold}};
-    }
-    report.selected = count_selected(selected);
-    if (report.selected == 0)
-      throw Error(step_error(RemovalStep::Selection,
-                             "nothing is selected: no Gaussian has a label above " + std::to_string(o.label_threshold) +
-                                 " (train in intrinsic mode on a data set with object masks), and no RUN/selection.json "
-                                 "(make one with `goris select RUN --click VIEW X Y` or `--masks`)"));
-    if (report.selected * 2 > model.count())
-      throw Error(step_error(RemovalStep::Selection,
-                             std::to_string(report.selected) + " of " + std::to_string(model.count()) +
-                                 " Gaussians are selected (more than half the scene): the labels are not learned well "
-                                 "enough; select with `goris select RUN --masks` or `--labels --threshold 0.5`"));
-    std::string selection_note;
-    target_only = selected;
-    // The glossy plane serves the twin and the planar reflection (and the shadow's support plane): it is
-    // found unless both are switched off.
-    const bool want_plane = !o.ablate.count("twins") || !o.ablate.count("reflection");
-    if ((intrinsic || glossy_masks) && want_plane) {
-      MirrorTwins t = mirror_twins_of(model, selected, intrinsic, cameras, views);
-      glossy_plane = t.plane;
-      report.glossy_plane = t.plane;
-      // On a radiance model the twin stays: removing it opened see-through holes in the mirror world that the
-      // fill did not close (on the generalization suite, docs/lab/2026-12-02-generalization-suite.md), while
-      // the planar reflection mask below repaints the reflection wherever the model keeps it.
-      if (o.ablate.count("twins") || !intrinsic) t.twins.assign(t.twins.size(), 0), t.count = 0, t.candidates = 0;
-      for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= t.twins[i];
-      twins = t.twins;
-      report.mirror_twins = t.count;
-      report.selected += t.count;
-      record.parameters["mirror_twins"] = t.count;
-      if (t.plane.found && t.count > 0)
-        selection_note = " (" + std::to_string(t.count) + " of them the target's mirror twin)";
-      else if (t.plane.found && t.candidates > 0)
-        selection_note = "; no mirror twin (" + std::to_string(t.candidates) + " Gaussians mirror " +
-                    std::to_string(t.target_above) + " of the target's: not a mirror world)";
-      else if (!t.plane.found && t.plane.candidates > 0)
-        selection_note = "; no mirror twin (no glossy plane: at most " + std::to_string(t.plane.inliers) + " of " +
-                    std::to_string(t.plane.candidates) + " flat glossy Gaussians lie in one)";
-      else if (!t.plane.found)
-        selection_note = "; no mirror twin (no glossy plane: " + std::to_string(t.plane.glossy) + " glossy Gaussians, " +
-                    std::to_string(t.plane.candidates) + " of them flat)";
-    }
-    shadow_excluded = selected;
-    if (glossy_plane.found && !o.ablate.count("underside")) {  // target_underside.h
-      const SelectionMask under = target_underside(selection_points(model).position, target_only, selected, glossy_plane);
-      report.underside = count_selected(under);
-      for (std::size_t i = 0; i < selected.size(); ++i) selected[i] |= under[i];
-      report.selected += report.underside;
-      record.parameters["underside"] = report.underside;
-      if (report.underside) selection_note += "; " + std::to_string(report.underside) + " under the target";
-    }
-    record.model_fingerprint = model_fingerprint(model);
-    write_selection(out / "selection.json", record, selected);
-    made_from["selection"] = {{"gaussians", report.selected}, {"fingerprint", selection_fingerprint(selected)}};
-    apply_selection_to_labels(model, selected);
-    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + selection_note);
-  }
+    RemovalSelection r = select_for_removal(run_dir, model, o, intrinsic, glossy_masks, cameras, views);
+    report.selected = count_selected(r.selected);
+    report.mirror_twins = r.mirror_twins;
+    report.underside = r.underside;
+    report.glossy_plane = r.glossy_plane;
+    r.record.model_fingerprint = model_fingerprint(model);
+    write_selection(out / "selection.json", r.record, r.selected);
+    made_from["selection"] = {{"gaussians", report.selected}, {"fingerprint", selection_fingerprint(r.selected)}};
+    apply_selection_to_labels(model, r.selected);
+    s.finish(std::to_string(report.selected) + " of " + std::to_string(model.count()) + " Gaussians" + r.note);
+    return r;
+  }();
+  const SelectionMask& selected = sel.selected;
+  const SelectionMask& target_only = sel.target;
+  const MirrorPlane& glossy_plane = sel.glossy_plane;
 
   // The scene without the target (and twin): the dereflection's and the inpainting's renders, the lift's base.
   SplitScene split = split_removed(model, selected);
@@ -336,7 +251,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       std::optional<GaussianModel> twin_model;
       if (report.mirror_twins > 0) {
         twin_model.emplace(model.copy_to(model.device()));
-        apply_selection_to_labels(*twin_model, twins);
+        apply_selection_to_labels(*twin_model, sel.twins);
       }
       for (std::size_t i = 0; i < cameras.size(); ++i) {
         if (cancelled()) break;
@@ -364,7 +279,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     std::string shadow_note;
     if (!o.ablate.count("lamask") && !o.ablate.count("shadows") && !cancelled()) {
       s.tell(cameras.size(), cameras.size(), "the target's shadow");
-      relit = relight_target_shadow(model, target_only, shadow_excluded, glossy_plane.found ? &glossy_plane : nullptr, views,
+      relit = relight_target_shadow(model, target_only, sel.shadow_excluded, glossy_plane.found ? &glossy_plane : nullptr, views,
                                     raster, out / "shadow", intrinsic ? ShadowSampleColour::Model : ShadowSampleColour::Photos,
                                     environment ? &*environment : nullptr);
       report.shadow_found = relit.fit.found;
