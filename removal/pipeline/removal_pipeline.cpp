@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -20,7 +22,6 @@
 #include "core/io/ply.h"
 #include "core/scene/mirror_twins.h"
 #include "core/inpaint/region_fill.h"
-#include "core/scene/plane_from_masks.h"
 #include "removal/masks/planar_reflection.h"
 #include "removal/selection/selection_file.h"
 #include "removal/pipeline/removal_selection.h"
@@ -84,6 +85,9 @@ struct StepScope {
     tell(1, 1, detail);
   }
 };
+
+// The parts --ablate switches off (RemovalOptions::ablate), in the order the unknown-ablation error lists them.
+constexpr const char* kAblations[] = {"material", "lamask", "twins", "shadows", "glossfill", "reflection", "underside"};
 
 std::string step_error(RemovalStep s, const std::string& problem) {
   return std::string("goris remove (") + removal_step_name(s) + "): " + problem;
@@ -164,11 +168,12 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              "--ablate " + a + " is a stage-1 choice: train the run with " +
                                  (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
                                  " and remove from that run"));
-    if (a != "material" && a != "lamask" && a != "twins" && a != "shadows" && a != "glossfill" && a != "reflection" &&
-        a != "underside")
-      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a +
-                                                         "' (expected material, lamask, twins, shadows, glossfill, "
-                                                         "reflection or underside)"));
+    if (std::find(std::begin(kAblations), std::end(kAblations), a) == std::end(kAblations)) {
+      std::string known;
+      for (std::size_t k = 0; k < std::size(kAblations); ++k)
+        known += std::string(k == 0 ? "" : k + 1 == std::size(kAblations) ? " or " : ", ") + kAblations[k];
+      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a + "' (expected " + known + ")"));
+    }
   }
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config_with_data(run_dir, o.data);

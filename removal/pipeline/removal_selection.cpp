@@ -19,9 +19,9 @@ Error selection_error(const std::string& problem) {
 // The target's mirror twin below a planar glossy surface (core/scene/mirror_twins.h). On an intrinsic model
 // the plane is fitted to the flat glossy Gaussians (region < 0.5); on a radiance model it comes from the
 // photos' glossy masks.
-MirrorTwins mirror_twins_of(const GaussianModel& model, const SelectionMask& target, bool intrinsic,
-                            const std::vector<Camera>& cameras, const std::vector<TrainView>& views) {
-  const std::vector<glm::vec3> centres = selection_points(model).position;
+MirrorTwins mirror_twins_of(const GaussianModel& model, const std::vector<glm::vec3>& centres,
+                            const SelectionMask& target, bool intrinsic, const std::vector<Camera>& cameras,
+                            const std::vector<TrainView>& views) {
   // The plane comes from the photos' glossy masks where there are any (plane_from_masks.h), in both modes:
   // a radiance model of a mirror-like surface has no Gaussians on the surface to fit a plane to (it shows a
   // mirror world behind it), and an intrinsic model's flat glossy Gaussians can lie in another plane (the
@@ -49,12 +49,13 @@ RemovalSelection select_for_removal(const std::filesystem::path& run_dir, const 
                                     const RemovalOptions& o, bool intrinsic, bool glossy_masks,
                                     const std::vector<Camera>& cameras, const std::vector<TrainView>& views) {
   RemovalSelection r;
+  const SelectionPoints points = selection_points(model);  // one host copy for the labels, twin and underside
   if (std::filesystem::exists(selection_json_path(run_dir))) {
     StoredSelection st = read_selection(run_dir, model);
     r.selected = std::move(st.mask);
     r.record = st.record;
   } else {
-    r.selected = select_by_label(selection_points(model), {o.label_threshold, {}}).mask;
+    r.selected = select_by_label(points, {o.label_threshold, {}}).mask;
     r.record.method = "labels";
     r.record.parameters = {{"threshold", o.label_threshold}};
   }
@@ -73,7 +74,7 @@ RemovalSelection select_for_removal(const std::filesystem::path& run_dir, const 
   // found unless both are switched off.
   const bool want_plane = !o.ablate.count("twins") || !o.ablate.count("reflection");
   if ((intrinsic || glossy_masks) && want_plane) {
-    MirrorTwins t = mirror_twins_of(model, r.selected, intrinsic, cameras, views);
+    MirrorTwins t = mirror_twins_of(model, points.position, r.selected, intrinsic, cameras, views);
     r.glossy_plane = t.plane;
     // On a radiance model the twin stays: removing it opened see-through holes in the mirror world that the
     // fill did not close (on the generalization suite, docs/lab/2026-12-02-generalization-suite.md), while
@@ -97,7 +98,7 @@ RemovalSelection select_for_removal(const std::filesystem::path& run_dir, const 
   }
   r.shadow_excluded = r.selected;
   if (r.glossy_plane.found && !o.ablate.count("underside")) {
-    const SelectionMask under = target_underside(selection_points(model).position, r.target, r.selected, r.glossy_plane);
+    const SelectionMask under = target_underside(points.position, r.target, r.selected, r.glossy_plane);
     r.underside = count_selected(under);
     for (std::size_t i = 0; i < r.selected.size(); ++i) r.selected[i] |= under[i];
     r.record.parameters["underside"] = r.underside;
