@@ -25,7 +25,7 @@ using namespace goris;
 
 struct Options {
   std::string run, inpainter = RemovalOptions{}.inpainter, inpainted, device = "auto", lighting_fresnel = "relative",
-              lighting_targets = "dereflect", data;
+              lighting_targets = "dereflect", data, fill_truth;
   std::vector<std::string> ablate;
   int iters = 0;
   double view_fill = RemovalOptions{}.view_fill_weight;
@@ -45,6 +45,7 @@ void run_remove(const Options& o) {
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = enum_from_name<DeviceChoice>(o.device).value();  // --device's check accepts only the names
   ro.data = o.data;
+  ro.fill_truth = o.fill_truth;
   const bool tty = isatty(STDERR_FILENO);
   int last_step = -1;
   auto progress = [&](const RemovalProgress& p) {
@@ -123,6 +124,10 @@ void setup_remove(CLI::App& root) {
                 "point lands (0 = the reference views alone)")
       ->capture_default_str()
       ->check(cli::real(0.0, 10.0));
+  c->add_option("--fill-truth", o->fill_truth,
+                "A measurement on synthetic scenes, not a removal: a folder of the training views rendered without "
+                "the target (VIEW.png; `goris synth --train-after DATA` writes DATA/train_after) that the fine-tune "
+                "learns wherever the removal would have made its own targets up: what perfect fills would score");
   cli::add_device_option(*c, o->device);
   cli::add_data_option(*c, o->data);
   c->callback([o] { run_remove(*o); });

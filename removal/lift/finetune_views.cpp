@@ -166,4 +166,30 @@ FinetuneViewStats prepare_finetune_views(std::vector<TrainView>& views, const st
   return stats;
 }
 
+std::size_t use_true_fills(std::vector<TrainView>& views, const std::vector<std::vector<float>>& truth) {
+  if (truth.size() != views.size())
+    throw Error("true fills", std::to_string(truth.size()) + " images for " + std::to_string(views.size()) + " views");
+  std::size_t replaced = 0;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    TrainView& v = views[i];
+    const std::size_t hw = std::size_t(v.camera.width) * v.camera.height;
+    if (truth[i].size() != 3 * hw || v.image.size() != 3 * hw)
+      throw Error(v.name, "the true image is not the view's size (" + std::to_string(v.camera.width) + "x" +
+                              std::to_string(v.camera.height) + ")");
+    if (v.loss_weight.empty()) v.loss_weight.assign(hw, 1.0f);
+    const InpaintTargets* t = v.inpaint.get();
+    for (std::size_t p = 0; p < hw; ++p) {
+      const bool target = t && ((!t->appearance_weight.empty() && t->appearance_weight[p] > 0) ||
+                                (!t->material_weight.empty() && t->material_weight[p] > 0));
+      if (v.loss_weight[p] > 0 && !target) continue;
+      for (std::size_t c = 0; c < 3; ++c) v.image[c * hw + p] = truth[i][c * hw + p];
+      v.loss_weight[p] = 1.0f;
+      ++replaced;
+    }
+    v.inpaint.reset();
+  }
+  return replaced;
+}
+
 }  // namespace goris
+

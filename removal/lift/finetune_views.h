@@ -52,4 +52,13 @@ FinetuneViewStats prepare_finetune_views(std::vector<TrainView>& views, const st
                                          const std::vector<ReferenceTargets>& references,
                                          const ReferencePoints& points, const FinetuneViewSettings& settings = {});
 
+// A measurement, not a removal: on a synthetic scene whose training views were also rendered without the
+// target (`goris synth --train-after`), every pixel of a view that the removal made up - its photo loss off
+// (the target's grown silhouette, its planar reflection) or an inpainting target - takes that true image
+// under the photo loss instead, and the view's inpainting targets go. What the removal then scores is what
+// perfect fills would give it on the same stage 1, masks, lift and fine-tune. `truth[i]` is planar RGB
+// [3][H][W] of views[i]; returns the pixels replaced. Throws goris::Error (the view's name) for a size
+// that differs.
+std::size_t use_true_fills(std::vector<TrainView>& views, const std::vector<std::vector<float>>& truth);
+
 }  // namespace goris

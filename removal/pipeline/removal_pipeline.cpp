@@ -140,6 +140,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
   j["view_fill_weight"] = o.view_fill_weight;
+  if (!o.fill_truth.empty()) j["fill_truth"] = fs::absolute(o.fill_truth).lexically_normal().string();
   return j;
 }
 
@@ -211,6 +212,15 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   auto cancelled = [&] { return stop && stop->load(); };
   // The training photos: the lighting step dereflects and relights them, the fine-tune trains on them.
   std::vector<TrainView> views = load_train_views(ds.train, dopt);
+  std::vector<std::vector<float>> fill_truth;  // RemovalOptions::fill_truth, read before any work is done
+  for (std::size_t i = 0; i < ds.train.size() && !o.fill_truth.empty(); ++i) {
+    View tv = ds.train[i];
+    tv.image = fs::path(o.fill_truth) / (tv.name + ".png");
+    if (!fs::is_regular_file(tv.image))
+      throw Error(tv.image.string(), "missing: --fill-truth needs every training view rendered without the target "
+                                     "(goris synth --train-after DATA)");
+    fill_truth.push_back(to_planar_rgb(load_view_image(tv, dopt, Device::CPU)));
+  }
   if (!config.input.glossy_mask_dir.empty())  // --mode auto's
     load_glossy_mask_folder(config.input.glossy_mask_dir, views);
   const bool glossy_masks = any_glossy_mask(views);
@@ -529,6 +539,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       refs.push_back({&holes[v].mask, &inpainted[choice.views.size() + k], o.view_fill_weight});
     }
     const FinetuneViewStats fs_stats = prepare_finetune_views(views, inputs, refs, lift.points);
+    if (!o.fill_truth.empty()) report.fill_truth_pixels = use_true_fills(views, fill_truth);
 
     TrainerState state;
     auto renderer = make_renderer(ft, extent, device);
@@ -604,6 +615,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              {"material_pixels", fs_stats.material_pixels},
                              {"projected_points", fs_stats.projected_points},
                              {"filled_pixels", fs_stats.filled_pixels}};
+    if (!o.fill_truth.empty()) j["fill_truth_pixels"] = report.fill_truth_pixels;
     j["options"] = options_json(o);
     j["made_from"] = finetune_from;
     j["peak_host_memory_mib"] = peak_host_memory_mib();

@@ -74,6 +74,10 @@ struct RemovalOptions {
   // The fine-tune inside the lighting-aware mask (removal/lift/dereflect.h): true trains on the photo
   // minus stage 1's own estimate of the target's reflection; false leaves the pixels out (the paper).
   bool dereflect_lighting = true;
+  // A measurement on synthetic scenes (use_true_fills, finetune_views.h): a folder of the training views
+  // rendered without the target (VIEW.png, `goris synth --train-after`) that replaces every target the removal
+  // made up in the fine-tune. Empty = the removal itself.
+  std::string fill_truth;
   DeviceChoice device = DeviceChoice::Auto;
   // The stage-1 data set's folder when it moved after training (`goris remove --data`, train/run/run_data.h);
   // empty = RUN/config.json's. Not an input of the outputs (made_from.json): a moved data set reuses them.
@@ -102,6 +106,7 @@ struct RemovalReport {
   bool shadow_found = false;                // the target's cast shadow (removal/shadow/target_shadow.h)
   std::string shadow;                       // its light, size and strength, or why none was found
   std::size_t shadow_pixels = 0;            // training-view pixels relit by more than 5 %
+  std::size_t fill_truth_pixels = 0;        // with RemovalOptions::fill_truth: training-view pixels it replaced
   std::vector<std::string> reference_views;
   int finetune_iterations = 0;
   // Why the fine-tune started over instead of resuming or reusing the earlier one in RUN/removal: which of

@@ -11,6 +11,8 @@
 # G = glossy) through a view-layer material override, no bounces, raw colour transform, on an opaque black
 # background. Its edges are anti-aliased by the same pixel filter as the beauty render (a mask pixel is
 # the covered fraction of the pixel), and occlusion is exact.
+# With a third argument `train-after` it renders only the training views with the target hidden, into
+# OUTDIR/train_after/r_XXX.png (`goris synth --train-after`; what `goris remove --fill-truth` reads).
 # After each view the script prints "GORIS_FRAME <done> <total>" so the caller can show progress.
 import json
 import math
@@ -56,10 +58,25 @@ GT_ENCODING = {
 
 def args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(argv) != 2:
-        raise SystemExit("usage: blender -b --python render_scene.py -- scene.json OUTDIR")
+    if len(argv) not in (2, 3) or (len(argv) == 3 and argv[2] != "train-after"):
+        raise SystemExit("usage: blender -b --python render_scene.py -- scene.json OUTDIR [train-after]")
     with open(argv[0]) as f:
-        return json.load(f), argv[1]
+        return json.load(f), argv[1], len(argv) == 3
+
+
+def render_train_after(cam, target, r, world, train, out_dir, progress):
+    """The training views once more with the target hidden (its reflections and shadows go too), into
+    OUTDIR/train_after/r_XXX.png: what a perfect removal would show in the views it learns from. Outside the
+    target's imprint they equal the training photos (same samples and seed)."""
+    after_dir = os.path.join(out_dir, "train_after")
+    os.makedirs(after_dir, exist_ok=True)
+    beauty_mode(r, world)
+    target.hide_render = True
+    for i, view in enumerate(train):
+        aim_camera(cam, view)
+        render_to(os.path.join(after_dir, "r_%03d.png" % i))
+        progress()
+    target.hide_render = False
 
 
 def clear_scene():
@@ -409,7 +426,7 @@ def write_transforms(path, angle_x, frames):
 
 
 def main():
-    desc, out_dir = args()
+    desc, out_dir, train_after = args()
     r = desc["render"]
     clear_scene()
     setup_render(r)
@@ -421,6 +438,18 @@ def main():
     target = [o for o, d in zip(objects, desc["objects"]) if d["target"]][0]
     cam = add_camera(desc["camera_angle_x"])
     override = mask_override_material()
+
+    if train_after:  # only the training views without the target, beside an existing data set
+        total, done = len(desc["cameras"]["train"]), 0
+
+        def progress_after():
+            nonlocal done
+            done += 1
+            print("GORIS_FRAME %d %d" % (done, total), flush=True)
+
+        render_train_after(cam, target, r, world, desc["cameras"]["train"], out_dir, progress_after)
+        print("GORIS_DONE", flush=True)
+        return
 
     train_dir, test_dir = os.path.join(out_dir, "train"), os.path.join(out_dir, "test")
     gt_dir = os.path.join(train_dir, "gt")

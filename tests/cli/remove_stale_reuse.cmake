@@ -1,6 +1,7 @@
 # A finished fine-tune in RUN/removal is reused only for the same inputs: after a new selection or other
 # options, `goris remove` starts the fine-tune over (saying what changed) instead of resuming the old
-# checkpoint, so report.json's counts add up and the result is the new one.
+# checkpoint, so report.json's counts add up and the result is the new one. A measurement run with
+# --fill-truth is one more change of inputs.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -76,4 +77,25 @@ endif()
 file(SHA256 "${R}/point_cloud.ply" again_ply)
 if(NOT again_ply STREQUAL ablated_ply)
   message(FATAL_ERROR "removal/point_cloud.ply changed when only the inpainted maps were made again")
+endif()
+
+# --fill-truth (the fills' measurement): a folder without the views' images is refused before any work, by
+# the missing file's name, and the removal there stays as it was; with one (here the training photos stand in
+# for renders without the target) the fine-tune starts over naming the option, and report.json counts the
+# pixels it replaced.
+goris_fails("${WORK}/no-truth/r_000.png: missing" remove "${RUN}" --iters 10 --device cpu --fill-truth "${WORK}/no-truth")
+file(SHA256 "${R}/point_cloud.ply" kept_ply)
+if(NOT kept_ply STREQUAL again_ply)
+  message(FATAL_ERROR "a refused --fill-truth changed removal/point_cloud.ply")
+endif()
+file(GLOB photos "${RESOURCES}/default_scene/train/r_*.png")
+file(COPY ${photos} DESTINATION "${WORK}/truth")
+goris_ok(remove "${RUN}" --iters 10 --device cpu --ablate shadows --fill-truth "${WORK}/truth")
+expect_text("${OUT}" "the fine-tune started over")
+expect_text("${OUT}" "options.fill_truth")
+expect_counts_add_up()
+file(READ "${R}/report.json" truth_report)
+string(JSON replaced GET "${truth_report}" fill_truth_pixels)
+if(NOT replaced GREATER 0)
+  message(FATAL_ERROR "--fill-truth replaced no pixel:\n${truth_report}")
 endif()

@@ -1,6 +1,7 @@
 // The fine-tune's training views of stage 2: photo losses off inside the exclusion mask, a reference view's
 // inpainted targets on its hole, the lifted reference points projected into the other views (depth-tested
-// against the removed surface), and a view's own 2D fill on the hole pixels no point reached, at its weight.
+// against the removed surface), and a view's own 2D fill on the hole pixels no point reached, at its weight;
+// the true images of a synthetic scene in place of all of them (the fills' measurement).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -181,6 +182,50 @@ TEST(FinetuneViews, AFillOfAnotherSizeIsRefusedByTheViewsName) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("other"), std::string::npos) << e.what();
   }
+}
+
+TEST(FinetuneViews, TrueFillsReplaceEveryMadeUpPixelAndNothingElse) {
+  // A reference view (targets on the hole) and a view with a lifted point: after use_true_fills every pixel
+  // whose photo loss was off or that had a target learns the true image under the photo loss; the rest keeps
+  // its photo; no inpainting target is left.
+  std::vector<TrainView> views = {view_named("ref"), view_named("other")};
+  const Mask ex = exclusion(), h = hole();
+  const MapSet ref_maps = flat_fill(0.9f, 0.9f, 0.9f);
+  std::vector<ReferenceTargets> refs = {{&h, &ref_maps}};
+  std::vector<FinetuneViewInputs> in(2);
+  for (auto& i : in) i.exclude = &ex;
+  in[0].reference = 0;
+  prepare_finetune_views(views, in, refs, one_point());
+  ASSERT_TRUE(views[0].inpaint && views[1].inpaint);
+  std::vector<std::vector<float>> truth(2, std::vector<float>(3 * kHW));
+  for (std::size_t i = 0; i < 3 * kHW; ++i) truth[0][i] = truth[1][i] = 0.01f * float(i % 97);
+  EXPECT_EQ(use_true_fills(views, truth), 2 * 3 * std::size_t(kH));  // columns 1-3 of both views
+  for (const TrainView& v : views) {
+    EXPECT_FALSE(v.inpaint) << v.name;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const std::size_t p = px(x, y);
+        EXPECT_EQ(v.loss_weight[p], 1.0f) << v.name << " " << x << "," << y;
+        const bool made_up = ex.data[p] != 0;
+        for (std::size_t c = 0; c < 3; ++c)
+          EXPECT_EQ(v.image[c * kHW + p], made_up ? truth[0][c * kHW + p] : 0.5f) << v.name << " " << x << "," << y;
+      }
+  }
+}
+
+TEST(FinetuneViews, ATrueImageOfAnotherSizeIsRefusedByTheViewsName) {
+  std::vector<TrainView> views = {view_named("other")};
+  const Mask ex = exclusion();
+  std::vector<FinetuneViewInputs> in(1);
+  in[0].exclude = &ex;
+  prepare_finetune_views(views, in, {}, ReferencePoints{});
+  try {
+    use_true_fills(views, {std::vector<float>(3 * kHW - 3, 0.0f)});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("other"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(use_true_fills(views, {}), Error);  // one image per view
 }
 
 }  // namespace

@@ -158,6 +158,61 @@ TEST(SynthRender, TinyGlossyTable) {
   }
 }
 
+TEST(SynthRender, TrainingViewsWithoutTheTarget) {
+  try {
+    find_blender();
+  } catch (const goris::Error& e) {
+    GTEST_SKIP() << "Blender is not installed: " << e.what();
+  }
+  fs::path out = goris::test::scratch_dir("synth_train_after") / "scene";
+  SynthJob job;
+  job.options.resolution = 32;
+  job.options.samples = 8;
+  job.options.train_views = 2;
+  job.options.test_views = 1;
+  job.options.seed = 3;
+  job.options.ground_truth_maps = false;
+  job.script = goris::test::resource_dir() / "synth" / "render_scene.py";
+  job.out = out;
+  run_synth(job);
+  goris::synth::TrainAfterJob after{out, job.script, {}, {}};
+  int frames = 0;
+  after.on_frame = [&](int done, int total) {
+    ++frames;
+    EXPECT_EQ(total, 2);
+    EXPECT_EQ(done, frames);
+  };
+  goris::synth::render_train_after(after);
+  EXPECT_EQ(frames, 2);
+  EXPECT_FALSE(fs::exists(out / "train_after.synth-tmp"));
+  for (const char* v : {"000", "001"}) {
+    // The same view without the target: where the target was the image changes, away from it and from the
+    // glossy surface it is the training photo (Cycles samples each pixel the same way).
+    cv::Mat with = read(out / "train" / (std::string("r_") + v + ".png"), cv::IMREAD_UNCHANGED);
+    cv::Mat without = read(out / "train_after" / (std::string("r_") + v + ".png"), cv::IMREAD_UNCHANGED);
+    cv::Mat mask = read(out / "train" / (std::string("mask_") + v + ".png"), cv::IMREAD_GRAYSCALE);
+    cv::Mat gloss = read(out / "train" / (std::string("gloss_") + v + ".png"), cv::IMREAD_GRAYSCALE);
+    ASSERT_EQ(with.size(), without.size()) << v;
+    ASSERT_EQ(with.channels(), without.channels()) << v;
+    cv::Mat diff;
+    cv::absdiff(with, without, diff);
+    diff = diff.reshape(1, diff.rows * diff.cols);
+    cv::reduce(diff, diff, 1, cv::REDUCE_MAX);
+    diff = diff.reshape(1, with.rows);
+    ASSERT_GT(cv::countNonZero(mask > 200), 0) << v;
+    EXPECT_GT(cv::mean(diff, mask > 200)[0], 20.0) << v;
+    cv::Mat near_target, near_gloss;
+    cv::dilate(mask > 0, near_target, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
+    cv::dilate(gloss > 0, near_gloss, cv::getStructuringElement(cv::MORPH_ELLIPSE, {3, 3}));
+    cv::Mat elsewhere = ~(near_target | near_gloss);
+    ASSERT_GT(cv::countNonZero(elsewhere), 20) << v;
+    EXPECT_LT(cv::mean(diff, elsewhere)[0], 3.0) << v;
+  }
+  // Not a synth output: refused by name before Blender starts.
+  fs::path empty = goris::test::scratch_dir("synth_train_after_empty");
+  EXPECT_THROW(goris::synth::render_train_after({empty, job.script, {}, {}}), goris::Error);
+}
+
 TEST(SynthRender, MissingBlenderNamesTheInstallCommand) {
   try {
     find_blender("/nonexistent/blender");

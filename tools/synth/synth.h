@@ -22,4 +22,17 @@ struct SynthJob {
 // failed render (the message has the last lines of OUT/blender.log and its path).
 void run_synth(const SynthJob& job);
 
+// The training views of an existing synth data set rendered once more with the target hidden, into
+// DATA/train_after/r_XXX.png (the views `goris remove --fill-truth` reads: what a perfect removal would
+// show in the views it learns from). Rendered in DATA/train_after.synth-tmp and renamed into place.
+struct TrainAfterJob {
+  std::filesystem::path data;    // a `goris synth` output (has scene.json)
+  std::filesystem::path script;  // resources/synth/render_scene.py
+  std::filesystem::path blender; // empty: `blender` on PATH
+  std::function<void(int done, int total)> on_frame;
+};
+// Throws goris::Error: DATA without scene.json, no Blender, or a failed render (log in
+// DATA/blender_train_after.log).
+void render_train_after(const TrainAfterJob& job);
+
 }  // namespace goris::synth
