@@ -28,6 +28,9 @@ struct ConfigSpec {
   bool distill;
   const char* description;
   std::vector<std::string> remove_args = {};  // further `goris remove` options
+  // A measurement, not a removal: `goris remove --fill-truth DATA/train_after` (rendered first with
+  // `goris synth --train-after` when missing; synth data sets only).
+  bool true_fills = false;
 };
 
 // Every configuration, in ladder order.

@@ -20,6 +20,10 @@ const std::vector<ConfigSpec>& ladder() {
       {"default-nofill", "default", {}, "", false,
        "default without every other view's own fill of its hole (--view-fill 0): the reference views alone "
        "supervise it", {"--view-fill", "0"}},
+      {"default-truefill", "default", {}, "", false,
+       "a measurement, not a removal: default with the true images of the training views without the target in "
+       "place of every target its fills make up (`goris remove --fill-truth`): what perfect fills would score",
+       {}, true},
       {"+elt", "intrinsic_nossf", {"--mode", "intrinsic", "--set", "intrinsic_screen_space_filter=false"},
        "material,lamask,twins,underside", false, "intrinsic stage 1 with explicit light transport, no screen-space filter"},
       {"+ssf", "intrinsic", {"--mode", "intrinsic"}, "material,lamask,twins,underside", false,

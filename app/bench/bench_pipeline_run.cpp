@@ -10,6 +10,7 @@
 #include "core/io/file_bytes.h"
 #include "core/util/error.h"
 #include "removal/pipeline/removal_pipeline.h"
+#include "tools/synth/synth.h"
 
 namespace goris::bench::pipeline {
 
@@ -23,6 +24,16 @@ json without_run_folder(json options) {
   for (std::size_t i = 0; i + 1 < args.size(); ++i)
     if (args[i] == "--out") args[i + 1] = "RUN";
   return options;
+}
+
+// DATA/train_after of a synth data set, rendered when it is missing (`goris synth --train-after`).
+fs::path true_fill_images(const std::string& data) {
+  const fs::path dir = fs::path(data) / "train_after";
+  if (fs::is_directory(dir)) return dir;
+  std::printf("    synth    the training views of %s without the target\n", data.c_str());
+  std::fflush(stdout);
+  goris::synth::render_train_after({data, fs::path(GORIS_RESOURCE_DIR) / "synth" / "render_scene.py", {}, {}});
+  return dir;
 }
 
 }  // namespace
@@ -140,6 +151,7 @@ Row Bench::run_config(const std::string& scene, const std::string& data, const S
                                      o_.device};
       if (*c.ablate) rm.insert(rm.end(), {"--ablate", c.ablate});
       rm.insert(rm.end(), c.remove_args.begin(), c.remove_args.end());
+      if (c.true_fills) rm.insert(rm.end(), {"--fill-truth", true_fill_images(data).string()});
       const StepRun rem = run_child("remove", rm, logs / "remove.log");
       r.remove_s = rem.seconds;
       r.cpu_s += rem.cpu_seconds;
