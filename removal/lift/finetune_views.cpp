@@ -192,4 +192,3 @@ std::size_t use_true_fills(std::vector<TrainView>& views, const std::vector<std:
 }
 
 }  // namespace goris
-
