@@ -173,6 +173,9 @@ void print_run(const fs::path& run, bool nested = false) {
                   "reflection pixels\n",
                   r.value("selected", 0), r.value("gaussians_before", 0), r.value("gaussians_after", 0),
                   r.value("mirror_twins", 0), r.value("underside", 0), r.value("reflection_pixels", 0));
+      if (r.contains("options") && r["options"].contains("fill_truth"))
+        std::printf("  a measurement, not a removal: fine-tuned with the true images %s (--fill-truth)\n",
+                    r["options"]["fill_truth"].get<std::string>().c_str());
     } catch (const nlohmann::json::exception&) {
       std::printf("  report.json: not readable JSON\n");
     }

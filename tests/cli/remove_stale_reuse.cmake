@@ -99,3 +99,6 @@ string(JSON replaced GET "${truth_report}" fill_truth_pixels)
 if(NOT replaced GREATER 0)
   message(FATAL_ERROR "--fill-truth replaced no pixel:\n${truth_report}")
 endif()
+# goris info says that this removal folder is a measurement, not a cleaned scene.
+goris_ok(info "${RUN}")
+expect_text("${OUT}" "a measurement, not a removal: fine-tuned with the true images")
