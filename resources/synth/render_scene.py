@@ -439,15 +439,16 @@ def main():
     cam = add_camera(desc["camera_angle_x"])
     override = mask_override_material()
 
+    train, test = desc["cameras"]["train"], desc["cameras"]["test"]
+    total, done = len(train) + (0 if train_after else len(test)), 0
+
+    def progress():
+        nonlocal done
+        done += 1
+        print("GORIS_FRAME %d %d" % (done, total), flush=True)
+
     if train_after:  # only the training views without the target, beside an existing data set
-        total, done = len(desc["cameras"]["train"]), 0
-
-        def progress_after():
-            nonlocal done
-            done += 1
-            print("GORIS_FRAME %d %d" % (done, total), flush=True)
-
-        render_train_after(cam, target, r, world, desc["cameras"]["train"], out_dir, progress_after)
+        render_train_after(cam, target, r, world, train, out_dir, progress)
         print("GORIS_DONE", flush=True)
         return
 
@@ -463,15 +464,7 @@ def main():
         gt_out = setup_gt_output(gt_dir)
         write_json(os.path.join(gt_dir, "encoding.json"), GT_ENCODING)
 
-    train, test = desc["cameras"]["train"], desc["cameras"]["test"]
-    total, done = len(train) + len(test), 0
     scene = bpy.context.scene
-
-    def progress():
-        nonlocal done
-        done += 1
-        print("GORIS_FRAME %d %d" % (done, total), flush=True)
-
     frames = []
     for i, view in enumerate(train):
         name = "%03d" % i
