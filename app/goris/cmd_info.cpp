@@ -176,6 +176,13 @@ void print_run(const fs::path& run, bool nested = false) {
       if (r.contains("options") && r["options"].contains("fill_truth"))
         std::printf("  a measurement, not a removal: fine-tuned with the true images %s (--fill-truth)\n",
                     r["options"]["fill_truth"].get<std::string>().c_str());
+      if (r.contains("photo_targets_against_truth")) {
+        const nlohmann::json& t = r["photo_targets_against_truth"];
+        std::printf("  the photos it trains on carry %.3f of the target's imprint as taken, %.3f as trained "
+                    "(dereflected, relit: %.3f -> %.3f on the %d pixels changed)\n",
+                    t.value("photos_as_taken", 0.0), t.value("photos_as_trained", 0.0), t.value("changed_as_taken", 0.0),
+                    t.value("changed_as_trained", 0.0), t.value("changed_pixels", 0));
+      }
     } catch (const nlohmann::json::exception&) {
       std::printf("  report.json: not readable JSON\n");
     }

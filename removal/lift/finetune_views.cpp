@@ -191,4 +191,42 @@ std::size_t use_true_fills(std::vector<TrainView>& views, const std::vector<std:
   return replaced;
 }
 
+PhotoTargetsTruthError photo_targets_against_truth(const std::vector<TrainView>& views,
+                                                   const std::vector<std::vector<float>>& photos,
+                                                   const std::vector<std::vector<float>>& truth) {
+  if (photos.size() != views.size() || truth.size() != views.size())
+    throw Error("photo targets against the truth", std::to_string(photos.size()) + " photos and " +
+                                                       std::to_string(truth.size()) + " true images for " +
+                                                       std::to_string(views.size()) + " views");
+  PhotoTargetsTruthError e;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const TrainView& v = views[i];
+    const std::size_t hw = std::size_t(v.camera.width) * v.camera.height;
+    if (photos[i].size() != 3 * hw || truth[i].size() != 3 * hw || v.image.size() != 3 * hw ||
+        (!v.loss_weight.empty() && v.loss_weight.size() != hw))
+      throw Error(v.name, "the photo, the true image and the view are not all " + std::to_string(v.camera.width) + "x" +
+                              std::to_string(v.camera.height));
+    for (std::size_t p = 0; p < hw; ++p) {
+      double photo = 0, target = 0;
+      bool changed = false;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::size_t k = c * hw + p;
+        photo += std::abs(double(photos[i][k]) - truth[i][k]) / 3.0;
+        target += std::abs(double(v.image[k]) - truth[i][k]) / 3.0;
+        changed = changed || v.image[k] != photos[i][k];
+      }
+      e.imprint += photo;
+      if (!v.loss_weight.empty() && !(v.loss_weight[p] > 0)) continue;
+      ++e.trained_pixels;
+      e.photos += photo;
+      e.targets += target;
+      if (!changed) continue;
+      ++e.changed_pixels;
+      e.changed_photos += photo;
+      e.changed_targets += target;
+    }
+  }
+  return e;
+}
+
 }  // namespace goris

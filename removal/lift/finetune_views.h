@@ -18,6 +18,7 @@
 #include "core/inpaint/map_set.h"
 #include "core/inpaint/mask.h"
 #include "removal/lift/lift.h"
+#include "removal/lift/photo_truth_error.h"
 #include "train/loop/trainer.h"
 
 namespace goris {
@@ -60,5 +61,14 @@ FinetuneViewStats prepare_finetune_views(std::vector<TrainView>& views, const st
 // [3][H][W] of views[i]; returns the pixels replaced. Throws goris::Error (the view's name) for a size
 // that differs.
 std::size_t use_true_fills(std::vector<TrainView>& views, const std::vector<std::vector<float>>& truth);
+
+// The same measurement's other half: how much of the target the photos the fine-tune trains on still carry,
+// against the true images, before and after the removal changed them (dereflected inside the lighting-aware
+// mask, relit where the target's shadow was found). Sums over every view of the mean-RGB |x - truth| per
+// pixel; `photos[i]` and `truth[i]` are planar RGB [3][H][W] of views[i], the views as prepared for the
+// fine-tune (call it before use_true_fills). Throws goris::Error (the view's name) for a size that differs.
+PhotoTargetsTruthError photo_targets_against_truth(const std::vector<TrainView>& views,
+                                                   const std::vector<std::vector<float>>& photos,
+                                                   const std::vector<std::vector<float>>& truth);
 
 }  // namespace goris

@@ -221,6 +221,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                                      "(goris synth --train-after DATA)");
     fill_truth.push_back(to_planar_rgb(load_view_image(tv, dopt, Device::CPU)));
   }
+  std::vector<std::vector<float>> photos_as_taken;  // with fill_truth: before the lighting step changes them
+  if (!fill_truth.empty())
+    for (const TrainView& v : views) photos_as_taken.push_back(v.image);
   if (!config.input.glossy_mask_dir.empty())  // --mode auto's
     load_glossy_mask_folder(config.input.glossy_mask_dir, views);
   const bool glossy_masks = any_glossy_mask(views);
@@ -539,7 +542,10 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       refs.push_back({&holes[v].mask, &inpainted[choice.views.size() + k], o.view_fill_weight});
     }
     const FinetuneViewStats fs_stats = prepare_finetune_views(views, inputs, refs, lift.points);
-    if (!o.fill_truth.empty()) report.fill_truth_pixels = use_true_fills(views, fill_truth);
+    if (!o.fill_truth.empty()) {
+      report.truth_error = photo_targets_against_truth(views, photos_as_taken, fill_truth);
+      report.fill_truth_pixels = use_true_fills(views, fill_truth);
+    }
 
     TrainerState state;
     auto renderer = make_renderer(ft, extent, device);
@@ -615,7 +621,20 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                              {"material_pixels", fs_stats.material_pixels},
                              {"projected_points", fs_stats.projected_points},
                              {"filled_pixels", fs_stats.filled_pixels}};
-    if (!o.fill_truth.empty()) j["fill_truth_pixels"] = report.fill_truth_pixels;
+    if (!o.fill_truth.empty()) {
+      j["fill_truth_pixels"] = report.fill_truth_pixels;
+      // In units of the target's imprint on the photos (as the ghost ratio): what the photos the fine-tune
+      // trains on carry of the target, as taken and as trained (dereflected, relit).
+      const PhotoTargetsTruthError& e = report.truth_error;
+      const double imprint = e.imprint > 0 ? e.imprint : 1.0;
+      j["photo_targets_against_truth"] = {{"imprint", e.imprint},
+                                          {"trained_pixels", e.trained_pixels},
+                                          {"photos_as_taken", e.photos / imprint},
+                                          {"photos_as_trained", e.targets / imprint},
+                                          {"changed_pixels", e.changed_pixels},
+                                          {"changed_as_taken", e.changed_photos / imprint},
+                                          {"changed_as_trained", e.changed_targets / imprint}};
+    }
     j["options"] = options_json(o);
     j["made_from"] = finetune_from;
     j["peak_host_memory_mib"] = peak_host_memory_mib();

@@ -43,6 +43,7 @@
 
 #include "core/compute/device_choice.h"
 #include "core/scene/mirror_twins.h"
+#include "removal/lift/photo_truth_error.h"
 
 namespace goris {
 
@@ -107,6 +108,7 @@ struct RemovalReport {
   std::string shadow;                       // its light, size and strength, or why none was found
   std::size_t shadow_pixels = 0;            // training-view pixels relit by more than 5 %
   std::size_t fill_truth_pixels = 0;        // with RemovalOptions::fill_truth: training-view pixels it replaced
+  PhotoTargetsTruthError truth_error;       // ... and the photos the fine-tune trains on against the truth
   std::vector<std::string> reference_views;
   int finetune_iterations = 0;
   // Why the fine-tune started over instead of resuming or reusing the earlier one in RUN/removal: which of

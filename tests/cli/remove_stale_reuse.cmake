@@ -99,6 +99,13 @@ string(JSON replaced GET "${truth_report}" fill_truth_pixels)
 if(NOT replaced GREATER 0)
   message(FATAL_ERROR "--fill-truth replaced no pixel:\n${truth_report}")
 endif()
+# ... and measures the photos it trains on against those images: here they are the photos themselves.
+string(JSON trained GET "${truth_report}" photo_targets_against_truth trained_pixels)
+string(JSON taken GET "${truth_report}" photo_targets_against_truth photos_as_taken)
+if(NOT trained GREATER 0 OR NOT taken MATCHES "^0(\\.0+)?$")
+  message(FATAL_ERROR "photos against themselves as the truth: ${trained} pixels, error ${taken}:\n${truth_report}")
+endif()
 # goris info says that this removal folder is a measurement, not a cleaned scene.
 goris_ok(info "${RUN}")
 expect_text("${OUT}" "a measurement, not a removal: fine-tuned with the true images")
+expect_text("${OUT}" "the photos it trains on carry 0.000 of the target's imprint as taken")

@@ -228,5 +228,36 @@ TEST(FinetuneViews, ATrueImageOfAnotherSizeIsRefusedByTheViewsName) {
   EXPECT_THROW(use_true_fills(views, {}), Error);  // one image per view
 }
 
+TEST(FinetuneViews, PhotoTargetsAgainstTheTruthSplitByWhatTheRemovalChanged) {
+  // One view: the truth is 0.5 everywhere; the photo is 0.8 on column 0 (the target's shadow, trained on) and
+  // on columns 1-3 (the target itself, photo loss off). The removal relit column 0 to 0.6 and dereflected
+  // column 4 from 0.5 to 0.4 (a wrong change); column 5 is untouched and right.
+  std::vector<TrainView> views = {view_named("v")};
+  const Mask ex = exclusion();
+  std::vector<FinetuneViewInputs> in(1);
+  in[0].exclude = &ex;
+  prepare_finetune_views(views, in, {}, ReferencePoints{});
+  std::vector<float> photo(3 * kHW, 0.5f), truth(3 * kHW, 0.5f);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x <= 3; ++x)
+      for (std::size_t c = 0; c < 3; ++c) photo[c * kHW + px(x, y)] = 0.8f;
+  views[0].image = photo;
+  for (int y = 0; y < kH; ++y)
+    for (std::size_t c = 0; c < 3; ++c) {
+      views[0].image[c * kHW + px(0, y)] = 0.6f;
+      views[0].image[c * kHW + px(4, y)] = 0.4f;
+    }
+  const PhotoTargetsTruthError e = photo_targets_against_truth(views, {photo}, {truth});
+  EXPECT_NEAR(e.imprint, 4 * kH * 0.3, 1e-5);         // columns 0-3
+  EXPECT_EQ(e.trained_pixels, 3 * std::size_t(kH));   // columns 0, 4, 5
+  EXPECT_NEAR(e.photos, kH * 0.3, 1e-5);              // column 0 as taken
+  EXPECT_NEAR(e.targets, kH * (0.1 + 0.1), 1e-5);     // column 0 relit, column 4 made wrong
+  EXPECT_EQ(e.changed_pixels, 2 * std::size_t(kH));
+  EXPECT_NEAR(e.changed_photos, kH * 0.3, 1e-5);
+  EXPECT_NEAR(e.changed_targets, kH * 0.2, 1e-5);
+  EXPECT_THROW(photo_targets_against_truth(views, {photo}, {std::vector<float>(3)}), Error);
+  EXPECT_THROW(photo_targets_against_truth(views, {}, {truth}), Error);
+}
+
 }  // namespace
 }  // namespace goris
