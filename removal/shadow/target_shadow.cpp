@@ -336,4 +336,11 @@ glm::vec3 shadow_gain(const TargetShadow& shadow, float s, const ShadowSettings&
   return g;
 }
 
+float shadow_fraction_beside_others(float target_share, float others_share, double strength) {
+  const double st = std::clamp(double(target_share), 0.0, 1.0), so = std::clamp(double(others_share), 0.0, 1.0);
+  const double k = std::clamp(strength, 0.0, 1.0);
+  if (so >= 1.0) return 0.0f;
+  return float(st * (1.0 - so) / (1.0 - k * so));
+}
+
 }  // namespace goris

@@ -32,6 +32,11 @@
 //     cast shadow is removed too).
 //  6. The check (others_shadow): the light found must cast the other objects' shadows where the photos are
 //     dark too; the caller drops a light that contradicts them.
+//  7. Relighting leaves the other objects' shadows where they are (shadow_fraction_beside_others): a point
+//     that they shade from the light found is dark from their shadow too, and stays so without the target.
+//     Without this, a light fitted to a dark area at another object's foot brightened that object's own
+//     shadow (measured against renders without the target on the suite's scenes: the photos the fine-tune
+//     trains on moved further from them than the photos as taken).
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -170,5 +175,13 @@ std::vector<float> shadow_fraction(const TargetShadow& shadow, const std::vector
 
 // The multiplier on a display colour with shadow fraction s that removes the target's shadow.
 glm::vec3 shadow_gain(const TargetShadow& shadow, float s, const ShadowSettings& settings = {});
+
+// The target's share s_t of the light at a point that the other objects shade too (s_o, their share of the
+// same cone), as the s to relight it with. A point both shade stays in the others' shadow once the target is
+// gone: with the shares covering the cone independently the photo shows 1 - k (1 - (1 - s_t)(1 - s_o)) of the
+// light and the scene without the target 1 - k s_o, which is 1 / (1 - k s) with s = s_t (1 - s_o) / (1 - k s_o).
+// k is the shadow's luminance strength. Equals s_t where nothing else shades the point and 0 where the others
+// take the whole light.
+float shadow_fraction_beside_others(float target_share, float others_share, double strength);
 
 }  // namespace goris

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/io/image.h"
@@ -83,19 +84,16 @@ double support_fresnel(const GaussianModel& model, const SelectionMask& candidat
   return fresnel_quantile(model, support, 0.5f).value_or(0.0f);
 }
 
-// Step 6 of target_shadow.h: the fitted light against the other objects standing on the support surface
-// (non-target Gaussians above its plane's tolerance, opaque enough not to be a short run's fog).
-OthersShadow check_against_others(const GaussianModel& model, const SelectionMask& candidates,
-                                  const std::vector<float>& opacity, const std::vector<glm::vec3>& position,
-                                  const ShadowGeometry& geo, const TargetShadow& fit, const ShadowSamples& samples,
-                                  const TargetOccluder& target, const ShadowSettings& settings) {
+// The other objects standing on the support surface: non-target Gaussians above its plane's tolerance, opaque
+// enough not to be a short run's fog.
+SelectionMask other_objects_on(const SelectionMask& candidates, const std::vector<float>& opacity,
+                               const std::vector<glm::vec3>& position, const ShadowGeometry& geo,
+                               const ShadowSettings& settings) {
   SelectionMask other_objects(candidates.size(), 0);
   for (std::size_t i = 0; i < candidates.size(); ++i)
     other_objects[i] = candidates[i] && opacity[i] >= settings.others_opacity &&
                        geo.height(glm::dvec3(position[i])) > geo.plane.tolerance;
-  if (count_selected(other_objects) == 0) return {};
-  const TargetOccluder others(model, other_objects);
-  return others_shadow(fit, samples, target.function(), others.function(), settings);
+  return other_objects;
 }
 
 }  // namespace
@@ -166,8 +164,12 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
     out.fit.reason += b;
   }
   if (!out.fit.found) return out;
+  // Step 6 of target_shadow.h: the fitted light against the other objects' shadows; step 7 below.
+  const SelectionMask other_objects = other_objects_on(candidates, opacity, pts.position, geo, settings);
+  std::optional<TargetOccluder> others;
+  if (count_selected(other_objects) > 0) others.emplace(model, other_objects);
   const OthersShadow check =
-      check_against_others(model, candidates, opacity, pts.position, geo, out.fit, samples, occluder, settings);
+      others ? others_shadow(out.fit, samples, occluder.function(), others->function(), settings) : OthersShadow{};
   if (check.contradicts) {
     char b[200];
     std::snprintf(b, sizeof b, "the light puts the other objects' shadows on %.0f %% of the lit samples, "
@@ -183,6 +185,11 @@ ShadowRelight relight_target_shadow(GaussianModel& model, const SelectionMask& t
   for (std::size_t i = 0; i < views.size(); ++i) {
     const PlanePixels& px = out.pixels[i];
     out.s[i] = shadow_fraction(out.fit, px.point, occluder.function());
+    if (others) {
+      const std::vector<float> so = shadow_fraction(out.fit, px.point, others->function());
+      for (std::size_t k = 0; k < so.size(); ++k)
+        out.s[i][k] = shadow_fraction_beside_others(out.s[i][k], so[k], out.fit.strength_luminance);
+    }
     const std::size_t hw = views[i].image.size() / 3;
     relight_planar(views[i].image, hw, px, out.s[i], out.fit);
     std::vector<float> share(px.size());  // the share of the light the target took, per plane pixel

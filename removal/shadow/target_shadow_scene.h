@@ -70,7 +70,8 @@ enum class ShadowSampleColour {
 // surface enables the fit's search near that light (target_shadow.h, step 5) where the support's learned F0
 // near the target is a dielectric's (ShadowSettings::known_light_max_fresnel); fit.reason then ends with that F0.
 // A light whose shadows of the other objects on the support surface the photos do not show is dropped
-// (target_shadow.h, step 6): fit.found is then false and fit.reason says so.
+// (target_shadow.h, step 6): fit.found is then false and fit.reason says so. What the other objects shade
+// from the light found is not relit (step 7).
 struct ShadowRelight {
   TargetShadow fit;                     // fit.reason says why nothing was found
   std::vector<PlanePixels> pixels;      // per view
