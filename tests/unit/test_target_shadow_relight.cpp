@@ -51,6 +51,14 @@ TrainView ring_view(int k) {
   return v;
 }
 
+// View k of the ring with the model's render as its image (unshaded), and the floor's pixels in it.
+PlanePixels rendered_ring_view(GaussianModel& model, int k, TrainView& v) {
+  v = ring_view(k);
+  const RasterOutput r = rasterize(model.view(false), v.camera, RasterSettings{}, Device::CPU);
+  v.image = r.gbuffer.color.to_host();
+  return support_plane_pixels(v.camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), floor_plane());
+}
+
 // The step `goris remove` runs, on views rendered from a Gaussian floor with a ball on it: the photos are
 // the renders with the ball's shadow under a known light; relight_target_shadow() finds that light, writes
 // the share images and gives back photos close to the unshaded renders.
@@ -63,17 +71,14 @@ TEST(TargetShadow, RelightTargetShadowOnRenderedViews) {
   const TargetOccluder occ(model, target);
 
   // The floor's pixels in each view, shaded by the ball.
-  const ShadowGeometry floor = floor_plane();
   const RasterSettings raster;
   std::vector<TrainView> views;
   std::vector<std::vector<float>> lit;
   std::vector<std::vector<std::uint8_t>> in_shadow;
   for (int k = 0; k < 8; ++k) {
-    TrainView v = ring_view(k);
-    const RasterOutput r = rasterize(model.view(false), v.camera, raster, Device::CPU);
-    v.image = r.gbuffer.color.to_host();
+    TrainView v;
+    const PlanePixels px = rendered_ring_view(model, k, v);
     lit.push_back(v.image);
-    const PlanePixels px = support_plane_pixels(v.camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), floor);
     std::vector<float> alpha(px.size());
     occ.function()(px.point, std::vector<glm::vec3>(px.size(), glm::vec3(kLight)), alpha);
     in_shadow.emplace_back(64 * 64, 0);
@@ -279,17 +284,14 @@ TEST(TargetShadow, RelightLeavesTheOtherObjectsShadow) {
   for (std::size_t i = target_end; i < gs.size(); ++i) other[i] = 1;
   const TargetOccluder by_target(model, target), by_other(model, other);
 
-  const ShadowGeometry floor = floor_plane();
   const RasterSettings raster;
   std::vector<TrainView> views;
   std::vector<std::vector<float>> lit, truth, shaded;  // shaded: the photos
   std::vector<std::vector<std::uint8_t>> both, target_only;
   for (int k = 0; k < 8; ++k) {
-    TrainView v = ring_view(k);
-    const RasterOutput r = rasterize(model.view(false), v.camera, raster, Device::CPU);
-    v.image = r.gbuffer.color.to_host();
+    TrainView v;
+    const PlanePixels px = rendered_ring_view(model, k, v);
     lit.push_back(v.image);
-    const PlanePixels px = support_plane_pixels(v.camera, r.gbuffer.median_depth.to_host(), r.gbuffer.alpha.to_host(), floor);
     const std::vector<glm::vec3> to_light(px.size(), light);
     std::vector<float> at(px.size()), ao(px.size());
     by_target.function()(px.point, to_light, at);
