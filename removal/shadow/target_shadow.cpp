@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "core/scene/cap_directions.h"
 #include "core/util/error.h"
 
 namespace goris {
@@ -12,25 +13,6 @@ namespace goris {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const double kGoldenAngle = kPi * (3.0 - std::sqrt(5.0));
-
-// n directions spread evenly over the cap of angular radius `radius` around unit `axis` (the whole sphere
-// for radius = pi); n = 1 gives the axis itself.
-std::vector<glm::dvec3> cap_directions(const glm::dvec3& axis, double radius, int n) {
-  if (n <= 1 || radius <= 0.0) return {axis};
-  const glm::dvec3 helper = std::abs(axis.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 t = glm::normalize(glm::cross(helper, axis));
-  const glm::dvec3 b = glm::cross(axis, t);
-  const double one_minus_cos = 1.0 - std::cos(radius);
-  std::vector<glm::dvec3> out(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const double cos_t = 1.0 - (k + 0.5) / n * one_minus_cos;
-    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
-    const double phi = k * kGoldenAngle;
-    out[std::size_t(k)] = glm::normalize(cos_t * axis + sin_t * (std::cos(phi) * t + std::sin(phi) * b));
-  }
-  return out;
-}
 
 struct LineFit {
   double b = 0.0, beta = 0.0, r2 = 0.0;
