@@ -84,15 +84,31 @@ TEST(AutoMode, DetectionWaitsForTheGeometry) {
   c.intrinsic.detect_settled = 0;  // the planned start alone (the settled floor: the next test)
   c.iterations = 30000;
   EXPECT_EQ(auto_detection_iteration(c), 4000);  // the warm-up
-  c.iterations = 4000;  // warm-up 533, but the geometry needs longer: half the run
-  EXPECT_EQ(auto_detection_iteration(c), 2000);
+  c.iterations = 4000;  // warm-up 533, but the geometry needs longer: half the run (2000, where the
+                        // opacities are reset: just before)
+  EXPECT_EQ(auto_detection_iteration(c), 1999);
   c.intrinsic.detect_after = 0;
-  EXPECT_EQ(auto_detection_iteration(c), 2000);  // the warm-up keeps half of a short run too
+  EXPECT_EQ(auto_detection_iteration(c), 1999);  // the warm-up keeps half of a short run too
   c.intrinsic.warmup_min_fraction = 0;
   EXPECT_EQ(auto_detection_iteration(c), 533);
   c.intrinsic.detect_after = 4000;
   c.intrinsic.warmup = 20000;  // a longer warm-up wins
   EXPECT_EQ(auto_detection_iteration(c), 2667);
+}
+
+TEST(AutoMode, DetectionNeverSeesAModelWhoseOpacitiesWereJustReset) {
+  TrainConfig c;
+  for (int n : {6000, 6500, 10000}) {  // their scaled opacity resets fall on iteration 4000
+    c.iterations = n;
+    ASSERT_EQ(4000 % c.opacity_reset_every(), 0) << n;
+    EXPECT_EQ(auto_detection_iteration(c), 3999) << n;
+  }
+  // 5000: no reset at 4000 (past its densification window); 8000, 12000, 30000: the last reset before 4000
+  // is at 3000, 2500 and 3000.
+  for (int n : {5000, 8000, 12000, 30000}) {
+    c.iterations = n;
+    EXPECT_EQ(auto_detection_iteration(c), 4000) << n;
+  }
 }
 
 TEST(AutoMode, ShortRunsDecideOnceTheGeometryHasSettledAndKeepTheirShadingPhase) {
@@ -109,8 +125,8 @@ TEST(AutoMode, ShortRunsDecideOnceTheGeometryHasSettledAndKeepTheirShadingPhase)
   c.iterations = 500;  // too short to settle: decided at the end
   EXPECT_EQ(auto_detection_iteration(c), 500);
   EXPECT_EQ(lengthened_for_late_decision(c, 500).iterations, 750);
-  c.iterations = 4000;  // long enough: as planned, nothing lengthened
-  EXPECT_EQ(auto_detection_iteration(c), 2000);
+  c.iterations = 4000;  // long enough: as planned (just before the opacity reset at 2000), nothing lengthened
+  EXPECT_EQ(auto_detection_iteration(c), 1999);
   const TrainConfig same = lengthened_for_late_decision(c, 2000);
   EXPECT_EQ(same.iterations, 4000);
   c.intrinsic.detect_settled = TrainConfig().intrinsic.detect_settled;  // the default, 4000: a 4K run
@@ -120,8 +136,8 @@ TEST(AutoMode, ShortRunsDecideOnceTheGeometryHasSettledAndKeepTheirShadingPhase)
   EXPECT_EQ(auto_detection_iteration(c), 4000);
   c.iterations = 4000;
   c.iterations = 2000;
-  c.intrinsic.detect_settled = 0;  // off: the planned start
-  EXPECT_EQ(auto_detection_iteration(c), 1000);
+  c.intrinsic.detect_settled = 0;  // off: the planned start (1000, an opacity reset: just before)
+  EXPECT_EQ(auto_detection_iteration(c), 999);
 }
 
 TEST(AutoMode, MaskFolderErrorsNameTheFile) {

@@ -112,7 +112,13 @@ int planned_shading_start(const TrainConfig& config) {
 }
 
 int auto_detection_iteration(const TrainConfig& config) {
-  return std::max(planned_shading_start(config), std::min(config.intrinsic.detect_settled, config.iterations));
+  const int at = std::max(planned_shading_start(config), std::min(config.intrinsic.detect_settled, config.iterations));
+  // Not on a model whose opacities a reset has just lowered (Trainer::densify): it renders next to nothing,
+  // and the detection would see no surface at all. The iteration before that reset instead.
+  const int every = config.opacity_reset_every(), interval = std::max(config.densify.interval, 1);
+  const int reset = every > 0 ? at / every * every : 0;
+  const bool resets_there = reset > 0 && reset + interval <= config.densify_until();
+  return resets_there && at - reset < interval ? reset - 1 : at;
 }
 
 TrainConfig lengthened_for_late_decision(const TrainConfig& config, int decided_at) {

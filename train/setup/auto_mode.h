@@ -54,7 +54,9 @@ int planned_shading_start(const TrainConfig& config);
 // intrinsic_detect_settled iterations (4000; capped at the run's end). While the geometry is still
 // settling its misregistration reads as view dependence: before a radiance phase of 4000 iterations has run
 // to its end, a Lambertian scene can show more evidence than a glossy one, and only after it do the two
-// separate with a margin (docs/lab/bench/NOTES.md, 2026-11-22, "--mode auto over seeds").
+// separate with a margin (docs/lab/bench/NOTES.md, 2026-11-22, "--mode auto over seeds"). When that
+// iteration is an opacity reset's, or less than densify_interval after one, the detection runs just before
+// the reset: a freshly reset model covers no pixel (a 6000- or 10000-iteration run resets at 4000).
 int auto_detection_iteration(const TrainConfig& config);
 
 // A glossy decision later than planned (a run shorter than 2 x intrinsic_detect_settled) keeps the shading
