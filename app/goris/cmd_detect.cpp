@@ -54,6 +54,7 @@ void run_detect(const Options& o) {
               "masks %zu pixels -> %s\n",
               ck.c_str(), c.state.iteration, 100.0 * det.fraction, 100.0 * s.min_fraction, det.detected, det.scored,
               det.planes, det.on_planes, det.behind_planes, det.in_masks, det.glossy ? "intrinsic" : "radiance");
+  std::printf("%s%s\n", det.mirror_world.summary.c_str(), det.by_mirror_world ? " (decides: intrinsic)" : "");
   // Each plane's tilt from the cameras' mean up: a table or floor is near 0 (or 180), a wall or mirror near 90.
   const glm::dvec3 up = mean_camera_up(cameras_of(views));
   for (std::size_t k = 0; k < det.plane_normals.size(); ++k) {

@@ -1,6 +1,6 @@
 // --mode auto's glossy detection: the photo-consistency criterion on ray-cast synthetic views (a Lambertian
 // plane, the same plane with a view-dependent colour, an occluder handled by the depth test), the growing
-// over planes and the planes set aside as backdrops. The decision's rules and the switch of a running
+// over planes, the planes set aside as backdrops, and a mirror world found without evidence in the photos. The decision's rules and the switch of a running
 // trainer are in test_auto_mode.cpp.
 #include <algorithm>
 #include <cmath>
@@ -333,6 +333,74 @@ TEST(GlossyDetection, ViewDependenceInFrontOfAPlaneIsNotItsReflection) {
   const GlossyDetection without = detect(patch_views(0.12f), s);
   EXPECT_EQ(without.planes, 1);
   EXPECT_TRUE(without.glossy);
+}
+
+// A ball of radius 0.4 standing on the Lambertian disc, which mirrors it as a radiance model shows a mirror:
+// where the disc's reflection of a ray meets the ball, the view sees the ball's colour at the virtual point
+// behind the disc (the hit continued along the ray by the reflected distance). Every view sees that point at
+// the same place with the same colour: the photos carry no evidence.
+std::vector<SyntheticView> mirror_world_views() {
+  const glm::vec3 ball(0.3f, 0.2f, 0.4f);
+  const float radius = 0.4f;
+  auto hit_ball = [&](const glm::vec3& o, const glm::vec3& d) {  // distance along the unit d, or -1
+    const glm::vec3 oc = o - ball;
+    const float b = glm::dot(oc, d), disc = b * b - (glm::dot(oc, oc) - radius * radius);
+    return disc < 0 ? -1.0f : -b - std::sqrt(disc);
+  };
+  std::vector<SyntheticView> views = ring_views({}, 64);
+  for (SyntheticView& v : views) {
+    const Camera& c = v.camera;
+    const size_t hw = size_t(c.width) * c.height;
+    const glm::vec3 eye = c.center();
+    for (size_t p = 0; p < hw; ++p) {
+      const glm::vec3 d = glm::normalize(c.ray_direction(float(p % c.width) + 0.5f, float(p / c.width) + 0.5f));
+      const float t = hit_ball(eye, d);
+      glm::vec3 x;
+      if (t > 0) {
+        x = eye + t * d;
+      } else if (v.alpha[p] > 0.5f) {  // the disc: the ball's mirror image behind it, if the reflection meets it
+        const glm::vec3 on = eye + (-eye.z / d.z) * d;
+        const float t2 = hit_ball(on, glm::vec3(d.x, d.y, -d.z));
+        if (!(t2 > 0)) continue;
+        x = on + t2 * d;
+      } else {
+        continue;
+      }
+      const glm::vec3 colour = 0.8f * plane_texture(4.0f * (t > 0 ? x : glm::vec3(x.x, x.y, -x.z)) + 2.0f);
+      for (int ch = 0; ch < 3; ++ch) v.image[ch * hw + p] = colour[ch];
+      v.depth[p] = c.to_camera(x).z;
+      v.alpha[p] = 1.0f;
+    }
+  }
+  return views;
+}
+
+TEST(GlossyDetection, AMirrorWorldIsGlossyWithoutEvidenceInThePhotos) {
+  const std::vector<SyntheticView> views = mirror_world_views();
+  GlossyDetectionSettings s;
+  s.mirror_world = false;
+  const GlossyDetection photos_only = detect(views, s);
+  EXPECT_FALSE(photos_only.glossy) << "the mirror world is photo-consistent";
+  const GlossyDetection det = detect(views);
+  ASSERT_TRUE(det.glossy) << det.mirror_world.summary;
+  EXPECT_TRUE(det.by_mirror_world);
+  EXPECT_GT(det.mirror_world.normal.z, 0.99f) << det.mirror_world.summary;
+  EXPECT_NEAR(det.mirror_world.height, 0.0f, 0.05f) << det.mirror_world.summary;
+  // The masks cover the disc and the ball's mirror image in it, not the ball.
+  size_t disc = 0, disc_marked = 0, ball = 0, ball_marked = 0;
+  for (size_t i = 0; i < views.size(); ++i) {
+    const Camera& c = views[i].camera;
+    for (size_t p = 0; p < views[i].depth.size(); ++p) {
+      if (!(views[i].alpha[p] > 0.5f)) continue;
+      const glm::vec3 d = c.ray_direction(float(p % c.width) + 0.5f, float(p / c.width) + 0.5f);
+      const glm::vec3 x = c.center() + (views[i].depth[p] / glm::dot(d, c.forward())) * d;
+      const bool on_ball = x.z > 0.02f;
+      (on_ball ? ball : disc) += 1;
+      (on_ball ? ball_marked : disc_marked) += det.masks[i][p];
+    }
+  }
+  EXPECT_GT(double(disc_marked), 0.9 * double(disc));
+  EXPECT_LT(double(ball_marked), 0.05 * double(ball));
 }
 
 TEST(GlossyDetection, NearestViewsFollowTheCameraDirection) {

@@ -182,6 +182,7 @@ void visit_fields(Config& c, F&& visit) {
   f("intrinsic_detect_after", c.intrinsic.detect_after);
   f("intrinsic_detect_settled", c.intrinsic.detect_settled);
   f("intrinsic_detect_plane_tolerance", c.intrinsic.detect_plane_tolerance);
+  f("intrinsic_detect_mirror_world", c.intrinsic.detect_mirror_world);
   f("inpaint_appearance_weight", c.inpaint.appearance_weight);
   f("inpaint_material_weight", c.inpaint.material_weight);
   f("nan_policy", c.nan.policy,

@@ -163,6 +163,7 @@ struct IntrinsicSettings {
   int detect_after = 4000;               // iterations (not scaled) before detecting, at most half the run
   int detect_settled = 4000;             // ... but never before this many (not scaled; train/setup/auto_mode.h)
   float detect_plane_tolerance = 0.05f;  // masks grown over the detections' plane(s), x camera distance (0 = off)
+  bool detect_mirror_world = true;       // also glossy when the model holds a mirror world (train/setup/mirror_world_detection.h)
 };
 
 // The training data and what of it a run uses (TrainConfig::input; config.json keys as the fields' names).

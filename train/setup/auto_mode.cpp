@@ -56,6 +56,9 @@ void write_summary(const fs::path& dir, const std::vector<TrainView>& views, con
   j["planes"] = d.planes;
   j["plane_in_front"] = det.plane_in_front;  // per plane found: share of the detections in front of its surface
   j["mask_pixels"] = d.mask_pixels;
+  j["mirror_world"] = {{"found", det.mirror_world.found},
+                       {"summary", det.mirror_world.summary},
+                       {"decided", d.mirror_world}};
   j["seconds"] = d.seconds;
   j["settings"] = {{"neighbours", s.neighbours},         {"pixel_threshold", s.threshold},
                    {"depth_tolerance", s.depth_tolerance}, {"search_radius", s.search_radius},
@@ -191,8 +194,9 @@ std::string AutoDecision::message() const {
   const std::string grown = planes > 0 ? ", grown over " + std::to_string(planes) + (planes == 1 ? " plane" : " planes") +
                                              " to " + percent(covered ? double(mask_pixels) / double(covered) : 0.0)
                                        : "";
+  const std::string why = mirror_world ? "a mirror world behind a plane (" + found + grown + ")" : "glossy regions (" + found + grown + ")";
   return "--mode auto after iteration " + std::to_string(iteration) + ": " +
-         (glossy ? "glossy regions (" + found + grown + ") -> intrinsic from now on with the masks in " + mask_dir.string()
+         (glossy ? why + " -> intrinsic from now on with the masks in " + mask_dir.string()
                  : "no glossy regions (" + found +
                        (backdrops > 0             ? ", most of it in front of the plane it was found near: not a reflector"
                         : fraction >= threshold ? ", on no plane"
@@ -224,6 +228,7 @@ std::optional<AutoDecision> apply_auto_mode(Trainer& trainer, const fs::path& ru
   d.planes = det.planes;
   d.backdrops = int(std::count(det.rejected_planes.begin(), det.rejected_planes.end(), true));
   d.mask_pixels = det.in_masks;
+  d.mirror_world = det.by_mirror_world;
   d.mask_dir = run_dir / "detected_gloss";
   write_masks(d.mask_dir, trainer.views(), det);
 

@@ -87,6 +87,7 @@ struct AutoDecision {
   int planes = 0;                // planes the masks were grown over
   int backdrops = 0;             // planes found but rejected: most of the evidence stands in front of them
   std::size_t mask_pixels = 0;   // pixels in the grown masks (at the detection's size, like `covered`)
+  bool mirror_world = false;     // glossy because the model holds a mirror world (mirror_world_detection.h)
   double seconds = 0;            // rendering the depths and detecting
   int extended_by = 0;           // iterations added to the run (lengthened_for_late_decision)
   std::filesystem::path mask_dir;

@@ -30,6 +30,7 @@ GlossyDetectionSettings GlossyDetectionSettings::from_config(const TrainConfig& 
   s.work_width = in.detect_width;
   s.grow_planes = in.detect_plane_tolerance > 0;
   s.plane_tolerance = in.detect_plane_tolerance;
+  s.mirror_world = in.detect_mirror_world;
   return s;
 }
 
@@ -364,6 +365,29 @@ class PlaneExtent {
   cv::Mat grid_;  // [rows][cols] 1 = the plane is there
 };
 
+// A pixel joins the masks when its surface point lies on one of the planes, or behind one seen through its
+// extent.
+void grow_masks(const std::vector<ConsistencyView>& views, const std::vector<Plane>& planes,
+                const std::vector<PlaneExtent>& extents, float tolerance, GlossyDetection& out) {
+  for (size_t i = 0; i < views.size(); ++i) {
+    const ConsistencyView& v = views[i];
+    const glm::vec3 eye = v.camera.center();
+    for (size_t p = 0; p < out.masks[i].size(); ++p) {
+      if (out.masks[i][p] || !(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
+      const glm::vec3 x = surface_point(v, p);
+      bool on = false, behind = false;
+      for (size_t k = 0; k < planes.size() && !on; ++k) {
+        on = planes[k].distance(x) <= tolerance;
+        behind = behind || (!on && extents[k].seen_through(eye, x, tolerance));
+      }
+      if (on || behind) {
+        out.masks[i][p] = 1;
+        ++(on ? out.on_planes : out.behind_planes);
+      }
+    }
+  }
+}
+
 // Grows the masks over the planes the detected pixels lie on: a glossy table top or mirror is glossy
 // everywhere, but reflections are only seen (detected) where they show something that changes. A pixel
 // joins when its surface point lies on a plane, or behind it seen through the plane's extent: a radiance
@@ -416,23 +440,43 @@ void grow_on_planes(const std::vector<ConsistencyView>& views, GlossyDetection& 
     extents.emplace_back(pl, on_plane, seeded);
   }
   out.planes = int(planes.size());
-  for (size_t i = 0; i < views.size(); ++i) {
-    const ConsistencyView& v = views[i];
+  grow_masks(views, planes, extents, tolerance, out);
+}
+
+// The masks grown over the plane of a mirror world (mirror_world_detection.h) that no detection marked: its
+// extent is where the views see the plane itself or see through it to what lies behind it.
+void grow_over_mirror_world(const std::vector<ConsistencyView>& views, GlossyDetection& out,
+                            const GlossyDetectionSettings& s) {
+  const MirrorWorldPlane& mw = out.mirror_world;
+  const Plane pl{mw.normal, -mw.height};
+  std::vector<float> dist;
+  std::vector<glm::vec3> on, through;
+  for (const ConsistencyView& v : views)
+    for (size_t p = 0; p < size_t(v.camera.width) * size_t(v.camera.height); ++p)
+      if (v.alpha[p] > 0.5f && v.depth[p] > 0) dist.push_back(glm::length(surface_point(v, p) - v.camera.center()));
+  if (dist.empty()) return;
+  std::nth_element(dist.begin(), dist.begin() + long(dist.size() / 2), dist.end());
+  const float tolerance = s.plane_tolerance * dist[dist.size() / 2];
+  for (const ConsistencyView& v : views) {
     const glm::vec3 eye = v.camera.center();
-    for (size_t p = 0; p < out.masks[i].size(); ++p) {
-      if (out.masks[i][p] || !(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
+    const float se = glm::dot(pl.n, eye) + pl.d;
+    for (size_t p = 0; p < size_t(v.camera.width) * size_t(v.camera.height); ++p) {
+      if (!(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
       const glm::vec3 x = surface_point(v, p);
-      bool on = false, behind = false;
-      for (size_t k = 0; k < planes.size() && !on; ++k) {
-        on = planes[k].distance(x) <= tolerance;
-        behind = behind || (!on && extents[k].seen_through(eye, x, tolerance));
-      }
-      if (on || behind) {
-        out.masks[i][p] = 1;
-        ++(on ? out.on_planes : out.behind_planes);
-      }
+      const float sx = glm::dot(pl.n, x) + pl.d;
+      if (std::abs(sx) <= tolerance) on.push_back(x);
+      else if (se * sx < 0) through.push_back(eye + (se / (se - sx)) * (x - eye));
     }
   }
+  PlaneExtent probe(pl, {}, {});
+  std::vector<glm::vec2> on_plane, seeds;
+  for (const glm::vec3& x : on) on_plane.push_back(probe.coordinates(x));
+  for (const glm::vec3& x : through) seeds.push_back(probe.coordinates(x)), on_plane.push_back(seeds.back());
+  const std::vector<Plane> planes{pl};
+  const std::vector<PlaneExtent> extents{PlaneExtent(pl, on_plane, seeds)};
+  out.planes = 1;
+  out.plane_normals.push_back(pl.n);
+  grow_masks(views, planes, extents, tolerance, out);
 }
 
 }  // namespace
@@ -470,12 +514,27 @@ GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views,
     out.score_widths.push_back(w);
   }
   out.fraction = out.covered > 0 ? double(out.detected) / double(out.covered) : 0.0;
+  if (s.mirror_world) {
+    std::vector<glm::vec3> surface, centres;
+    for (const ConsistencyView& v : views) {
+      centres.push_back(v.camera.center());
+      for (size_t p = 0; p < size_t(v.camera.width) * size_t(v.camera.height); ++p)
+        if (v.alpha[p] > 0.5f && v.depth[p] > 0) surface.push_back(surface_point(v, p));
+    }
+    out.mirror_world = find_mirror_world_plane(surface, centres);
+  }
   out.glossy = out.detected > 0 && out.fraction >= s.min_fraction;
   if (s.grow_planes && out.glossy) grow_on_planes(views, out, s);  // masks of a Lambertian scene stay the evidence
   // The method's case is a planar reflector (a table, a floor, a mirror): view-dependent pixels spread over
   // no plane - a varnished frame, fur or foliage that a warmed-up model has not settled - are left to the
   // radiance model, which shows them as well at a fraction of the cost.
   if (s.grow_planes && s.require_plane && out.glossy && out.planes == 0) out.glossy = false;
+  // Reflections the radiance model has already turned into a mirror world are photo-consistent: its
+  // geometry shows them instead.
+  if (!out.glossy && s.mirror_world && out.mirror_world.found) {
+    out.glossy = out.by_mirror_world = true;
+    if (s.grow_planes) grow_over_mirror_world(views, out, s);
+  }
   for (const auto& m : out.masks) out.in_masks += std::size_t(std::accumulate(m.begin(), m.end(), std::size_t(0)));
   return out;
 }

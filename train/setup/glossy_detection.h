@@ -45,6 +45,7 @@
 #include "render/raster/raster_types.h"
 #include "train/config/train_config.h"
 #include "train/loop/trainer.h"
+#include "train/setup/mirror_world_detection.h"
 
 namespace goris {
 
@@ -75,6 +76,10 @@ struct GlossyDetectionSettings {
   // in front of it (39 %). See evidence_in_front in glossy_detection.cpp.
   float plane_max_in_front = 0.25f;
   bool require_plane = true;      // glossy only when the detections lie on a plane (with grow_planes)
+  // Also glossy when the model holds a mirror world behind a plane (mirror_world_detection.h): a clear mirror whose
+  // reflections the model has made photo-consistent geometry. The masks then cover that plane and what is
+  // seen through it.
+  bool mirror_world = true;
 
   // The settings of a run (IntrinsicSettings::detect_*).
   static GlossyDetectionSettings from_config(const TrainConfig& config);
@@ -106,6 +111,8 @@ struct GlossyDetection {
   std::size_t on_planes = 0;      // pixels the growing added because their surface point lies on a plane
   std::size_t behind_planes = 0;  // ... because it lies behind a plane, seen through it (a mirror world)
   std::size_t in_masks = 0;  // pixels in the final masks (grown)
+  MirrorWorldPlane mirror_world;  // the model's geometry behind a plane, mirroring what stands in front (mirror_world_detection.h)
+  bool by_mirror_world = false;  // glossy by the mirror world alone (the photos' evidence said radiance)
 };
 
 // The `k` views whose camera directions are nearest to view i's (largest dot product), nearest first.
