@@ -62,8 +62,8 @@ T median_of(std::vector<T> v) {
 
 }  // namespace
 
-MirrorWorldPlane find_mirror_world_plane(const std::vector<glm::vec3>& all_points, const std::vector<glm::vec3>& cameras,
-                              const MirrorWorldPlaneSettings& s) {
+MirrorWorldPlane find_mirror_world_plane(const std::vector<glm::vec3>& all_points,
+                                         const std::vector<glm::vec3>& cameras, const MirrorWorldPlaneSettings& s) {
   MirrorWorldPlane out;
   // At most max_points of them, picked by a fixed hash of their index (no stride that a regular pattern in
   // the input could alias with).
