@@ -194,7 +194,7 @@ std::string AutoDecision::message() const {
   const std::string grown = planes > 0 ? ", grown over " + std::to_string(planes) + (planes == 1 ? " plane" : " planes") +
                                              " to " + percent(covered ? double(mask_pixels) / double(covered) : 0.0)
                                        : "";
-  const std::string why = mirror_world ? "a mirror world behind a plane (" + found + grown + ")" : "glossy regions (" + found + grown + ")";
+  const std::string why = (mirror_world ? "a mirror world behind a plane (" : "glossy regions (") + found + grown + ")";
   return "--mode auto after iteration " + std::to_string(iteration) + ": " +
          (glossy ? why + " -> intrinsic from now on with the masks in " + mask_dir.string()
                  : "no glossy regions (" + found +

@@ -33,6 +33,7 @@
 //
 // A radiance model explains mirror reflections by virtual geometry behind the surface, which is
 // photo-consistent; the detection relies on the reflections the model has not (yet) turned into geometry.
+// Where it has, that geometry is found instead: a mirror world (mirror_world_detection.h).
 // Thresholds are in IntrinsicSettings (detect_*), tuned on the GOR-IS-style data sets
 // (docs/lab/bench/NOTES.md, 2026-11-22).
 #include <cstddef>
@@ -76,9 +77,9 @@ struct GlossyDetectionSettings {
   // in front of it (39 %). See evidence_in_front in glossy_detection.cpp.
   float plane_max_in_front = 0.25f;
   bool require_plane = true;      // glossy only when the detections lie on a plane (with grow_planes)
-  // Also glossy when the model holds a mirror world behind a plane (mirror_world_detection.h): a clear mirror whose
-  // reflections the model has made photo-consistent geometry. The masks then cover that plane and what is
-  // seen through it.
+  // Also glossy when the model holds a mirror world behind a plane (mirror_world_detection.h): a clear
+  // mirror whose reflections the model has made photo-consistent geometry. The masks then cover that plane
+  // and what is seen through it.
   bool mirror_world = true;
 
   // The settings of a run (IntrinsicSettings::detect_*).
@@ -111,8 +112,8 @@ struct GlossyDetection {
   std::size_t on_planes = 0;      // pixels the growing added because their surface point lies on a plane
   std::size_t behind_planes = 0;  // ... because it lies behind a plane, seen through it (a mirror world)
   std::size_t in_masks = 0;  // pixels in the final masks (grown)
-  MirrorWorldPlane mirror_world;  // the model's geometry behind a plane, mirroring what stands in front (mirror_world_detection.h)
-  bool by_mirror_world = false;  // glossy by the mirror world alone (the photos' evidence said radiance)
+  MirrorWorldPlane mirror_world;  // geometry behind a plane mirroring what stands in front (mirror_world_detection.h)
+  bool by_mirror_world = false;   // glossy by the mirror world alone (the photos' evidence said radiance)
 };
 
 // The `k` views whose camera directions are nearest to view i's (largest dot product), nearest first.
