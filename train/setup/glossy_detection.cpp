@@ -12,6 +12,7 @@
 #include "core/compute/parallel_for.h"
 #include "core/io/image.h"
 #include "core/util/error.h"
+#include "core/util/median.h"
 #include "render/raster/rasterizer.h"
 #include "train/run/train_setup.h"
 
@@ -449,24 +450,22 @@ void grow_over_mirror_world(const std::vector<ConsistencyView>& views, GlossyDet
                             const GlossyDetectionSettings& s) {
   const MirrorWorldPlane& mw = out.mirror_world;
   const Plane pl{mw.normal, -mw.height};
+  std::vector<glm::vec3> points, eyes;  // every covered surface point and the camera that sees it
   std::vector<float> dist;
-  std::vector<glm::vec3> on, through;
   for (const ConsistencyView& v : views)
     for (size_t p = 0; p < size_t(v.camera.width) * size_t(v.camera.height); ++p)
-      if (v.alpha[p] > 0.5f && v.depth[p] > 0) dist.push_back(glm::length(surface_point(v, p) - v.camera.center()));
+      if (v.alpha[p] > 0.5f && v.depth[p] > 0) {
+        points.push_back(surface_point(v, p));
+        eyes.push_back(v.camera.center());
+        dist.push_back(glm::length(points.back() - eyes.back()));
+      }
   if (dist.empty()) return;
-  std::nth_element(dist.begin(), dist.begin() + long(dist.size() / 2), dist.end());
-  const float tolerance = s.plane_tolerance * dist[dist.size() / 2];
-  for (const ConsistencyView& v : views) {
-    const glm::vec3 eye = v.camera.center();
-    const float se = glm::dot(pl.n, eye) + pl.d;
-    for (size_t p = 0; p < size_t(v.camera.width) * size_t(v.camera.height); ++p) {
-      if (!(v.alpha[p] > 0.5f) || !(v.depth[p] > 0)) continue;
-      const glm::vec3 x = surface_point(v, p);
-      const float sx = glm::dot(pl.n, x) + pl.d;
-      if (std::abs(sx) <= tolerance) on.push_back(x);
-      else if (se * sx < 0) through.push_back(eye + (se / (se - sx)) * (x - eye));
-    }
+  const float tolerance = s.plane_tolerance * median_of(std::move(dist));
+  std::vector<glm::vec3> on, through;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const float se = glm::dot(pl.n, eyes[k]) + pl.d, sx = glm::dot(pl.n, points[k]) + pl.d;
+    if (std::abs(sx) <= tolerance) on.push_back(points[k]);
+    else if (se * sx < 0) through.push_back(eyes[k] + (se / (se - sx)) * (points[k] - eyes[k]));
   }
   PlaneExtent probe(pl, {}, {});
   std::vector<glm::vec2> on_plane, seeds;

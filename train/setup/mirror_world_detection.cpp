@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/scene/cap_directions.h"
+#include "core/util/median.h"
 
 namespace goris {
 
@@ -53,12 +54,6 @@ struct Candidate {
   // How much and how purely: the mirrored points above chance, times that share.
   double score() const { return behind ? share() * (double(mirrored) - double(chance)) : -1.0; }
 };
-
-template <class T>
-T median_of(std::vector<T> v) {
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
