@@ -108,10 +108,11 @@ std::vector<SyntheticView> rig_views(const SyntheticScene& s) {
   return out;
 }
 
-GlossyDetection detect(const std::vector<SyntheticView>& views, const GlossyDetectionSettings& s = {}) {
+GlossyDetection detect(const std::vector<SyntheticView>& views, const GlossyDetectionSettings& s = {},
+                       int model_gaussians = -1) {
   std::vector<ConsistencyView> cv;
   for (const SyntheticView& v : views) cv.push_back({v.camera, v.image.data(), v.depth.data(), v.alpha.data()});
-  return detect_glossy_regions(cv, s);
+  return detect_glossy_regions(cv, s, model_gaussians);
 }
 
 TEST(GlossyDetection, LambertianPlaneIsConsistent) {
@@ -401,6 +402,19 @@ TEST(GlossyDetection, AMirrorWorldIsGlossyWithoutEvidenceInThePhotos) {
   }
   EXPECT_GT(double(disc_marked), 0.9 * double(disc));
   EXPECT_LT(double(ball_marked), 0.05 * double(ball));
+}
+
+TEST(GlossyDetection, AModelThatHasNotDensifiedHasNoMirrorWorld) {
+  // The same geometry said to come from a model of a few hundred Gaussians (a run stopped before it
+  // densified): its surfaces are blobs that mirror one another by chance, so the search is not run.
+  const std::vector<SyntheticView> views = mirror_world_views();
+  const int enough = GlossyDetectionSettings{}.mirror_world_min_gaussians;
+  const GlossyDetection few = detect(views, {}, enough / 5);
+  EXPECT_FALSE(few.glossy);
+  EXPECT_FALSE(few.mirror_world.found);
+  EXPECT_NE(few.mirror_world.summary.find("not searched"), std::string::npos) << few.mirror_world.summary;
+  const GlossyDetection many = detect(views, {}, enough);
+  EXPECT_TRUE(many.glossy && many.by_mirror_world) << many.mirror_world.summary;
 }
 
 TEST(GlossyDetection, NearestViewsFollowTheCameraDirection) {

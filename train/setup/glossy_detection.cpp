@@ -480,7 +480,8 @@ void grow_over_mirror_world(const std::vector<ConsistencyView>& views, GlossyDet
 
 }  // namespace
 
-GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views, const GlossyDetectionSettings& s) {
+GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views, const GlossyDetectionSettings& s,
+                                      int model_gaussians) {
   if (s.neighbours < 1 || s.neighbours > 16) throw Error("glossy detection: neighbours must lie in 1..16");
   std::vector<Camera> cameras;
   for (size_t i = 0; i < views.size(); ++i) {
@@ -513,7 +514,11 @@ GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views,
     out.score_widths.push_back(w);
   }
   out.fraction = out.covered > 0 ? double(out.detected) / double(out.covered) : 0.0;
-  if (s.mirror_world) {
+  if (s.mirror_world && model_gaussians >= 0 && model_gaussians < s.mirror_world_min_gaussians) {
+    out.mirror_world.summary = "not searched: the model holds " + std::to_string(model_gaussians) +
+                               " Gaussians, fewer than " + std::to_string(s.mirror_world_min_gaussians) +
+                               " (not densified yet: blobs, not geometry)";
+  } else if (s.mirror_world) {
     std::vector<glm::vec3> surface, centres;
     for (const ConsistencyView& v : views) {
       centres.push_back(v.camera.center());
@@ -563,7 +568,7 @@ GlossyDetection detect_glossy_regions(const GaussianView& gaussians, const std::
     work[i].alpha = r.gbuffer.alpha.to_host();
     cv_views[i] = {cam, work[i].image.data(), work[i].depth.data(), work[i].alpha.data()};
   }
-  GlossyDetection out = detect_glossy_regions(cv_views, s);
+  GlossyDetection out = detect_glossy_regions(cv_views, s, gaussians.count);
   // Masks back at the views' sizes (bilinear, then > 0.5); the counts and the decision stay those of the
   // working size.
   for (size_t i = 0; i < views.size(); ++i) {

@@ -81,6 +81,11 @@ struct GlossyDetectionSettings {
   // mirror whose reflections the model has made photo-consistent geometry. The masks then cover that plane
   // and what is seen through it.
   bool mirror_world = true;
+  // ... searched only in a model of at least this many Gaussians. A run stopped before it densified holds a
+  // few hundred large blobs round its SfM points, whose smooth surfaces mirror each other through some plane
+  // by chance (a 10-iteration run of a Lambertian lego capture: 192 Gaussians, 62 % of the points behind a
+  // tilted plane mirrored); the suites' runs hold tens of thousands.
+  int mirror_world_min_gaussians = 1000;
 
   // The settings of a run (IntrinsicSettings::detect_*).
   static GlossyDetectionSettings from_config(const TrainConfig& config);
@@ -119,9 +124,11 @@ struct GlossyDetection {
 // The `k` views whose camera directions are nearest to view i's (largest dot product), nearest first.
 std::vector<int> nearest_views(const std::vector<Camera>& cameras, int i, int k);
 
-// The criterion on given photos and geometry (all views of one scene). Throws goris::Error for views
-// without images or with distorted cameras.
-GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views, const GlossyDetectionSettings& s);
+// The criterion on given photos and geometry (all views of one scene); `model_gaussians`: the size of the
+// model the geometry comes from (s.mirror_world_min_gaussians; -1 = not a model's, no minimum). Throws
+// goris::Error for views without images or with distorted cameras.
+GlossyDetection detect_glossy_regions(const std::vector<ConsistencyView>& views, const GlossyDetectionSettings& s,
+                                      int model_gaussians = -1);
 
 // The same on a model: renders every view's median depth and alpha (rasterizer, `raster` settings, on
 // `device`) at min(width, s.work_width) and compares the views' photos there; the masks come back at
