@@ -29,6 +29,7 @@ struct Options {
   std::vector<std::string> ablate;
   int iters = 0;
   double view_fill = RemovalOptions{}.view_fill_weight;
+  double textured_material_weight = RemovalOptions{}.textured_material_weight;
 };
 
 void run_remove(const Options& o) {
@@ -41,6 +42,7 @@ void run_remove(const Options& o) {
   }
   ro.finetune_iterations = o.iters;
   ro.view_fill_weight = float(o.view_fill);
+  ro.textured_material_weight = float(o.textured_material_weight);
   ro.lighting_relative_fresnel = o.lighting_fresnel == "relative";
   ro.dereflect_lighting = o.lighting_targets == "dereflect";
   ro.device = enum_from_name<DeviceChoice>(o.device).value();  // --device's check accepts only the names
@@ -122,6 +124,13 @@ void setup_remove(CLI::App& root) {
   c->add_option("--view-fill", o->view_fill,
                 "Weight of every other view's own 2D fill of its hole in the fine-tune, where no lifted reference "
                 "point lands (0 = the reference views alone)")
+      ->capture_default_str()
+      ->check(cli::real(0.0, 10.0));
+  c->add_option("--textured-material-weight", o->textured_material_weight,
+                "Factor on the material targets' weight where the glossy surface's own colour is textured (its "
+                "detail round the hole above " +
+                    std::to_string(SurfaceDetailSettings{}.textured_above).substr(0, 4) +
+                    "): a smooth fill of a veined surface is a wrong target there")
       ->capture_default_str()
       ->check(cli::real(0.0, 10.0));
   c->add_option("--fill-truth", o->fill_truth,

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/util/gaussian_filter.h"
+
 namespace goris {
 namespace {
 
@@ -53,25 +55,6 @@ std::vector<uint8_t> dilate_square(const std::vector<uint8_t>& m, int w, int h, 
   return out;
 }
 
-// Separable 1D Gaussian filter along rows then columns, zero outside the image (as a "same" conv2d).
-void gauss_zero_pad(const double* src, double* dst, double* tmp, int w, int h, const std::vector<double>& k) {
-  const int r = int(k.size() / 2);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double acc = 0;
-      for (int i = std::max(0, r - x); i < int(k.size()) && x + i - r < w; ++i)
-        acc += k[i] * src[size_t(y) * w + x + i - r];
-      tmp[size_t(y) * w + x] = acc;
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double acc = 0;
-      for (int i = std::max(0, r - y); i < int(k.size()) && y + i - r < h; ++i)
-        acc += k[i] * tmp[size_t(y + i - r) * w + x];
-      dst[size_t(y) * w + x] = acc;
-    }
-}
-
 }  // namespace
 
 ChangedRegion changed_region(const float* before, const float* after, int width, int height,
@@ -108,13 +91,7 @@ std::vector<float> ssim_map(const float* a, const float* b, int width, int heigh
   check(b, width, height, "ssim_map");
   constexpr int kWindow = 11;
   constexpr double kSigma = 1.5, kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;
-  std::vector<double> k(kWindow);
-  double ksum = 0;
-  for (int i = 0; i < kWindow; ++i) {
-    const double d = i - kWindow / 2;
-    ksum += k[i] = std::exp(-d * d / (2 * kSigma * kSigma));
-  }
-  for (double& v : k) v /= ksum;
+  const std::vector<double> k = gaussian_kernel(kSigma, kWindow / 2);
 
   const size_t n = size_t(width) * height;
   std::vector<double> x(n), y(n), xx(n), yy(n), xy(n), tmp(n);
@@ -127,11 +104,11 @@ std::vector<float> ssim_map(const float* a, const float* b, int width, int heigh
       yy[p] = y[p] * y[p];
       xy[p] = x[p] * y[p];
     }
-    gauss_zero_pad(x.data(), mx.data(), tmp.data(), width, height, k);
-    gauss_zero_pad(y.data(), my.data(), tmp.data(), width, height, k);
-    gauss_zero_pad(xx.data(), sxx.data(), tmp.data(), width, height, k);
-    gauss_zero_pad(yy.data(), syy.data(), tmp.data(), width, height, k);
-    gauss_zero_pad(xy.data(), sxy.data(), tmp.data(), width, height, k);
+    gaussian_filter_zero_pad(x.data(), mx.data(), tmp.data(), width, height, k);
+    gaussian_filter_zero_pad(y.data(), my.data(), tmp.data(), width, height, k);
+    gaussian_filter_zero_pad(xx.data(), sxx.data(), tmp.data(), width, height, k);
+    gaussian_filter_zero_pad(yy.data(), syy.data(), tmp.data(), width, height, k);
+    gaussian_filter_zero_pad(xy.data(), sxy.data(), tmp.data(), width, height, k);
     for (size_t p = 0; p < n; ++p) {
       const double m1 = mx[p], m2 = my[p];
       const double v1 = sxx[p] - m1 * m1, v2 = syy[p] - m2 * m2, cov = sxy[p] - m1 * m2;

@@ -45,6 +45,7 @@
 #include "removal/lift/lift.h"
 #include "removal/masks/lighting_aware_mask.h"
 #include "removal/lift/plane_depth.h"
+#include "removal/lift/surface_detail.h"
 #include "removal/lift/reference_views.h"
 #include "removal/masks/removed_glossy_masks.h"
 #include "removal/shadow/target_shadow_scene.h"
@@ -516,6 +517,21 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         ft.input.glossy_mask_dir = (out / "glossy_masks").string();
       }
     }
+    if (materials) {  // surface_detail.h: a textured glossy surface trusts its smooth material fill less
+      std::vector<std::optional<double>> detail;
+      for (const int v : choice.views) {
+        const TrainView& tv = views[std::size_t(v)];
+        if (tv.glossy_mask.empty()) continue;
+        MapSet maps = render_removed_maps(split.kept, cameras[std::size_t(v)], raster);
+        if (relit.fit.found) relight_image(maps.rgb, relit.pixels[std::size_t(v)], relit.s[std::size_t(v)], relit.fit);
+        detail.push_back(surface_detail_rms(maps.rgb, tv.glossy_mask, holes[std::size_t(v)].mask, o.surface_detail));
+      }
+      if (const auto d = median_surface_detail(detail)) {
+        report.surface_detail = *d;
+        if (*d > o.surface_detail.textured_above) ft.inpaint.material_weight *= o.textured_material_weight;
+      }
+    }
+    report.material_weight = ft.inpaint.material_weight;
     std::vector<Mask> exclude(views.size());
     std::vector<FinetuneViewInputs> inputs(views.size());
     std::vector<ReferenceTargets> refs;
@@ -554,6 +570,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     nlohmann::json finetune_from = made_from;
     finetune_from["materials"] = materials;
     finetune_from["iterations"] = iters;
+    finetune_from["material_weight"] = ft.inpaint.material_weight;
     const fs::path record = out / "made_from.json";
     auto resume = latest_checkpoint(out);
     const bool earlier = resume || fs::exists(run_ply_path(out)) || fs::exists(out / "report.json");
@@ -615,6 +632,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
     j["glossy_mask_filled_pixels"] = report.glossy_filled_pixels;
     j["reference_views"] = report.reference_views;
+    j["material_targets"] = {{"surface_detail", report.surface_detail}, {"weight", report.material_weight}};
     j["finetune_iterations"] = report.finetune_iterations;
     j["finetune_targets"] = {{"excluded_pixels", fs_stats.excluded_pixels},
                              {"appearance_pixels", fs_stats.appearance_pixels},

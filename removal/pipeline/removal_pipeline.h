@@ -44,6 +44,7 @@
 #include "core/compute/device_choice.h"
 #include "core/scene/mirror_twins.h"
 #include "removal/lift/photo_truth_error.h"
+#include "removal/lift/surface_detail.h"
 
 namespace goris {
 
@@ -67,6 +68,11 @@ struct RemovalOptions {
   // point lands (finetune_views.h; the reference views' own weight is 1). 0 = only the reference views and
   // their points supervise the hole, and novel views between them keep what stage 1 had behind the target.
   float view_fill_weight = 1.0f;
+  // The material targets' weight (TrainConfig's inpaint_material_weight) is multiplied by this on a glossy
+  // surface whose own colour has more detail than surface_detail.textured_above (removal/lift/surface_detail.h):
+  // a smooth fill of a veined surface's base colour is a wrong target there. 1 = the same weight everywhere.
+  float textured_material_weight = 0.3f;
+  SurfaceDetailSettings surface_detail;
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the
@@ -102,6 +108,10 @@ struct RemovalReport {
   std::size_t reflection_pixels = 0;  // the mirrored target on the glossy surface (planar_reflection.h), all views
   std::size_t lift_onto_plane_pixels = 0;  // reference-view hole pixels moved onto the glossy plane (plane_depth.h)
   std::size_t glossy_filled_pixels = 0;  // glossy-mask pixels filled under the target (removed_glossy_masks.h)
+  // The glossy surface's own detail round the hole (surface_detail.h; the reference views' median; < 0: not
+  // measured) and the material targets' weight the fine-tune used.
+  double surface_detail = -1;
+  float material_weight = 1.0f;
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
   bool shadow_found = false;                // the target's cast shadow (removal/shadow/target_shadow.h)
