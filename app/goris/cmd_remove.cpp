@@ -18,6 +18,7 @@
 #include "app/cli_common/stop_signals.h"
 #include "core/compute/device.h"
 #include "core/util/error.h"
+#include "core/util/number_text.h"
 #include "removal/pipeline/removal_pipeline.h"
 
 namespace {
@@ -129,7 +130,7 @@ void setup_remove(CLI::App& root) {
   c->add_option("--textured-material-weight", o->textured_material_weight,
                 "Factor on the material targets' weight where the glossy surface's own colour is textured (its "
                 "detail round the hole above " +
-                    std::to_string(SurfaceDetailSettings{}.textured_above).substr(0, 4) +
+                    limit_text(SurfaceDetailSettings{}.textured_above) +
                     "): a smooth fill of a veined surface is a wrong target there")
       ->capture_default_str()
       ->check(cli::real(0.0, 10.0));
