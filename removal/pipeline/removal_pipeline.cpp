@@ -380,6 +380,19 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       if (!is_reference[v] && count_set(holes[v].mask) > 0) fill_views.push_back(v);
   }
   std::vector<MapSet> inpainted(choice.views.size() + fill_views.size());
+  // surface_detail.h: a textured glossy surface trusts its smooth material fill less. Measured on the reference
+  // views' removed maps where step 5 renders them, against the glossy masks the fine-tune will train with
+  // (filled under the target, step 7); a cached step 5 leaves them for step 7 to render.
+  const bool glossfill = intrinsic && !o.ablate.count("glossfill");
+  std::vector<std::optional<double>> reference_detail(choice.views.size());
+  std::vector<bool> reference_detail_measured(choice.views.size(), false);
+  auto measure_detail = [&](std::size_t k, const Image& removed_rgb) {
+    const std::size_t v = std::size_t(choice.views[k]);
+    if (views[v].glossy_mask.empty()) return;
+    const std::vector<float> g = glossfill ? removed_glossy_mask(views[v], holes[v]) : views[v].glossy_mask;
+    reference_detail[k] = surface_detail_rms(removed_rgb, g, holes[v].mask, o.surface_detail);
+    reference_detail_measured[k] = true;
+  };
   {
     StepScope s(report, RemovalStep::Inpaint2D, on_progress);
     const fs::path dir = out / "inpainted";
@@ -442,6 +455,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         }
         MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
         if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
+        if (reference && materials) measure_detail(k, maps.rgb);
         maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
         if (!materials) {
           maps.normal = Image();
@@ -509,7 +523,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
     const int iters = o.finetune_iterations > 0 ? o.finetune_iterations
                                                 : std::max(100, config.scaled_iteration(4000));
     TrainConfig ft = finetune_config(config, iters);
-    if (intrinsic && !o.ablate.count("glossfill")) {  // removed_glossy_masks.h: no ghost where the target stood
+    if (glossfill) {  // removed_glossy_masks.h: no ghost where the target stood
       report.glossy_filled_pixels = fill_removed_glossy_masks(views, holes);
       // A glossy_mask_dir must hold every view's mask (load_glossy_mask_folder), so only a complete set is written.
       if (std::all_of(views.begin(), views.end(), [](const TrainView& v) { return !v.glossy_mask.empty(); })) {
@@ -517,14 +531,18 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         ft.input.glossy_mask_dir = (out / "glossy_masks").string();
       }
     }
-    if (materials) {  // surface_detail.h: a textured glossy surface trusts its smooth material fill less
+    if (materials) {  // the measure of step 5 (a cached step 5: rendered here, the masks already filled)
       std::vector<std::optional<double>> detail;
-      for (const int v : choice.views) {
-        const TrainView& tv = views[std::size_t(v)];
+      for (std::size_t k = 0; k < choice.views.size(); ++k) {
+        const std::size_t v = std::size_t(choice.views[k]);
+        const TrainView& tv = views[v];
         if (tv.glossy_mask.empty()) continue;
-        MapSet maps = render_removed_maps(split.kept, cameras[std::size_t(v)], raster);
-        if (relit.fit.found) relight_image(maps.rgb, relit.pixels[std::size_t(v)], relit.s[std::size_t(v)], relit.fit);
-        detail.push_back(surface_detail_rms(maps.rgb, tv.glossy_mask, holes[std::size_t(v)].mask, o.surface_detail));
+        if (!reference_detail_measured[k]) {
+          MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
+          if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);
+          reference_detail[k] = surface_detail_rms(maps.rgb, tv.glossy_mask, holes[v].mask, o.surface_detail);
+        }
+        detail.push_back(reference_detail[k]);
       }
       if (const auto d = median_surface_detail(detail)) {
         report.surface_detail = *d;
