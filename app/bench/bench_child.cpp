@@ -153,7 +153,7 @@ StepRun run_child(const std::string& step, std::vector<std::string> args, const 
 Metrics::Metrics()
     : psnr(std::nan("")), ssim(std::nan("")), m_psnr(std::nan("")), m_ssim(std::nan("")), gaussians(std::nan("")),
       region_psnr(std::nan("")), region_ssim(std::nan("")), region_flip(std::nan("")), ghost_ratio(std::nan("")),
-      ghost_floor(std::nan("")), flip(std::nan("")), region_fraction(std::nan("")) {}
+      ghost_floor(std::nan("")), flip(std::nan("")), region_fraction(std::nan("")), stage1_glossy_share(std::nan("")) {}
 
 Metrics read_metrics(const fs::path& metrics_json) {
   const json j = read_json_object(metrics_json);
@@ -168,6 +168,7 @@ Metrics read_metrics(const fs::path& metrics_json) {
     m.region_flip = json_number(r, "region_flip"), m.ghost_ratio = json_number(r, "ghost_ratio");
     m.region_fraction = json_number(r, "region_fraction"), m.ghost_floor = json_number(r, "ghost_floor");
   }
+  if (j.contains("reflections")) m.stage1_glossy_share = json_number(j["reflections"], "stage1_glossy_share");
   return m;
 }
 

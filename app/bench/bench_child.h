@@ -49,6 +49,9 @@ struct Metrics {
   // FLIP inside the changed region, the ghost ratio over it, its floor (stage 1's own distance from the views
   // with the target there, in the same units), and FLIP over the whole image.
   double region_psnr, region_ssim, region_flip, ghost_ratio, ghost_floor, flip, region_fraction;
+  // For a removal of an intrinsic run: the share of the glossy surface's colour that stage 1's glossy term
+  // carries (goris eval's "reflections" block, train/intrinsic/glossy_share.h).
+  double stage1_glossy_share;
   std::string device;  // the device the evaluation rendered on
   Metrics();
 };

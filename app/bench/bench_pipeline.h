@@ -73,6 +73,7 @@ struct Row {
   double region_psnr = std::nan(""), region_ssim = std::nan(""), region_flip = std::nan(""), flip = std::nan(""),
          ghost_ratio = std::nan("");
   double ghost_floor = std::nan("");  // stage 1's own part of the ghost (goris eval); NaN in older results
+  double stage1_glossy_share = std::nan("");  // Metrics::stage1_glossy_share; NaN for radiance runs and older results
   double train_s = 0, select_s = 0, remove_s = 0, export_s = 0, eval_s = 0, peak_mib = 0;
   double peak_device_mib = 0;   // CUDA memory in use at the peak of any step (0 on the CPU)
   double cpu_s = std::nan("");  // CPU seconds of train + select + remove (+ export); NaN in older results

@@ -106,7 +106,8 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
   for (int k = 0; k < goris::kRemovalStepCount; ++k) steps.push_back(goris::removal_step_name(goris::RemovalStep(k)));
 
   std::string csv = "scene,config,schedule,status,device,train_iters,remove_iters,gaussians,psnr,ssim,m_psnr,m_ssim,"
-                    "region_psnr,region_ssim,region_flip,flip,ghost_ratio,ghost_floor,train_s,select_s,remove_s";
+                    "region_psnr,region_ssim,region_flip,flip,ghost_ratio,ghost_floor,stage1_glossy_share,train_s,select_s,"
+                    "remove_s";
   for (const auto& s : steps) csv += "," + step_column(s);
   csv += ",export_s,eval_s,total_s,cpu_s,peak_host_mib,peak_device_mib,reused,error,note\n";
   for (const Row& r : rows) {
@@ -115,7 +116,8 @@ void Bench::write_outputs(const std::vector<Row>& rows, bool final) const {
            fmt(r.gaussians, "%.0f") + "," + fmt(r.psnr, "%.3f") + "," + fmt(r.ssim, "%.4f") + "," +
            fmt(r.m_psnr, "%.3f") + "," + fmt(r.m_ssim, "%.4f") + "," + fmt(r.region_psnr, "%.3f") + "," +
            fmt(r.region_ssim, "%.4f") + "," + fmt(r.region_flip, "%.4f") + "," + fmt(r.flip, "%.4f") + "," +
-           fmt(r.ghost_ratio, "%.3f") + "," + fmt(r.ghost_floor, "%.3f") + "," + fmt(r.train_s, "%.2f") + "," +
+           fmt(r.ghost_ratio, "%.3f") + "," + fmt(r.ghost_floor, "%.3f") + "," + fmt(r.stage1_glossy_share, "%.3f") + "," +
+           fmt(r.train_s, "%.2f") + "," +
            fmt(r.select_s, "%.2f") + "," + fmt(r.remove_s, "%.2f");
     for (const auto& s : steps) csv += "," + (r.remove_steps.count(s) ? fmt(r.remove_steps.at(s), "%.2f") : "");
     csv += "," + fmt(r.export_s, "%.2f") + "," + fmt(r.eval_s, "%.2f") + "," + fmt(r.total_s(), "%.2f") + "," +
@@ -220,7 +222,7 @@ void Bench::write_suite(const std::vector<Row>& rows, const std::map<std::string
       s.scene = r.scene, s.kind = kinds.at(r.scene), s.config = r.config, s.ok = r.status == "ok";
       s.psnr = r.psnr, s.region_psnr = r.region_psnr, s.region_ssim = r.region_ssim, s.region_flip = r.region_flip;
       s.flip = r.flip, s.ghost_ratio = r.ghost_ratio, s.seconds = axis.of(r);
-      s.ghost_floor = r.ghost_floor;
+      s.ghost_floor = r.ghost_floor, s.stage1_glossy_share = r.stage1_glossy_share;
       if (images.count(r.scene)) s.scene_images = images.at(r.scene);
       const fs::path sheet = fs::path("runs") / r.scene / sched / r.config / "run" / "removal" / "metrics_removal.png";
       if (fs::exists(out_ / sheet)) s.contact_sheet = sheet.string();

@@ -13,7 +13,8 @@ json row_json(const Row& r) {
           {"remove_s", r.remove_s}, {"export_s", r.export_s},     {"eval_s", r.eval_s},       {"peak_mib", r.peak_mib},
           {"peak_device_mib", r.peak_device_mib}, {"cpu_s", r.cpu_s},       {"remove_steps", r.remove_steps}, {"note", r.note},
           {"region_psnr", r.region_psnr}, {"region_ssim", r.region_ssim}, {"region_flip", r.region_flip},
-          {"flip", r.flip}, {"ghost_ratio", r.ghost_ratio}, {"ghost_floor", r.ghost_floor}};
+          {"flip", r.flip}, {"ghost_ratio", r.ghost_ratio}, {"ghost_floor", r.ghost_floor},
+          {"stage1_glossy_share", r.stage1_glossy_share}};
 }
 
 Row row_from_json(const json& j) {
@@ -28,6 +29,7 @@ Row row_from_json(const json& j) {
   r.eval_s = d("eval_s"), r.peak_mib = d("peak_mib"), r.cpu_s = d("cpu_s");
   r.region_psnr = d("region_psnr"), r.region_ssim = d("region_ssim"), r.region_flip = d("region_flip");
   r.flip = d("flip"), r.ghost_ratio = d("ghost_ratio"), r.ghost_floor = d("ghost_floor");
+  r.stage1_glossy_share = d("stage1_glossy_share");
   r.peak_device_mib = j.contains("peak_device_mib") ? d("peak_device_mib") : 0.0;
   if (j.contains("remove_steps") && j["remove_steps"].is_object())
     for (auto it = j["remove_steps"].begin(); it != j["remove_steps"].end(); ++it)

@@ -90,7 +90,7 @@ void Bench::evaluate(Row& r, const fs::path& run_dir, const fs::path& logs) {
   if (!ev.ok) throw Error(ev.error);
   r.psnr = m.psnr, r.ssim = m.ssim, r.m_psnr = m.m_psnr, r.m_ssim = m.m_ssim, r.gaussians = m.gaussians;
   r.region_psnr = m.region_psnr, r.region_ssim = m.region_ssim, r.region_flip = m.region_flip, r.flip = m.flip;
-  r.ghost_ratio = m.ghost_ratio, r.ghost_floor = m.ghost_floor;
+  r.ghost_ratio = m.ghost_ratio, r.ghost_floor = m.ghost_floor, r.stage1_glossy_share = m.stage1_glossy_share;
   r.device = m.device.empty() ? o_.device : m.device;
 }
 

@@ -199,7 +199,7 @@ std::string scene_images_fingerprint(const fs::path& scene) {
 
 SuiteResult::SuiteResult()
     : psnr(nan()), region_psnr(nan()), region_ssim(nan()), region_flip(nan()), flip(nan()), ghost_ratio(nan()),
-      seconds(nan()), ghost_floor(nan()) {}
+      seconds(nan()), ghost_floor(nan()), stage1_glossy_share(nan()) {}
 
 SuiteSummary summarize_suite(const std::string& suite, const std::string& schedule,
                              const std::vector<SuiteResult>& results, const std::string& reference) {
@@ -227,10 +227,12 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
         "sum |render - r_| / sum |full_ - r_| over it (1 = nothing removed, 0 = all of it). Floor: the same sum "
         "for stage 1's own render of the scene with the target against `full_`, over the imprint: how far the "
         "model the removal starts from already is from the photos there, a part of the ghost no removal through "
-        "that model takes away. FLIP: LDR-FLIP, 0 = identical. Delta: against `" + reference +
-        "` on the same scene.\n\n";
-  md += "| scene | kind | config | PSNR | region PSNR | Δ region | region SSIM | region FLIP | ghost | floor | time s | "
-        "time × |\n|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+        "that model takes away. G share: of the glossy surface's colour in the training views, the part an "
+        "intrinsic stage 1 renders in its traced glossy term G (C = D + (1 - M) G; the rest is in D, where removing "
+        "the target's Gaussians does not take its reflection away); - for a radiance stage 1. FLIP: LDR-FLIP, 0 = "
+        "identical. Delta: against `" + reference + "` on the same scene.\n\n";
+  md += "| scene | kind | config | PSNR | region PSNR | Δ region | region SSIM | region FLIP | ghost | floor | G share | "
+        "time s | time × |\n|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& s : scenes)
     for (const auto& c : configs) {
       const SuiteResult* r = at.count({s, c}) ? at[{s, c}] : nullptr;
@@ -242,8 +244,9 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
             (r->ok ? fmt(r->psnr, "%.2f") + " | " + fmt(r->region_psnr, "%.2f") + " | " + fmt(d, "%+.2f") + " | " +
                          fmt(r->region_ssim, "%.3f") + " | " + fmt(r->region_flip, "%.3f") + " | " +
                          fmt(r->ghost_ratio, "%.2f") + " | " + fmt(r->ghost_floor, "%.2f") + " | " +
+                         (std::isfinite(r->stage1_glossy_share) ? fmt(r->stage1_glossy_share, "%.2f") : "-") + " | " +
                          fmt(r->seconds, "%.0f") + " | " + fmt(tx, "%.2f")
-                   : std::string("failed | | | | | | | |")) +
+                   : std::string("failed | | | | | | | | |")) +
             " |\n";
       rows.push_back({{"scene", s},
                       {"kind", r->kind},
@@ -256,6 +259,7 @@ SuiteSummary summarize_suite(const std::string& suite, const std::string& schedu
                       {"flip", num(r->flip)},
                       {"ghost_ratio", num(r->ghost_ratio)},
                       {"ghost_floor", num(r->ghost_floor)},
+                      {"stage1_glossy_share", num(r->stage1_glossy_share)},
                       {"seconds", num(r->seconds)}});
       if (!r->scene_images.empty()) rows.back()["scene_images"] = r->scene_images;
     }

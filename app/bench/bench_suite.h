@@ -42,6 +42,9 @@ struct SuiteResult {
   bool ok = false;
   double psnr, region_psnr, region_ssim, region_flip, flip, ghost_ratio, seconds;
   double ghost_floor;  // stage 1's own share of the ghost (goris eval); NaN when not measured
+  // The share of the glossy surface's colour in stage 1's glossy term (goris eval's "reflections"); NaN for
+  // a radiance stage 1 or when not measured.
+  double stage1_glossy_share;
   std::string contact_sheet;  // relative to the bench folder; "" when none
   std::string scene_images;   // scene_images_fingerprint of the scene it ran on; "" when unknown
   SuiteResult();

@@ -19,7 +19,8 @@
 // get "intrinsic_ground_truth": normal angular error, roughness and F0 on the training views' glossy
 // surface (train/intrinsic/intrinsic_accuracy.h). Intrinsic runs on a data set with glossy masks get
 // "materials": roughness, F0 and M on the glossy surface against the rest, and how well roughness alone
-// separates the two (train/intrinsic/material_separation.h).
+// separates the two (train/intrinsic/material_separation.h), and "reflections": the share of the glossy
+// surface's colour the traced glossy term carries (train/intrinsic/glossy_share.h).
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -51,6 +52,7 @@
 #include "train/run/normal_prior.h"
 #include "train/intrinsic/intrinsic_accuracy.h"
 #include "train/intrinsic/material_separation.h"
+#include "train/intrinsic/glossy_share.h"
 #include "train/setup/run_renderer.h"
 #include "train/radiance/raster_renderer.h"
 
@@ -216,6 +218,16 @@ std::optional<MaterialSeparation> material_separation(const TrainConfig& config,
                     {"rest", material_stats_json(s.rest)},
                     {"roughness_auc", s.roughness_auc}};
   return s;
+}
+
+// An intrinsic model on a data set with glossy masks: how much of the glossy surface's colour the traced
+// glossy term carries (train/intrinsic/glossy_share.h); nullopt for a radiance model or without masks.
+std::optional<GlossyShare> glossy_share_of(const Dataset& ds, GaussianModel& model, DifferentiableRenderer& renderer) {
+  IntrinsicRenderer* intrinsic = as_intrinsic(&renderer);
+  if (!intrinsic) return std::nullopt;
+  const std::vector<TrainView> tv = glossy_train_views(ds);
+  if (tv.empty()) return std::nullopt;
+  return measure_glossy_share(*intrinsic, model.view(true), tv);
 }
 
 void run_eval(const Options& o) {
@@ -392,6 +404,19 @@ void run_eval(const Options& o) {
   const std::optional<IntrinsicAccuracy> acc = intrinsic_ground_truth(config, ds, model, device, j);
   const bool materials = config.mode == TrainMode::Intrinsic;
   const std::optional<MaterialSeparation> sep = material_separation(config, ds, model, device, j);
+  // "reflections": this model's share, and for a removal folder its stage-1 model's (the decomposition the
+  // removal started from).
+  const std::optional<GlossyShare> share = glossy_share_of(ds, model, *renderer);
+  const std::optional<GlossyShare> share1 = stage1 ? glossy_share_of(ds, stage1->model, *stage1->renderer)
+                                                   : std::nullopt;
+  auto share_json = [](const std::optional<GlossyShare>& g) {
+    return g && g->share() ? nlohmann::json(*g->share()) : nlohmann::json(nullptr);
+  };
+  if (share || share1)
+    j["reflections"] = {{"glossy_share", share_json(share)},
+                        {"stage1_glossy_share", share_json(share1)},
+                        {"where", "training views, glossy mask >= 0.5: sum (C - D) / sum C over their pixels and "
+                                  "RGB (C = D + (1 - M) G)"}};
   j["per_view"] = per_view;
 
   write_json_file(out, j);
@@ -422,6 +447,12 @@ void run_eval(const Options& o) {
                 "%.3f F0 %.3f M %.2f; roughness separates them with AUC %.2f\n",
                 sep->views, sep->glossy.roughness_median, sep->glossy.f0_median, sep->glossy.region_median,
                 sep->rest.roughness_median, sep->rest.f0_median, sep->rest.region_median, sep->roughness_auc);
+  if (share && share->share()) {
+    char s1[64] = "";
+    if (share1 && share1->share()) std::snprintf(s1, sizeof s1, "; stage 1: %.1f %%", 100 * *share1->share());
+    std::printf("reflections: the glossy term carries %.1f %% of the glossy surface's colour, D the rest%s\n",
+                100 * *share->share(), s1);
+  }
   std::printf("metrics: %s\n", out.string().c_str());
 }
 

@@ -120,6 +120,14 @@ string(JSON auc ERROR_VARIABLE auc_err GET "${metrics}" materials roughness_auc)
 if(auc_err OR auc LESS 0 OR auc GREATER 1 OR NOT OUT MATCHES "roughness separates them with AUC")
   message(FATAL_ERROR "eval reported no materials (${auc_err}):\n${OUT}\n${metrics}")
 endif()
+# ... and where its reflections live: the share of the glossy surface's colour in G, for the removed model and
+# its stage 1, both fractions of the rendered colour (C - D with D >= 0 and G >= 0 keeps them in [0, 1]).
+string(JSON share ERROR_VARIABLE share_err GET "${metrics}" reflections glossy_share)
+string(JSON share1 ERROR_VARIABLE share1_err GET "${metrics}" reflections stage1_glossy_share)
+if(share_err OR share1_err OR share LESS 0 OR share GREATER 1 OR share1 LESS 0 OR share1 GREATER 1
+   OR NOT OUT MATCHES "the glossy term carries [0-9.]+ % of the glossy surface's colour, D the rest; stage 1: [0-9.]+ %")
+  message(FATAL_ERROR "eval reported no glossy share (${share_err} ${share1_err}):\n${OUT}\n${metrics}")
+endif()
 goris_ok(render "${R}" --split test --out "${WORK}/renders" --maps --device cpu)
 expect_count("${WORK}/renders/r_000_glossy.png" 1)
 expect_count("${WORK}/renders/r_000_indirect_traced.png" 1)  # L_ind before the screen-space filter

@@ -111,8 +111,13 @@ TEST(BenchSuite, SummaryGivesMeanWorstAndGoals) {
   const SuiteSummary f = summarize_suite("generalization", "medium", rs, "baseline");
   EXPECT_NEAR(f.json["goals"]["default"]["worst_ghost_above_floor"].get<double>(), 0.1, 1e-9);
   EXPECT_EQ(f.json["goals"]["default"]["worst_ghost_above_floor_scene"], "b");
-  EXPECT_NE(f.markdown.find("| 0.25 | 0.15 |"), std::string::npos) << f.markdown;  // ghost | floor of b's default row
+  EXPECT_NE(f.markdown.find("| 0.25 | 0.15 | - |"), std::string::npos) << f.markdown;  // ghost | floor | G share of b's default row
   EXPECT_NE(f.markdown.find("| +0.10 (b) |"), std::string::npos) << f.markdown;
+  rs[3].stage1_glossy_share = 0.42;  // an intrinsic stage 1 whose glossy term carries 42 % of the glossy surface
+  const SuiteSummary gs = summarize_suite("generalization", "medium", rs, "baseline");
+  EXPECT_NE(gs.markdown.find("| 0.25 | 0.15 | 0.42 |"), std::string::npos) << gs.markdown;
+  EXPECT_NEAR(gs.json["rows"][3]["stage1_glossy_share"].get<double>(), 0.42, 1e-9);
+  EXPECT_TRUE(gs.json["rows"][2]["stage1_glossy_share"].is_null());  // b's baseline: a radiance stage 1
   rs[3].ghost_ratio = 0.3;  // a ghost left on one scene fails the goals
   EXPECT_FALSE(summarize_suite("generalization", "medium", rs, "baseline").json["goals"]["default"]["meets_goals"].get<bool>());
   rs[3].ghost_ratio = 0.2;
