@@ -36,6 +36,7 @@ expect_text("${baseline}" "default_scene,baseline,tiny,ok,cpu,30,10,")
 expect_text("${full}" "default_scene,full,tiny,ok,cpu,30,10,")
 # PSNR and the steps' CPU seconds are numbers (not empty) in both rows; on the CPU no step used GPU
 # memory, so the device peak is empty.
+cmake_policy(SET CMP0007 NEW)  # empty cells (a radiance run's G share) stay list elements: columns keep their index
 string(REPLACE "," ";" header_cells "${header}")
 list(FIND header_cells "cpu_s" cpu_col)
 foreach(row "${baseline}" "${full}")
@@ -49,6 +50,16 @@ foreach(row "${baseline}" "${full}")
     message(FATAL_ERROR "a CPU run reported device memory, or no host peak: ${row}")
   endif()
 endforeach()
+# Where the reflections live: the intrinsic stage 1's share of the glossy colour in G is a fraction; a radiance
+# stage 1 has none.
+list(FIND header_cells "stage1_glossy_share" share_col)
+string(REPLACE "," ";" cells "${baseline}")
+list(GET cells ${share_col} share_baseline)
+string(REPLACE "," ";" cells "${full}")
+list(GET cells ${share_col} share_full)
+if(share_col EQUAL -1 OR NOT share_baseline STREQUAL "" OR NOT share_full MATCHES "^0\\.[0-9]+$")
+  message(FATAL_ERROR "results.csv: G share '${share_baseline}' (baseline) and '${share_full}' (full):\n${header}\n${baseline}\n${full}")
+endif()
 # Every step's child was asked for its device peak (written only by processes that used GPU memory).
 if(NOT OUT MATCHES "peak [0-9]+ MiB")
   message(FATAL_ERROR "no per-step peak in the output:\n${OUT}")
