@@ -156,12 +156,13 @@ std::vector<TrainView> glossy_train_views(const Dataset& ds) {
   return tv;
 }
 
-std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& config, const Dataset& ds,
+// `glossy_views`: glossy_train_views(), read once per evaluation by the measures below.
+std::optional<IntrinsicAccuracy> intrinsic_ground_truth(const TrainConfig& config,
+                                                        const std::vector<TrainView>& glossy_views,
                                                         GaussianModel& model, Device device, nlohmann::json& j) {
   const auto gt_dir = ground_truth_normal_dir(config.input.data);
-  if (!gt_dir) return std::nullopt;
-  std::vector<TrainView> tv = glossy_train_views(ds);
-  if (tv.empty()) return std::nullopt;
+  if (!gt_dir || glossy_views.empty()) return std::nullopt;
+  std::vector<TrainView> tv = glossy_views;  // with the true normals added
   load_normal_priors(*gt_dir, tv);
   IntrinsicAccuracy acc;
   try {
@@ -199,11 +200,9 @@ nlohmann::json material_stats_json(const MaterialStats& m) {
 
 // Intrinsic runs on a data set with glossy masks: the materials on the glossy surface against the rest
 // (train/intrinsic/material_separation.h); j["materials"].
-std::optional<MaterialSeparation> material_separation(const TrainConfig& config, const Dataset& ds,
+std::optional<MaterialSeparation> material_separation(const TrainConfig& config, const std::vector<TrainView>& tv,
                                                       GaussianModel& model, Device device, nlohmann::json& j) {
-  if (config.mode != TrainMode::Intrinsic) return std::nullopt;
-  const std::vector<TrainView> tv = glossy_train_views(ds);
-  if (tv.empty()) return std::nullopt;
+  if (config.mode != TrainMode::Intrinsic || tv.empty()) return std::nullopt;
   MaterialSeparation s;
   try {
     s = measure_material_separation(model.view(true), tv, RasterRenderer::settings_for(config), device);
@@ -222,11 +221,10 @@ std::optional<MaterialSeparation> material_separation(const TrainConfig& config,
 
 // An intrinsic model on a data set with glossy masks: how much of the glossy surface's colour the traced
 // glossy term carries (train/intrinsic/glossy_share.h); nullopt for a radiance model or without masks.
-std::optional<GlossyShare> glossy_share_of(const Dataset& ds, GaussianModel& model, DifferentiableRenderer& renderer) {
+std::optional<GlossyShare> glossy_share_of(const std::vector<TrainView>& tv, GaussianModel& model,
+                                           DifferentiableRenderer& renderer) {
   IntrinsicRenderer* intrinsic = as_intrinsic(&renderer);
-  if (!intrinsic) return std::nullopt;
-  const std::vector<TrainView> tv = glossy_train_views(ds);
-  if (tv.empty()) return std::nullopt;
+  if (!intrinsic || tv.empty()) return std::nullopt;
   return measure_glossy_share(*intrinsic, model.view(true), tv);
 }
 
@@ -401,13 +399,14 @@ void run_eval(const Options& o) {
     if (rep.is_object() && rep.contains("peak_host_memory_mib")) j["removal_peak_host_memory_mib"] = rep["peak_host_memory_mib"];
   }
   j["stage_seconds"] = stages;
-  const std::optional<IntrinsicAccuracy> acc = intrinsic_ground_truth(config, ds, model, device, j);
+  const std::vector<TrainView> glossy_views = glossy_train_views(ds);
+  const std::optional<IntrinsicAccuracy> acc = intrinsic_ground_truth(config, glossy_views, model, device, j);
   const bool materials = config.mode == TrainMode::Intrinsic;
-  const std::optional<MaterialSeparation> sep = material_separation(config, ds, model, device, j);
+  const std::optional<MaterialSeparation> sep = material_separation(config, glossy_views, model, device, j);
   // "reflections": this model's share, and for a removal folder its stage-1 model's (the decomposition the
   // removal started from).
-  const std::optional<GlossyShare> share = glossy_share_of(ds, model, *renderer);
-  const std::optional<GlossyShare> share1 = stage1 ? glossy_share_of(ds, stage1->model, *stage1->renderer)
+  const std::optional<GlossyShare> share = glossy_share_of(glossy_views, model, *renderer);
+  const std::optional<GlossyShare> share1 = stage1 ? glossy_share_of(glossy_views, stage1->model, *stage1->renderer)
                                                    : std::nullopt;
   auto share_json = [](const std::optional<GlossyShare>& g) {
     return g && g->share() ? nlohmann::json(*g->share()) : nlohmann::json(nullptr);

@@ -386,11 +386,14 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   const bool glossfill = intrinsic && !o.ablate.count("glossfill");
   std::vector<std::optional<double>> reference_detail(choice.views.size());
   std::vector<bool> reference_detail_measured(choice.views.size(), false);
-  auto measure_detail = [&](std::size_t k, const Image& removed_rgb) {
+  // filled: removed_glossy_mask() of the view when the caller has it already.
+  auto measure_detail = [&](std::size_t k, const Image& removed_rgb, const std::vector<float>& filled) {
     const std::size_t v = std::size_t(choice.views[k]);
     if (views[v].glossy_mask.empty()) return;
-    const std::vector<float> g = glossfill ? removed_glossy_mask(views[v], holes[v]) : views[v].glossy_mask;
-    reference_detail[k] = surface_detail_rms(removed_rgb, g, holes[v].mask, o.surface_detail);
+    std::vector<float> own;
+    const std::vector<float>* g = &views[v].glossy_mask;
+    if (glossfill) g = !filled.empty() ? &filled : &(own = removed_glossy_mask(views[v], holes[v]));
+    reference_detail[k] = surface_detail_rms(removed_rgb, *g, holes[v].mask, o.surface_detail);
     reference_detail_measured[k] = true;
   };
   {
@@ -455,7 +458,8 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         }
         MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
         if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
-        if (reference && materials) measure_detail(k, maps.rgb);
+        std::vector<float> g = surface_fill ? removed_glossy_mask(views[v], holes[v]) : std::vector<float>();
+        if (reference && materials) measure_detail(k, maps.rgb, g);
         maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
         if (!materials) {
           maps.normal = Image();
@@ -473,7 +477,6 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         const Inpainter& fill_with = inpainter_for(reference);
         m = inpaint_map_set(fill_with, maps, holes[v].mask, name, mo);
         if (!reference) ++done;  // the depth map it skipped
-        std::vector<float> g = surface_fill ? removed_glossy_mask(views[v], holes[v]) : std::vector<float>();
         if (reference && lift_on_plane && !g.empty() && m.depth.channels == 1) {  // plane_depth.h: not into the air
           const Mask on_surface =
               mask_and(holes[v].mask, mask_from_values(g, cameras[v].width, cameras[v].height, 0.5f));
