@@ -11,6 +11,7 @@
 #include "core/compute/parallel_for.h"
 #include "render/ssf/conv_cpu_blocked.h"
 #include "render/ssf/conv_kernels.h"
+#include "render/ssf/pixel_window.h"
 
 namespace goris::ssf {
 
@@ -101,6 +102,26 @@ void sigmoid_forward(const T* z, T* y, std::size_t n) {
 template <Device D, class T>
 void sigmoid_backward(const T* y, T* g, std::size_t n) {
   parallel_for(D, n, [=] GORIS_HD(std::size_t i) { g[i] *= y[i] * (T(1) - y[i]); }, 8192);
+}
+
+// Between an image ([C][H][W] with row length `width`) and its window ([C][window rows][window columns]):
+// CopyOut: window = the image's pixels there; AddIn: the image's pixels there += window.
+enum class WindowOp { CopyOut, AddIn };
+
+template <Device D, WindowOp Op, class Image, class Window>
+void window_pass(Image* image, int channels, int width, int height, PixelWindow win, Window* window) {
+  const int ww = win.width(), wh = win.height();
+  const std::size_t plane = std::size_t(width) * std::size_t(height), wplane = std::size_t(ww) * std::size_t(wh);
+  // Explicit captures: nvcc's device lambdas may not first capture a variable inside `if constexpr`.
+  parallel_for(D, std::size_t(channels) * wplane, [image, window, plane, wplane, ww, win, width] GORIS_HD(std::size_t i) {
+    const std::size_t c = i / wplane, p = i % wplane;
+    const int y = int(p / std::size_t(ww)), x = int(p % std::size_t(ww));
+    const std::size_t at = c * plane + std::size_t(win.y0 + y) * std::size_t(width) + std::size_t(win.x0 + x);
+    if constexpr (Op == WindowOp::CopyOut)
+      window[i] = image[at];
+    else
+      image[at] += window[i];
+  }, 8192);
 }
 
 }  // namespace goris::ssf

@@ -58,6 +58,16 @@ struct Layers {
     if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::sigmoid_backward(y, g, n));
   }
   void add(const T* a, T* acc, std::size_t n) const { add_into(d, a, acc, n); }
+  void crop(const T* src, int channels, int width, int height, PixelWindow w, T* dst) const {
+    if (d == Device::CPU)
+      return window_pass<Device::CPU, WindowOp::CopyOut>(src, channels, width, height, w, dst);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::copy_window(src, channels, width, height, w, dst));
+  }
+  void add_to_window(const T* src, int channels, int width, int height, PixelWindow w, T* dst) const {
+    if (d == Device::CPU)
+      return window_pass<Device::CPU, WindowOp::AddIn>(dst, channels, width, height, w, src);
+    if constexpr (std::is_same_v<T, float>) GORIS_CUDA_CALL(kOp, cuda::add_window(src, channels, width, height, w, dst));
+  }
 };
 
 }  // namespace
@@ -106,24 +116,48 @@ ConvShape RoughnessNet<T>::shape(int l) const {
 }
 
 template <class T>
-void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buffer<T>& rs) {
+int RoughnessNet<T>::receptive_radius() const {
+  int r = 0;
+  for (const ConvShape& s : layers_) r += s.k / 2;
+  return r;
+}
+
+template <class T>
+void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buffer<T>& rs, const PixelWindow* window) {
   if (height < 1 || width < 1)
     throw Error(kOp, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const std::size_t plane = std::size_t(height) * std::size_t(width);
   check_buffer(kOp, "input", input, std::size_t(cfg_.in_channels) * plane, device_);
   check_finite(kOp, "input", input);
   check_finite(kOp, "parameters", params_);
-  h_ = height;
-  w_ = width;
+  PixelWindow win{0, 0, width, height};
+  if (window && !window->covers(width, height)) {
+    if (window->empty() || window->x0 < 0 || window->y0 < 0 || window->x1 > width || window->y1 > height)
+      throw Error(kOp, "window [" + std::to_string(window->x0) + ", " + std::to_string(window->x1) + ") x [" +
+                           std::to_string(window->y0) + ", " + std::to_string(window->y1) +
+                           ") is empty or outside the " + std::to_string(width) + "x" + std::to_string(height) +
+                           " image");
+    win = *window;
+  }
+  const bool whole = win.covers(width, height);
+  full_h_ = height;
+  full_w_ = width;
+  window_ = win;
+  h_ = win.height();
+  w_ = win.width();
+  const std::size_t wplane = std::size_t(h_) * std::size_t(w_);
   const Layers<T> run{device_};
   const int L = layer_count();
   acts_.resize(std::size_t(L) + 1);
-  ensure(acts_[0], input.size(), device_);
-  device_copy(acts_[0].data(), device_, input.data(), device_, input.bytes());
+  ensure(acts_[0], std::size_t(cfg_.in_channels) * wplane, device_);
+  if (whole)
+    device_copy(acts_[0].data(), device_, input.data(), device_, input.bytes());
+  else
+    run.crop(input.data(), cfg_.in_channels, width, height, win, acts_[0].data());
   for (int l = 0; l < L; ++l) {
     const ConvShape s = shape(l);
     Buffer<T>& out = acts_[std::size_t(l) + 1];
-    ensure(out, std::size_t(s.cout) * plane, device_);
+    ensure(out, std::size_t(s.cout) * wplane, device_);
     const T* w = params_.data() + offsets_[std::size_t(l)];
     run.conv(s, acts_[std::size_t(l)].data(), w, w + s.weight_count(), out.data());
     if (l + 1 < L) {
@@ -133,15 +167,23 @@ void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buf
     run.sigmoid(out.data(), out.data(), out.size());
   }
   ensure(rs, plane, device_);
-  device_copy(rs.data(), device_, acts_.back().data(), device_, rs.bytes());
+  if (whole) {
+    device_copy(rs.data(), device_, acts_.back().data(), device_, rs.bytes());
+    return;
+  }
+  rs.fill_zero();
+  run.add_to_window(acts_.back().data(), 1, width, height, win, rs.data());
 }
 
 template <class T>
 void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) {
   if (acts_.empty()) throw Error(kOp, "backward() called before forward()");
+  const std::size_t full_plane = std::size_t(full_h_) * std::size_t(full_w_);
+  check_buffer(kOp, "screen roughness gradient", grad_rs, full_plane, device_);
+  if (grad_input)
+    check_buffer(kOp, "input gradient", *grad_input, std::size_t(cfg_.in_channels) * full_plane, device_);
+  const bool whole = window_.covers(full_w_, full_h_);
   const std::size_t plane = std::size_t(h_) * std::size_t(w_);
-  check_buffer(kOp, "screen roughness gradient", grad_rs, plane, device_);
-  if (grad_input) check_buffer(kOp, "input gradient", *grad_input, std::size_t(cfg_.in_channels) * plane, device_);
   const Layers<T> run{device_};
   const int L = layer_count();
   std::size_t widest = 0, most_params = 0;
@@ -153,7 +195,10 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
   ensure(g_b_, widest * plane, device_);
   ensure(partials_, most_params * std::size_t(h_), device_);
   // g_a_ holds dL/d(output of layer l) before its activation is undone; g_b_ receives dL/d(its input).
-  device_copy(g_a_.data(), device_, grad_rs.data(), device_, grad_rs.bytes());
+  if (whole)
+    device_copy(g_a_.data(), device_, grad_rs.data(), device_, grad_rs.bytes());
+  else
+    run.crop(grad_rs.data(), 1, full_w_, full_h_, window_, g_a_.data());
   run.sigmoid_back(acts_.back().data(), g_a_.data(), plane);
   for (int l = L - 1; l >= 0; --l) {
     const ConvShape s = shape(l);
@@ -166,8 +211,10 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
     if (l > 0) {
       run.relu_back(acts_[std::size_t(l)].data(), g_b_.data(), std::size_t(s.cin) * plane);
       std::swap(g_a_, g_b_);
-    } else {
+    } else if (whole) {
       run.add(g_b_.data(), grad_input->data(), grad_input->size());
+    } else {
+      run.add_to_window(g_b_.data(), cfg_.in_channels, full_w_, full_h_, window_, grad_input->data());
     }
   }
 }

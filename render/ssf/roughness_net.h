@@ -12,6 +12,7 @@
 
 #include "core/compute/buffer.h"
 #include "render/ssf/conv_kernels.h"
+#include "render/ssf/pixel_window.h"
 
 namespace goris::ssf {
 
@@ -43,12 +44,18 @@ class RoughnessNet {
   void zero_grad() { grads_.fill_zero(); }
 
   // rs ([H][W], in (0, 1)) from input ([in_channels][H][W]); rs is (re)allocated on the net's device. Keeps
-  // the activations for backward(). Throws goris::Error on a size or device mismatch or a NaN/Inf in the
-  // input or the parameters.
-  void forward(const Buffer<T>& input, int height, int width, Buffer<T>& rs);
+  // the activations for backward(). With a window (pixel_window.h; null = the whole image) the net runs on the
+  // window alone: rs is exact at the pixels the window was made for and 0 outside the window. Throws
+  // goris::Error on a size or device mismatch, a window outside the image, or a NaN/Inf in the input or the
+  // parameters.
+  void forward(const Buffer<T>& input, int height, int width, Buffer<T>& rs, const PixelWindow* window = nullptr);
 
-  // Adds dL/dparams into grads() and, when grad_input is given, dL/dinput into it, for dL/drs = grad_rs.
+  // Adds dL/dparams into grads() and, when grad_input is given, dL/dinput into it, for dL/drs = grad_rs
+  // ([H][W], read inside the last forward's window only: zero elsewhere for exact gradients).
   void backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input);
+
+  // How far (in pixels) an input reaches in the output: one per 3x3 layer.
+  int receptive_radius() const;
 
  private:
   ConvShape shape(int l) const;
@@ -58,7 +65,9 @@ class RoughnessNet {
   std::vector<ConvShape> layers_;  // h, w filled at forward()
   std::vector<std::size_t> offsets_;
   Buffer<T> params_, grads_;
-  int h_ = 0, w_ = 0;
+  int h_ = 0, w_ = 0;               // the window's size: the layers' image
+  int full_h_ = 0, full_w_ = 0;     // the image's
+  PixelWindow window_;
   std::vector<Buffer<T>> acts_;  // acts_[0] = input, acts_[l + 1] = output of layer l after its activation
   Buffer<T> g_a_, g_b_, partials_;
 };

@@ -61,4 +61,13 @@ void sigmoid_backward(const float* y, float* g, std::size_t n) {
   sync_and_check();
 }
 
+void copy_window(const float* src, int channels, int width, int height, PixelWindow win, float* dst) {
+  ssf::window_pass<Device::CUDA, WindowOp::CopyOut>(src, channels, width, height, win, dst);
+  sync_and_check();
+}
+void add_window(const float* src, int channels, int width, int height, PixelWindow win, float* dst) {
+  ssf::window_pass<Device::CUDA, WindowOp::AddIn>(dst, channels, width, height, win, src);
+  sync_and_check();
+}
+
 }  // namespace goris::ssf::cuda

@@ -23,5 +23,7 @@ void relu_forward(float* x, std::size_t n);
 void relu_backward(const float* y, float* g, std::size_t n);
 void sigmoid_forward(const float* z, float* y, std::size_t n);
 void sigmoid_backward(const float* y, float* g, std::size_t n);
+void copy_window(const float* src, int channels, int width, int height, PixelWindow win, float* dst);
+void add_window(const float* src, int channels, int width, int height, PixelWindow win, float* dst);
 
 }  // namespace goris::ssf::cuda

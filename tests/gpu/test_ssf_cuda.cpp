@@ -85,8 +85,8 @@ TEST(SsfCuda, WeightedGlossyFilterMatchesCpu) {
   expect_close(grs[0], grs[1], "weighted dL/dR_s");
 }
 
-TEST(SsfCuda, RoughnessNetMatchesCpu) {
-  GORIS_REQUIRE_GPU();
+// The net on both devices, on the whole image or a window (pixel_window.h).
+void expect_net_matches_cpu(const PixelWindow* window) {
   std::mt19937 rng(6);
   const int H = 70, W = 53;
   const std::size_t plane = std::size_t(H) * W;
@@ -96,7 +96,7 @@ TEST(SsfCuda, RoughnessNetMatchesCpu) {
   for (Device d : {Device::CPU, Device::CUDA}) {
     RoughnessNet<float> net(NetConfig{}, d, 9);
     FlatAdam adam(net.param_count(), net.device());
-    net.forward(Buffer<float>(in, d), H, W, rs[i]);
+    net.forward(Buffer<float>(in, d), H, W, rs[i], window);
     gin[i] = Buffer<float>(3 * plane, d);
     gin[i].fill_zero();
     net.backward(Buffer<float>(g, d), &gin[i]);
@@ -115,6 +115,17 @@ TEST(SsfCuda, RoughnessNetMatchesCpu) {
   for (float v : g0) gmax = std::max(gmax, std::abs(v));
   for (std::size_t k = 0; k < p0.size(); ++k)
     if (std::abs(g0[k]) > 1e-3f * gmax) ASSERT_NEAR(p0[k], p1[k], 1e-5f) << "parameter " << k << " after Adam";
+}
+
+TEST(SsfCuda, RoughnessNetMatchesCpu) {
+  GORIS_REQUIRE_GPU();
+  expect_net_matches_cpu(nullptr);
+}
+
+TEST(SsfCuda, RoughnessNetOnAWindowMatchesCpu) {
+  GORIS_REQUIRE_GPU();
+  const PixelWindow window{8, 11, 41, 57};
+  expect_net_matches_cpu(&window);
 }
 
 }  // namespace

@@ -150,14 +150,23 @@ void IntrinsicRenderer::trace_rays(const ReflectionRays& rays, std::size_t first
   tracer_.trace({rays.origins.data() + 3 * first, rays.directions.data() + 3 * first, count}, out);
 }
 
-void IntrinsicRenderer::net_forward(Frame& f, const Buffer<float>& distance) {
+void IntrinsicRenderer::net_forward(Frame& f, const Buffer<float>& distance, bool whole_image) {
   // The net's input: (roughness, traced hit distance, 1 / view depth), distances in scene extents.
   const GBuffer& g = raster_.gbuffer;
   const std::size_t hw = g.pixels();
   Buffer<float> in(3 * hw, device_);
   intrinsic_glue::net_input(device_, g.extras.data() + std::size_t(extra::kRoughness) * hw, distance.data(),
                             g.depth.data(), g.alpha.data(), hw, extent_, in.data());
-  net_.forward(in, g.height, g.width, f.rs);
+  // Shading, its backward, the coarse tracing's ray selection and the lighting-aware label read R_s only on
+  // surface pixels (alpha > min_alpha).
+  ssf::PixelWindow window{0, 0, g.width, g.height};
+  if (!whole_image) {
+    const std::vector<float> host_alpha = device_ == Device::CPU ? std::vector<float>{} : g.alpha.to_host();
+    const float* alpha = device_ == Device::CPU ? g.alpha.data() : host_alpha.data();
+    window = ssf::net_window(alpha, g.width, g.height, shading_settings_.min_alpha, net_.receptive_radius());
+    if (window.empty()) window = {0, 0, g.width, g.height};  // no surface pixel: nothing reads R_s
+  }
+  net_.forward(in, g.height, g.width, f.rs, &window);
 }
 
 GaussianView IntrinsicRenderer::traced_view(const GaussianView& gaussians, Frame& f) const {
@@ -251,7 +260,7 @@ void IntrinsicRenderer::shade_forward(const GaussianView& gaussians, const Camer
       const Buffer<float> distance =
           coarse ? representative_distance(glossy, &first, first_depth, first_alpha, W, H, cs.max_level, extent_)
                  : representative_distance(f->rays, nullptr, f->ray_depth, f->ray_alpha, W, H, 0, extent_);
-      net_forward(*f, distance);
+      net_forward(*f, distance, maps);
     }
     if (coarse) {  // the final selection from R_s: the first pass plus the rays it adds
       RaySelection all, added;

@@ -132,7 +132,9 @@ class IntrinsicRenderer final : public DifferentiableRenderer {
   void shade_forward(const GaussianView& gaussians, const Camera& camera, bool maps);
   void trace_rays(const ReflectionRays& rays, std::size_t first, std::size_t count, Buffer<float>& color,
                   Buffer<float>& depth, Buffer<float>& alpha, std::size_t at);
-  void net_forward(Frame& f, const Buffer<float>& distance);
+  // R_s from the net; whole_image: on every pixel (the maps show it), else on the window the shading reads
+  // (pixel_window.h: the same values there, computed on the surface pixels' bounding box only).
+  void net_forward(Frame& f, const Buffer<float>& distance, bool whole_image);
   // The Gaussians as the reflection rays see them: with intrinsic_trace_glossy_transparent, those whose emit
   // weight (f.emit) is below it get a zero opacity (f.trace_logits, which must outlive the tracer's use).
   GaussianView traced_view(const GaussianView& gaussians, Frame& f) const;
