@@ -24,6 +24,13 @@ void ensure(Buffer<T>& b, std::size_t n, Device d) {
   if (b.size() != n || b.device() != d) b = Buffer<T>(n, d);
 }
 
+// Scratch of at least n values: the window changes size from one view to the next, and reallocating the
+// layers' buffers every iteration would cost more than it saves (a device allocation each on CUDA).
+template <class T>
+void reserve(Buffer<T>& b, std::size_t n, Device d) {
+  if (b.size() < n || b.device() != d) b = Buffer<T>(n, d);
+}
+
 // The layer passes on the net's device; CUDA only exists for float.
 template <class T>
 struct Layers {
@@ -149,7 +156,7 @@ void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buf
   const Layers<T> run{device_};
   const int L = layer_count();
   acts_.resize(std::size_t(L) + 1);
-  ensure(acts_[0], std::size_t(cfg_.in_channels) * wplane, device_);
+  reserve(acts_[0], std::size_t(cfg_.in_channels) * wplane, device_);
   if (whole)
     device_copy(acts_[0].data(), device_, input.data(), device_, input.bytes());
   else
@@ -157,14 +164,15 @@ void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buf
   for (int l = 0; l < L; ++l) {
     const ConvShape s = shape(l);
     Buffer<T>& out = acts_[std::size_t(l) + 1];
-    ensure(out, std::size_t(s.cout) * wplane, device_);
+    const std::size_t n = std::size_t(s.cout) * wplane;
+    reserve(out, n, device_);
     const T* w = params_.data() + offsets_[std::size_t(l)];
     run.conv(s, acts_[std::size_t(l)].data(), w, w + s.weight_count(), out.data());
     if (l + 1 < L) {
-      run.relu(out.data(), out.size());
+      run.relu(out.data(), n);
       continue;
     }
-    run.sigmoid(out.data(), out.data(), out.size());
+    run.sigmoid(out.data(), out.data(), n);
   }
   ensure(rs, plane, device_);
   if (whole) {
@@ -191,9 +199,9 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
     widest = std::max(widest, std::size_t(std::max(layers_[std::size_t(l)].cin, layers_[std::size_t(l)].cout)));
     most_params = std::max(most_params, std::size_t(layers_[std::size_t(l)].weight_count() + layers_[std::size_t(l)].cout));
   }
-  ensure(g_a_, widest * plane, device_);
-  ensure(g_b_, widest * plane, device_);
-  ensure(partials_, most_params * std::size_t(h_), device_);
+  reserve(g_a_, widest * plane, device_);
+  reserve(g_b_, widest * plane, device_);
+  reserve(partials_, most_params * std::size_t(h_), device_);
   // g_a_ holds dL/d(output of layer l) before its activation is undone; g_b_ receives dL/d(its input).
   if (whole)
     device_copy(g_a_.data(), device_, grad_rs.data(), device_, grad_rs.bytes());

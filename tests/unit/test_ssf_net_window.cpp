@@ -109,6 +109,38 @@ void expect_window_matches_whole_image() {
 TEST(NetWindow, FloatOutputAndGradientsEqualTheWholeImagesBitForBit) { expect_window_matches_whole_image<float>(); }
 TEST(NetWindow, DoubleOutputAndGradientsEqualTheWholeImagesBitForBit) { expect_window_matches_whole_image<double>(); }
 
+// The net keeps its layers' buffers from one call to the next (the window changes size from view to view): a
+// window after the whole image and a smaller window gives what a fresh net gives.
+TEST(NetWindow, BuffersKeptFromLargerCallsChangeNothing) {
+  std::mt19937 rng(4);
+  const int w = 64, h = 48;
+  const std::size_t hw = std::size_t(w) * h;
+  const std::vector<float> alpha = blob_alpha(w, h, 20, 10, 40, 30, rng);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<float> input(3 * hw), upstream(hw, 0.0f);
+  for (float& v : input) v = u(rng);
+  for (std::size_t p = 0; p < hw; ++p)
+    if (alpha[p] > 0.5f) upstream[p] = u(rng);
+  const PixelWindow win = net_window(alpha.data(), w, h, 0.5f, 6);
+  const NetRun<float> fresh = run_net<float>(input, upstream, w, h, &win);
+
+  RoughnessNet<float> net(NetConfig{}, Device::CPU, 7);
+  Buffer<float> in(input, Device::CPU), rs, g(upstream, Device::CPU), gin(3 * hw, Device::CPU);
+  const PixelWindow smaller{8, 8, 20, 20};
+  for (const PixelWindow* first : {static_cast<const PixelWindow*>(nullptr), &smaller}) {
+    gin.fill_zero();
+    net.forward(in, h, w, rs, first);
+    net.backward(g, &gin);
+  }
+  net.zero_grad();
+  gin.fill_zero();
+  net.forward(in, h, w, rs, &win);
+  net.backward(g, &gin);
+  EXPECT_EQ(rs.to_host(), fresh.rs);
+  EXPECT_EQ(net.grads().to_host(), fresh.param_grads);
+  EXPECT_EQ(gin.to_host(), fresh.input_grads);
+}
+
 TEST(NetWindow, AWindowOutsideTheImageThrows) {
   RoughnessNet<float> net(NetConfig{}, Device::CPU, 1);
   Buffer<float> in(std::vector<float>(3 * 16 * 16, 0.1f), Device::CPU), rs;
