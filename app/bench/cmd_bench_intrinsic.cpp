@@ -42,7 +42,7 @@ double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 // Medians of one renderer set-up over the timed iterations, and its last shaded colour.
 struct Measured {
   std::vector<double> raster, rays, trace, filter, shade, shade_b, filter_b, trace_b, raster_b, total, cpu;
-  std::size_t traced = 0, glossy = 0;
+  std::size_t traced = 0, glossy = 0, net_pixels = 0, pixels = 0;
   std::vector<float> color;
 };
 
@@ -82,6 +82,8 @@ Measured measure(IntrinsicRenderer& ir, GaussianModel& model, const TrainView& v
     m.raster_b.push_back(t.raster_back);
     m.traced = t.rays_traced;
     m.glossy = t.rays_glossy;
+    m.net_pixels = t.net_pixels;
+    m.pixels = t.pixels;
     m.color = std::move(color);
   }
   return m;
@@ -102,8 +104,10 @@ double backward_ms(const Measured& m) {
 double saved_percent(const Measured& m) { return m.glossy ? 100.0 * (1.0 - double(m.traced) / double(m.glossy)) : 0.0; }
 
 void print_stages(const char* name, const Measured& m) {
-  std::printf("coarse tracing %s: %zu of %zu glossy pixels traced (%.1f %% saved)\n\n", name, m.traced, m.glossy,
+  std::printf("coarse tracing %s: %zu of %zu glossy pixels traced (%.1f %% saved)\n", name, m.traced, m.glossy,
               saved_percent(m));
+  std::printf("roughness net on %zu of %zu pixels (%.1f %%: the surface pixels' window)\n\n", m.net_pixels, m.pixels,
+              m.pixels ? 100.0 * double(m.net_pixels) / double(m.pixels) : 0.0);
   std::printf("| stage | forward ms | backward ms |\n|---|---|---|\n");
   std::printf("| rasterize (G-buffer) | %.2f | %.2f |\n", median_of(m.raster), median_of(m.raster_b));
   std::printf("| reflection rays (+ coarse selection) | %.2f | (in trace) |\n", median_of(m.rays));

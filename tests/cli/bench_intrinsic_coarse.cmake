@@ -1,8 +1,8 @@
 # Coarse tracing end to end on the embedded default scene: a short intrinsic `goris train` with
 # intrinsic_coarse_tracing=true reports the rays it traced and saved, and `goris bench intrinsic
-# --coarse-tracing both` times the fully traced and the coarse frame of the same view with their ray counts
-# and the PSNR between them; --resolution renders the same view at another width (the frame-rate line
-# names it) and --kernels adds the time of each launch site (parallel_for, the blend, the CPU tracer); a bad
+# --coarse-tracing both` times the fully traced and the coarse frame of the same view with their ray counts,
+# the PSNR between them and the pixels its roughness net ran on; --resolution renders the same view at another
+# width (the frame-rate line names it) and --kernels adds the time of each launch site (parallel_for, the blend, the CPU tracer); a bad
 # key value is refused.
 include("${CMAKE_CURRENT_LIST_DIR}/../support/cli_common.cmake")
 file(REMOVE_RECURSE "${WORK}")
@@ -25,6 +25,11 @@ expect_text("${OUT}" "PSNR of the coarse frame against the fully traced one")
 string(REGEX MATCH "\\| off \\| ([0-9]+) / ([0-9]+) \\| 0\\.0 %" off_row "${OUT}")
 if(NOT off_row OR NOT CMAKE_MATCH_1 EQUAL CMAKE_MATCH_2 OR CMAKE_MATCH_2 EQUAL 0)
   message(FATAL_ERROR "fully traced row: every glossy pixel should be traced\n${OUT}")
+endif()
+# The roughness net runs on the surface pixels' window: some pixels, at most all of them.
+string(REGEX MATCH "roughness net on ([0-9]+) of ([0-9]+) pixels" net_line "${OUT}")
+if(NOT net_line OR CMAKE_MATCH_1 EQUAL 0 OR CMAKE_MATCH_1 GREATER CMAKE_MATCH_2 OR NOT CMAKE_MATCH_2 EQUAL 2304)
+  message(FATAL_ERROR "the roughness net's window line: 1 to 2304 (48 x 48) pixels expected\n${OUT}")
 endif()
 string(REGEX MATCH "\\| on \\| ([0-9]+) / ([0-9]+) \\|" on_row "${OUT}")
 if(NOT on_row OR NOT CMAKE_MATCH_1 LESS CMAKE_MATCH_2)

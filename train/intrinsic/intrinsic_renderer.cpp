@@ -166,6 +166,8 @@ void IntrinsicRenderer::net_forward(Frame& f, const Buffer<float>& distance, boo
     window = ssf::net_window(alpha, g.width, g.height, shading_settings_.min_alpha, net_.receptive_radius());
     if (window.empty()) window = {0, 0, g.width, g.height};  // no surface pixel: nothing reads R_s
   }
+  times_.net_pixels = std::size_t(window.width()) * std::size_t(window.height());
+  times_.pixels = hw;
   net_.forward(in, g.height, g.width, f.rs, &window);
 }
 

@@ -60,6 +60,8 @@ struct IntrinsicTimes {
   double shade_back = 0, filter_back = 0, trace_back = 0, raster_back = 0;              // backward
   std::size_t rays_traced = 0;  // reflection rays traced in the forward pass ...
   std::size_t rays_glossy = 0;  // ... of this many glossy pixels (the difference: saved by coarse tracing)
+  std::size_t net_pixels = 0;   // the roughness net ran on this many pixels (its window) ...
+  std::size_t pixels = 0;       // ... of the image's
   double forward_total() const { return raster + rays + trace + filter + shade; }
   double backward_total() const { return shade_back + filter_back + trace_back + raster_back; }
 };
