@@ -386,6 +386,12 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
   const bool glossfill = intrinsic && !o.ablate.count("glossfill");
   std::vector<std::optional<double>> reference_detail(choice.views.size());
   std::vector<bool> reference_detail_measured(choice.views.size(), false);
+  // The removed scene's maps of view v as the fills see them: rendered without the target, its shadow relit.
+  auto removed_maps = [&](std::size_t v) {
+    MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
+    if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
+    return maps;
+  };
   // filled: removed_glossy_mask() of the view when the caller has it already.
   auto measure_detail = [&](std::size_t k, const Image& removed_rgb, const std::vector<float>& filled) {
     const std::size_t v = std::size_t(choice.views[k]);
@@ -456,8 +462,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
           fs::create_directories(dir);
           inp = make_inpainter(o.inpainter);
         }
-        MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
-        if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);  // the shadow is gone
+        MapSet maps = removed_maps(v);
         std::vector<float> g = surface_fill ? removed_glossy_mask(views[v], holes[v]) : std::vector<float>();
         if (reference && materials) measure_detail(k, maps.rgb, g);
         maps.diffuse = Image();  // not used by the shading (D is the SH colour in rgb)
@@ -540,11 +545,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
         const std::size_t v = std::size_t(choice.views[k]);
         const TrainView& tv = views[v];
         if (tv.glossy_mask.empty()) continue;
-        if (!reference_detail_measured[k]) {
-          MapSet maps = render_removed_maps(split.kept, cameras[v], raster);
-          if (relit.fit.found) relight_image(maps.rgb, relit.pixels[v], relit.s[v], relit.fit);
-          reference_detail[k] = surface_detail_rms(maps.rgb, tv.glossy_mask, holes[v].mask, o.surface_detail);
-        }
+        if (!reference_detail_measured[k]) measure_detail(k, removed_maps(v).rgb, tv.glossy_mask);  // filled by now
         detail.push_back(reference_detail[k]);
       }
       if (const auto d = median_surface_detail(detail)) {

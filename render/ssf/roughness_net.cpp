@@ -117,8 +117,8 @@ void RoughnessNet<T>::init(std::uint64_t seed) {
 template <class T>
 ConvShape RoughnessNet<T>::shape(int l) const {
   ConvShape s = layers_[std::size_t(l)];
-  s.h = h_;
-  s.w = w_;
+  s.h = window_.height();
+  s.w = window_.width();
   return s;
 }
 
@@ -150,9 +150,7 @@ void RoughnessNet<T>::forward(const Buffer<T>& input, int height, int width, Buf
   full_h_ = height;
   full_w_ = width;
   window_ = win;
-  h_ = win.height();
-  w_ = win.width();
-  const std::size_t wplane = std::size_t(h_) * std::size_t(w_);
+  const std::size_t wplane = std::size_t(win.height()) * std::size_t(win.width());
   const Layers<T> run{device_};
   const int L = layer_count();
   acts_.resize(std::size_t(L) + 1);
@@ -191,7 +189,7 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
   if (grad_input)
     check_buffer(kOp, "input gradient", *grad_input, std::size_t(cfg_.in_channels) * full_plane, device_);
   const bool whole = window_.covers(full_w_, full_h_);
-  const std::size_t plane = std::size_t(h_) * std::size_t(w_);
+  const std::size_t plane = std::size_t(window_.height()) * std::size_t(window_.width());
   const Layers<T> run{device_};
   const int L = layer_count();
   std::size_t widest = 0, most_params = 0;
@@ -201,7 +199,7 @@ void RoughnessNet<T>::backward(const Buffer<T>& grad_rs, Buffer<T>* grad_input) 
   }
   reserve(g_a_, widest * plane, device_);
   reserve(g_b_, widest * plane, device_);
-  reserve(partials_, most_params * std::size_t(h_), device_);
+  reserve(partials_, most_params * std::size_t(window_.height()), device_);
   // g_a_ holds dL/d(output of layer l) before its activation is undone; g_b_ receives dL/d(its input).
   if (whole)
     device_copy(g_a_.data(), device_, grad_rs.data(), device_, grad_rs.bytes());

@@ -65,9 +65,8 @@ class RoughnessNet {
   std::vector<ConvShape> layers_;  // h, w filled at forward()
   std::vector<std::size_t> offsets_;
   Buffer<T> params_, grads_;
-  int h_ = 0, w_ = 0;               // the window's size: the layers' image
-  int full_h_ = 0, full_w_ = 0;     // the image's
-  PixelWindow window_;
+  int full_h_ = 0, full_w_ = 0;  // the image's size
+  PixelWindow window_;           // where the layers run (their images are its size)
   std::vector<Buffer<T>> acts_;  // acts_[0] = input, acts_[l + 1] = output of layer l after its activation
   Buffer<T> g_a_, g_b_, partials_;
 };
