@@ -12,7 +12,11 @@ stage-1 run's config.json. Per scene (Markdown table on stdout):
           the target changed them (a removal that reproduced r_ exactly through this model would still be off
           by about this much);
   ghost   sum |render after removal - r_| / sum |full_ - r_| (as goris eval, after a 3x3 median);
-  inside  the part of the ghost inside the target's own mask (mask_XXX.png of the test views).
+  inside  the part of the ghost inside the target's own mask (mask_XXX.png of the test views);
+  unseen  the part of the ghost on surface points no training view saw: the test pixel's ray meets the removal's
+          glossy plane (RUN/removal/report.json) at a point that every training view it falls in shows covered
+          by the target (mask_XXX.png) and none shows as glossy surface (gloss_XXX.png). Only this part is beyond
+          what the other views' photos hold; "-" without a glossy plane or the synthetic scenes' masks.
 Needs numpy and OpenCV (Debian: python3-numpy python3-opencv).
 """
 import argparse, glob, json, os, subprocess
@@ -33,6 +37,52 @@ def load(path, background=(0.0, 0.0, 0.0)):
     return cv2.medianBlur(im, 3)[:, :, ::-1].astype(np.float64) / 255.0
 
 
+def nerf_cameras(data, split):
+    """(name, camera-to-world 4x4 in the Blender convention, focal in pixels, size) of transforms_SPLIT.json."""
+    t = json.load(open(os.path.join(data, 'transforms_%s.json' % split)))
+    first = cv2.imread(os.path.join(data, t['frames'][0]['file_path'] + '.png'), cv2.IMREAD_UNCHANGED)
+    h, w = first.shape[:2]
+    f = 0.5 * w / np.tan(0.5 * t['camera_angle_x'])
+    return [(os.path.basename(fr['file_path']), np.array(fr['transform_matrix'], np.float64)) for fr in t['frames']], f, w, h
+
+
+def unseen_surface(data, plane):
+    """Per test view name: [H][W] bool, the pixels whose ray meets the plane (normal, offset) at a point that no
+    training view shows as glossy surface while at least one shows the target over it; None without masks."""
+    train, f, w, h = nerf_cameras(data, 'train')
+    test = nerf_cameras(data, 'test')[0]
+    masks = []
+    for name, _ in train:
+        k = name[2:]
+        g = cv2.imread(os.path.join(data, 'train', 'gloss_%s.png' % k), cv2.IMREAD_GRAYSCALE)
+        m = cv2.imread(os.path.join(data, 'train', 'mask_%s.png' % k), cv2.IMREAD_GRAYSCALE)
+        if g is None or m is None:
+            return None
+        masks.append((g > 127, m > 127))
+    n, off = np.array(plane['normal'], np.float64), float(plane['offset'])
+    y, x = np.mgrid[0:h, 0:w] + 0.5
+    cam_dirs = np.stack([(x - w / 2) / f, -(y - h / 2) / f, -np.ones_like(x)], -1)  # Blender: -z forward, y up
+    out = {}
+    for name, c2w in test:
+        o, d = c2w[:3, 3], cam_dirs @ c2w[:3, :3].T
+        dn = d @ n
+        t = np.where(np.abs(dn) > 1e-9, (off - o @ n) / np.where(np.abs(dn) > 1e-9, dn, 1.0), -1.0)
+        X = o + t[..., None] * d
+        seen, covered = np.zeros((h, w), bool), np.zeros((h, w), bool)
+        for (_, tc), (gloss, target) in zip(train, masks):
+            w2c = np.linalg.inv(tc)
+            Xc = X @ w2c[:3, :3].T + w2c[:3, 3]
+            z = -Xc[..., 2]
+            u = np.floor(Xc[..., 0] / np.maximum(z, 1e-9) * f + w / 2).astype(int)
+            v = np.floor(-Xc[..., 1] / np.maximum(z, 1e-9) * f + h / 2).astype(int)
+            inside = (t > 0) & (z > 1e-9) & (u >= 0) & (v >= 0) & (u < w) & (v < h)
+            uu, vv = np.clip(u, 0, w - 1), np.clip(v, 0, h - 1)
+            seen |= inside & gloss[vv, uu]
+            covered |= inside & target[vv, uu]
+        out[name] = covered & ~seen
+    return out
+
+
 def render(goris, run, out):
     if not os.path.isdir(out):
         os.makedirs(os.path.dirname(out), exist_ok=True)
@@ -51,8 +101,8 @@ def main():
     a = ap.parse_intermixed_args()
     runs = os.path.join(a.bench, 'runs')
     scenes = a.scenes or sorted(os.listdir(runs))
-    print('| scene | floor (stage 1) | ghost after removal | of it inside the target |')
-    print('|---|--:|--:|--:|')
+    print('| scene | floor (stage 1) | ghost after removal | of it inside the target | of it where no view saw the surface |')
+    print('|---|--:|--:|--:|--:|')
     for s in scenes:
         base = os.path.join(runs, s, a.schedule)
         run = os.path.join(base, a.config, 'run')
@@ -64,7 +114,9 @@ def main():
         rm = os.path.join(a.work, s + '_removed')
         render(a.goris, run, s1)
         render(a.goris, os.path.join(run, 'removal'), rm)
-        floor = imprint = ghost = inside = 0.0
+        plane = json.load(open(os.path.join(run, 'removal', 'report.json'))).get('glossy_plane', {})
+        unseen_px = unseen_surface(config['data'], plane) if 'normal' in plane else None
+        floor = imprint = ghost = inside = unseen = 0.0
         for full_path in sorted(glob.glob(os.path.join(test, 'full_*.png'))):
             k = full_path[-7:-4]
             full, after = load(full_path, bg), load(os.path.join(test, 'r_%s.png' % k), bg)
@@ -76,7 +128,11 @@ def main():
             e = np.abs(after_model - after)
             ghost += e[region].sum()
             inside += e[region & mask].sum()
-        print('| %s | %.2f | %.2f | %.2f |' % (s, floor / imprint, ghost / imprint, inside / imprint), flush=True)
+            if unseen_px is not None:
+                unseen += e[region & unseen_px['r_%s' % k]].sum()
+        unseen_cell = '%.2f' % (unseen / imprint) if unseen_px is not None else '-'
+        print('| %s | %.2f | %.2f | %.2f | %s |' % (s, floor / imprint, ghost / imprint, inside / imprint, unseen_cell),
+              flush=True)
 
 
 if __name__ == '__main__':
