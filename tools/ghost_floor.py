@@ -14,8 +14,8 @@ stage-1 run's config.json. Per scene (Markdown table on stdout):
   ghost   sum |render after removal - r_| / sum |full_ - r_| (as goris eval, after a 3x3 median);
   inside  the part of the ghost inside the target's own mask (mask_XXX.png of the test views);
   unseen  the part of the ghost on surface points no training view saw: the test pixel's ray meets the removal's
-          glossy plane (RUN/removal/report.json) at a point that every training view it falls in shows covered
-          by the target (mask_XXX.png) and none shows as glossy surface (gloss_XXX.png). Only this part is beyond
+          glossy plane (RUN/removal/report.json) at a point that no training view shows as glossy surface
+          (gloss_XXX.png) and at least one shows covered by the target (mask_XXX.png). Only this part is beyond
           what the other views' photos hold; "-" without a glossy plane or the synthetic scenes' masks.
 Needs numpy and OpenCV (Debian: python3-numpy python3-opencv).
 """
@@ -38,7 +38,8 @@ def load(path, background=(0.0, 0.0, 0.0)):
 
 
 def nerf_cameras(data, split):
-    """(name, camera-to-world 4x4 in the Blender convention, focal in pixels, size) of transforms_SPLIT.json."""
+    """transforms_SPLIT.json: its frames as (name, camera-to-world 4x4 in the Blender convention), the focal
+    length in pixels, and the images' width and height."""
     t = json.load(open(os.path.join(data, 'transforms_%s.json' % split)))
     first = cv2.imread(os.path.join(data, t['frames'][0]['file_path'] + '.png'), cv2.IMREAD_UNCHANGED)
     h, w = first.shape[:2]
