@@ -52,26 +52,26 @@ def unseen_surface(data, plane):
     training view shows as glossy surface while at least one shows the target over it; None without masks."""
     train, f, w, h = nerf_cameras(data, 'train')
     test = nerf_cameras(data, 'test')[0]
-    masks = []
-    for name, _ in train:
+    views = []  # per training view: world-to-camera, its glossy surface, the target
+    for name, c2w in train:
         k = name[2:]
         g = cv2.imread(os.path.join(data, 'train', 'gloss_%s.png' % k), cv2.IMREAD_GRAYSCALE)
         m = cv2.imread(os.path.join(data, 'train', 'mask_%s.png' % k), cv2.IMREAD_GRAYSCALE)
         if g is None or m is None:
             return None
-        masks.append((g > 127, m > 127))
+        views.append((np.linalg.inv(c2w), g > 127, m > 127))
     n, off = np.array(plane['normal'], np.float64), float(plane['offset'])
     y, x = np.mgrid[0:h, 0:w] + 0.5
     cam_dirs = np.stack([(x - w / 2) / f, -(y - h / 2) / f, -np.ones_like(x)], -1)  # Blender: -z forward, y up
     out = {}
     for name, c2w in test:
         o, d = c2w[:3, 3], cam_dirs @ c2w[:3, :3].T
-        dn = d @ n
-        t = np.where(np.abs(dn) > 1e-9, (off - o @ n) / np.where(np.abs(dn) > 1e-9, dn, 1.0), -1.0)
+        with np.errstate(divide='ignore', invalid='ignore'):
+            t = (off - o @ n) / (d @ n)
+        t[~np.isfinite(t)] = -1.0  # parallel to the plane: no point
         X = o + t[..., None] * d
         seen, covered = np.zeros((h, w), bool), np.zeros((h, w), bool)
-        for (_, tc), (gloss, target) in zip(train, masks):
-            w2c = np.linalg.inv(tc)
+        for w2c, gloss, target in views:
             Xc = X @ w2c[:3, :3].T + w2c[:3, 3]
             z = -Xc[..., 2]
             u = np.floor(Xc[..., 0] / np.maximum(z, 1e-9) * f + w / 2).astype(int)
