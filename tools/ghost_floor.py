@@ -19,7 +19,7 @@ stage-1 run's config.json. Per scene (Markdown table on stdout):
           what the other views' photos hold; "-" without a glossy plane or the synthetic scenes' masks.
 Needs numpy and OpenCV (Debian: python3-numpy python3-opencv).
 """
-import argparse, glob, json, os, subprocess
+import argparse, glob, json, os, subprocess, tempfile
 import cv2
 import numpy as np
 
@@ -97,9 +97,17 @@ def main():
     ap.add_argument('scenes', nargs='*')
     ap.add_argument('--config', default='default')
     ap.add_argument('--schedule', default='medium')
-    ap.add_argument('--work', default='ghost_floor_renders')
+    ap.add_argument('--work', default=None, help='where the renders go (default: a temporary folder, removed after)')
     ap.add_argument('--goris', default=os.path.join(os.path.dirname(__file__), '..', 'build', 'bin', 'goris'))
     a = ap.parse_intermixed_args()
+    if a.work is None:
+        with tempfile.TemporaryDirectory(prefix='ghost_floor_') as work:
+            a.work = work
+            return table(a)
+    return table(a)
+
+
+def table(a):
     runs = os.path.join(a.bench, 'runs')
     scenes = a.scenes or sorted(os.listdir(runs))
     print('| scene | floor (stage 1) | ghost after removal | of it inside the target | of it where no view saw the surface |')
