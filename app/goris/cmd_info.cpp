@@ -170,9 +170,10 @@ void print_run(const fs::path& run, bool nested = false) {
     try {
       r = nlohmann::json::parse(rf);
       std::printf("  selected %d of %d Gaussians, %d after the fine-tune; %d mirror twins, %d under the target, %d "
-                  "reflection pixels\n",
+                  "reflection pixels (%d of them kept their photo)\n",
                   r.value("selected", 0), r.value("gaussians_before", 0), r.value("gaussians_after", 0),
-                  r.value("mirror_twins", 0), r.value("underside", 0), r.value("reflection_pixels", 0));
+                  r.value("mirror_twins", 0), r.value("underside", 0), r.value("reflection_pixels", 0),
+                  r.value("reflection_photo_pixels", 0));
       if (r.contains("options") && r["options"].contains("fill_truth"))
         std::printf("  a measurement, not a removal: fine-tuned with the true images %s (--fill-truth)\n",
                     r["options"]["fill_truth"].get<std::string>().c_str());

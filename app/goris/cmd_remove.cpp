@@ -112,7 +112,8 @@ void setup_remove(CLI::App& root) {
                  "(keep the target's cast shadow), glossfill (fine-tune with the photos' glossy masks under the target instead of "
                  "masks filled from around it), reflection (no mask of the target mirrored through the glossy plane, and the glossy surface's part of the hole "
                  "filled like the rest instead of from the surface alone), underside (keep the Gaussians that stand on the glossy surface "
-                 "under the target)");
+                 "under the target), texture (the target's planar reflection filled everywhere, also where the dereflected photo differs "
+                 "from the fill only by the surface's texture)");
   c->add_option("--lighting-fresnel", o->lighting_fresnel,
                  "F in the lighting-aware mask: relative (to the glossy surfaces' F0, default) or absolute (the paper)")
       ->check(CLI::IsMember({"relative", "absolute"}));

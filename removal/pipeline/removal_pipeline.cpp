@@ -38,6 +38,7 @@
 #include "train/intrinsic/intrinsic_renderer.h"
 #include "render/raster/rasterizer.h"
 #include "removal/lift/dereflect.h"
+#include "removal/lift/photo_under_reflection.h"
 #include "removal/lift/finetune_views.h"
 #include "removal/masks/inpaint_mask.h"
 #include "removal/masks/inpaint_mask_scene.h"
@@ -88,7 +89,8 @@ struct StepScope {
 };
 
 // The parts --ablate switches off (RemovalOptions::ablate), in the order the unknown-ablation error lists them.
-constexpr const char* kAblations[] = {"material", "lamask", "twins", "shadows", "glossfill", "reflection", "underside"};
+constexpr const char* kAblations[] = {"material", "lamask", "twins", "shadows", "glossfill", "reflection", "underside",
+                                       "texture"};
 
 std::string step_error(RemovalStep s, const std::string& problem) {
   return std::string("goris remove (") + removal_step_name(s) + "): " + problem;
@@ -141,6 +143,7 @@ nlohmann::json options_json(const RemovalOptions& o) {
   j["lighting_fresnel"] = o.lighting_relative_fresnel ? "relative" : "absolute";
   j["lighting_targets"] = o.dereflect_lighting ? "dereflect" : "exclude";
   j["view_fill_weight"] = o.view_fill_weight;
+  j["photo_under_reflection"] = {o.photo_under_reflection.texture_multiple, o.photo_under_reflection.silhouette_margin};
   if (!o.fill_truth.empty()) j["fill_truth"] = fs::absolute(o.fill_truth).lexically_normal().string();
   return j;
 }
@@ -554,6 +557,14 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       }
     }
     report.material_weight = ft.inpaint.material_weight;
+    // The 2D fill of view i's hole: a reference view's, or its own (view_fill_weight > 0); nullptr without one.
+    auto fill_of_view = [&](std::size_t i) -> const MapSet* {
+      for (std::size_t k = 0; k < choice.views.size(); ++k)
+        if (std::size_t(choice.views[k]) == i) return &inpainted[k];
+      for (std::size_t k = 0; k < fill_views.size(); ++k)
+        if (fill_views[k] == i) return &inpainted[choice.views.size() + k];
+      return nullptr;
+    };
     std::vector<Mask> exclude(views.size());
     std::vector<FinetuneViewInputs> inputs(views.size());
     std::vector<ReferenceTargets> refs;
@@ -564,7 +575,19 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       Mask ex = dilate_mask(holes[i].covered, soft_edge_radius(w));
       if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
       if (lighting[i].width == w && !o.dereflect_lighting) ex = mask_or(ex, lighting[i]);
-      if (reflection[i].width == w) ex = mask_or(ex, reflection[i]);
+      if (reflection[i].width == w) {
+        // photo_under_reflection.h: on a textured surface the dereflected photo keeps its loss where it differs
+        // from the view's fill only by the texture.
+        const MapSet* fill = fill_of_view(i);
+        if (o.dereflect_lighting && lighting[i].width == w && fill && !o.ablate.count("texture")) {
+          std::size_t kept = 0;
+          ex = mask_or(ex, reflection_left_to_the_fill(reflection[i], lighting[i], ex, views[i].image, fill->rgb,
+                                                       report.surface_detail, o.photo_under_reflection, &kept));
+          report.reflection_photo_pixels += kept;
+        } else {
+          ex = mask_or(ex, reflection[i]);
+        }
+      }
       exclude[i] = std::move(ex);
       inputs[i].exclude = &exclude[i];
       inputs[i].removed_depth = &holes[i].removed_depth;
@@ -650,6 +673,7 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                            {"candidates", report.glossy_plane.candidates}};
     j["lighting_fresnel_reference"] = report.lighting_fresnel_reference;
     j["dereflected_pixels"] = report.dereflected_pixels;
+    j["reflection_photo_pixels"] = report.reflection_photo_pixels;
     j["shadow"] = {{"found", report.shadow_found}, {"summary", report.shadow}, {"relit_pixels", report.shadow_pixels}};
     j["inpaint_mask_pixels"] = report.inpaint_pixels;
     j["glossy_mask_filled_pixels"] = report.glossy_filled_pixels;

@@ -44,6 +44,7 @@
 #include "core/compute/device_choice.h"
 #include "core/scene/mirror_twins.h"
 #include "removal/lift/photo_truth_error.h"
+#include "removal/lift/photo_under_reflection.h"
 #include "removal/lift/surface_detail.h"
 
 namespace goris {
@@ -61,7 +62,9 @@ struct RemovalOptions {
                                     // "twins" (keep the target's mirror twin, core/scene/mirror_twins.h),
                                     // "shadows" (keep the target's cast shadow, removal/shadow/target_shadow.h),
                                     // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h),
-                                    // "underside" (keep what stands under the target, target_underside.h)
+                                    // "underside" (keep what stands under the target, target_underside.h),
+                                    // "texture" (the planar reflection's fill everywhere in it,
+                                    // photo_under_reflection.h)
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   // Every other training view's hole (its unseen pixels and the target's planar reflection) is inpainted in
   // 2D as well, and the fine-tune trains it towards that fill with this weight where no lifted reference
@@ -73,6 +76,10 @@ struct RemovalOptions {
   // a smooth fill of a veined surface's base colour is a wrong target there. 1 = the same weight everywhere.
   float textured_material_weight = 0.3f;
   SurfaceDetailSettings surface_detail;
+  // Inside the target's planar reflection, the dereflected photo keeps its loss where it differs from the
+  // view's fill only by the surface's texture (removal/lift/photo_under_reflection.h; off with
+  // ablate "texture").
+  PhotoUnderReflectionSettings photo_under_reflection;
   float label_threshold = 0.3f;
   float lighting_tau = 0.1f;
   // F in the lighting-aware mask relative to the scene's F0 scale (lighting_aware_mask.h); false = the
@@ -114,6 +121,7 @@ struct RemovalReport {
   float material_weight = 1.0f;
   float lighting_fresnel_reference = 1.0f;  // what F was divided by in the lighting-aware masks
   std::size_t dereflected_pixels = 0;       // lighting-aware mask pixels trained on dereflected photos
+  std::size_t reflection_photo_pixels = 0;  // planar-reflection pixels that kept their photo (photo_under_reflection.h)
   bool shadow_found = false;                // the target's cast shadow (removal/shadow/target_shadow.h)
   std::string shadow;                       // its light, size and strength, or why none was found
   std::size_t shadow_pixels = 0;            // training-view pixels relit by more than 5 %
