@@ -1,4 +1,5 @@
 #include "removal/pipeline/removal_pipeline.h"
+#include "removal/pipeline/removal_ablations.h"
 
 #include <algorithm>
 #include <chrono>
@@ -88,10 +89,6 @@ struct StepScope {
   }
 };
 
-// The parts --ablate switches off (RemovalOptions::ablate), in the order the unknown-ablation error lists them.
-constexpr const char* kAblations[] = {"material", "lamask", "twins", "shadows", "glossfill", "reflection", "underside",
-                                       "texture"};
-
 std::string step_error(RemovalStep s, const std::string& problem) {
   return std::string("goris remove (") + removal_step_name(s) + "): " + problem;
 }
@@ -167,19 +164,8 @@ void remove_stale_finetune(const fs::path& out) {
 
 RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
                           const std::function<void(const RemovalProgress&)>& on_progress, const std::atomic<bool>* stop) {
-  for (const std::string& a : o.ablate) {
-    if (a == "elt" || a == "ssf")
-      throw Error(step_error(RemovalStep::Selection,
-                             "--ablate " + a + " is a stage-1 choice: train the run with " +
-                                 (a == "elt" ? std::string("--mode radiance") : std::string("--set intrinsic_screen_space_filter=false")) +
-                                 " and remove from that run"));
-    if (std::find(std::begin(kAblations), std::end(kAblations), a) == std::end(kAblations)) {
-      std::string known;
-      for (std::size_t k = 0; k < std::size(kAblations); ++k)
-        known += std::string(k == 0 ? "" : k + 1 == std::size(kAblations) ? " or " : ", ") + kAblations[k];
-      throw Error(step_error(RemovalStep::Selection, "unknown ablation '" + a + "' (expected " + known + ")"));
-    }
-  }
+  if (const std::string problem = ablation_problem(o.ablate); !problem.empty())
+    throw Error(step_error(RemovalStep::Selection, problem));
   const fs::path run_dir = fs::absolute(run_dir_in);
   const TrainConfig config = read_run_config_with_data(run_dir, o.data);
   const Device device = resolve_device(o.device);
@@ -557,41 +543,9 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       }
     }
     report.material_weight = ft.inpaint.material_weight;
-    // The 2D fill of view i's hole: a reference view's, or its own (view_fill_weight > 0); nullptr without one.
-    auto fill_of_view = [&](std::size_t i) -> const MapSet* {
-      for (std::size_t k = 0; k < choice.views.size(); ++k)
-        if (std::size_t(choice.views[k]) == i) return &inpainted[k];
-      for (std::size_t k = 0; k < fill_views.size(); ++k)
-        if (fill_views[k] == i) return &inpainted[choice.views.size() + k];
-      return nullptr;
-    };
     std::vector<Mask> exclude(views.size());
     std::vector<FinetuneViewInputs> inputs(views.size());
     std::vector<ReferenceTargets> refs;
-    for (std::size_t i = 0; i < views.size(); ++i) {
-      const int w = cameras[i].width, h = cameras[i].height;
-      // Object mask of the data set (when given) U what the selection covers (dilated: soft edges), and the
-      // reflections only under the paper's rule (by default their photos were dereflected in step 2).
-      Mask ex = dilate_mask(holes[i].covered, soft_edge_radius(w));
-      if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
-      if (lighting[i].width == w && !o.dereflect_lighting) ex = mask_or(ex, lighting[i]);
-      if (reflection[i].width == w) {
-        // photo_under_reflection.h: on a textured surface the dereflected photo keeps its loss where it differs
-        // from the view's fill only by the texture.
-        const MapSet* fill = fill_of_view(i);
-        if (o.dereflect_lighting && lighting[i].width == w && fill && !o.ablate.count("texture")) {
-          std::size_t kept = 0;
-          ex = mask_or(ex, reflection_left_to_the_fill(reflection[i], lighting[i], ex, views[i].image, fill->rgb,
-                                                       report.surface_detail, o.photo_under_reflection, &kept));
-          report.reflection_photo_pixels += kept;
-        } else {
-          ex = mask_or(ex, reflection[i]);
-        }
-      }
-      exclude[i] = std::move(ex);
-      inputs[i].exclude = &exclude[i];
-      inputs[i].removed_depth = &holes[i].removed_depth;
-    }
     for (std::size_t k = 0; k < choice.views.size(); ++k) {
       const std::size_t v = std::size_t(choice.views[k]);
       inputs[v].reference = int(k);
@@ -601,6 +555,29 @@ RemovalReport run_removal(const fs::path& run_dir_in, const RemovalOptions& o,
       const std::size_t v = fill_views[k];
       inputs[v].fill = int(refs.size());
       refs.push_back({&holes[v].mask, &inpainted[choice.views.size() + k], o.view_fill_weight});
+    }
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const int w = cameras[i].width, h = cameras[i].height;
+      // Object mask of the data set (when given) U what the selection covers (dilated: soft edges), and the
+      // reflections only under the paper's rule (by default their photos were dereflected in step 2).
+      Mask ex = dilate_mask(holes[i].covered, soft_edge_radius(w));
+      if (!views[i].object_mask.empty()) ex = mask_or(ex, mask_from_values(views[i].object_mask, w, h, 0.5f));
+      if (lighting[i].width == w && !o.dereflect_lighting) ex = mask_or(ex, lighting[i]);
+      if (reflection[i].width == w) {
+        // photo_under_reflection.h: on a textured surface the dereflected photo keeps its loss where it differs
+        // from the view's fill (a reference view's or its own) only by the texture.
+        const int f = inputs[i].reference >= 0 ? inputs[i].reference : inputs[i].fill;
+        std::size_t kept = 0;
+        const bool keep = o.dereflect_lighting && lighting[i].width == w && f >= 0 && !o.ablate.count("texture");
+        ex = mask_or(ex, keep ? reflection_left_to_the_fill(reflection[i], lighting[i], ex, views[i].image,
+                                                            refs[std::size_t(f)].maps->rgb, report.surface_detail,
+                                                            o.photo_under_reflection, &kept)
+                              : reflection[i]);
+        report.reflection_photo_pixels += kept;
+      }
+      exclude[i] = std::move(ex);
+      inputs[i].exclude = &exclude[i];
+      inputs[i].removed_depth = &holes[i].removed_depth;
     }
     const FinetuneViewStats fs_stats = prepare_finetune_views(views, inputs, refs, lift.points);
     if (!o.fill_truth.empty()) {

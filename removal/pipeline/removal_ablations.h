@@ -1,0 +1,11 @@
+#pragma once
+// The parts of the removal `goris remove --ablate` switches off (RemovalOptions::ablate, removal_pipeline.h).
+#include <set>
+#include <string>
+
+namespace goris {
+
+// "" when every name is a known ablation; otherwise why not (a stage-1 choice, or the names it takes).
+std::string ablation_problem(const std::set<std::string>& ablate);
+
+}  // namespace goris
