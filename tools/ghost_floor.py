@@ -99,12 +99,16 @@ def main():
     ap.add_argument('--schedule', default='medium')
     ap.add_argument('--work', default=None, help='where the renders go (default: a temporary folder, removed after)')
     ap.add_argument('--goris', default=os.path.join(os.path.dirname(__file__), '..', 'build', 'bin', 'goris'))
-    a = ap.parse_intermixed_args()
+    return in_work_folder(ap.parse_intermixed_args(), table, 'ghost_floor_')
+
+
+def in_work_folder(a, fn, prefix):
+    """fn(a) with a.work set: the folder given, or a temporary one removed afterwards."""
     if a.work is None:
-        with tempfile.TemporaryDirectory(prefix='ghost_floor_') as work:
+        with tempfile.TemporaryDirectory(prefix=prefix) as work:
             a.work = work
-            return table(a)
-    return table(a)
+            return fn(a)
+    return fn(a)
 
 
 def table(a):

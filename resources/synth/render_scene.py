@@ -13,6 +13,8 @@
 # the covered fraction of the pixel), and occlusion is exact.
 # With a third argument `train-after` it renders only the training views with the target hidden, into
 # OUTDIR/train_after/r_XXX.png (`goris synth --train-after`; what `goris remove --fill-truth` reads).
+# With `test-only` it renders only the test views (tools/reference_noise.py renders them again at more
+# samples per pixel to measure what the references' own noise costs the metrics).
 # After each view the script prints "GORIS_FRAME <done> <total>" so the caller can show progress.
 import json
 import math
@@ -57,11 +59,12 @@ GT_ENCODING = {
 
 
 def args():
+    """(scene description, OUTDIR, mode): mode is "all", "train-after" or "test-only"."""
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(argv) not in (2, 3) or (len(argv) == 3 and argv[2] != "train-after"):
-        raise SystemExit("usage: blender -b --python render_scene.py -- scene.json OUTDIR [train-after]")
+    if len(argv) not in (2, 3) or (len(argv) == 3 and argv[2] not in ("train-after", "test-only")):
+        raise SystemExit("usage: blender -b --python render_scene.py -- scene.json OUTDIR [train-after|test-only]")
     with open(argv[0]) as f:
-        return json.load(f), argv[1], len(argv) == 3
+        return json.load(f), argv[1], argv[2] if len(argv) == 3 else "all"
 
 
 def render_train_after(cam, target, r, world, train, out_dir, progress):
@@ -426,7 +429,8 @@ def write_transforms(path, angle_x, frames):
 
 
 def main():
-    desc, out_dir, train_after = args()
+    desc, out_dir, mode = args()
+    train_after = mode == "train-after"
     r = desc["render"]
     clear_scene()
     setup_render(r)
@@ -440,6 +444,8 @@ def main():
     override = mask_override_material()
 
     train, test = desc["cameras"]["train"], desc["cameras"]["test"]
+    if mode == "test-only":
+        train = []
     total, done = len(train) + (0 if train_after else len(test)), 0
 
     def progress():
@@ -484,7 +490,8 @@ def main():
         split_mask(tmp, [(0, os.path.join(train_dir, "mask_" + name + ".png")),
                          (1, os.path.join(train_dir, "gloss_" + name + ".png"))])
         progress()
-    write_transforms(os.path.join(out_dir, "transforms_train.json"), desc["camera_angle_x"], frames)
+    if mode != "test-only":
+        write_transforms(os.path.join(out_dir, "transforms_train.json"), desc["camera_angle_x"], frames)
 
     frames = []
     for i, view in enumerate(test):

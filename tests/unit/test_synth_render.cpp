@@ -62,6 +62,20 @@ void check_table_ground_truth(const fs::path& out) {
   EXPECT_GT(lo, 2.0);  // cameras are 5.2 m from the table's centre, the table's radius is 1.5 m
   EXPECT_LT(hi, 8.0);
 }
+// A 32-pixel glossy-table scene without ground-truth maps, rendered into a new scratch folder.
+SynthJob tiny_scene(const std::string& name, int train_views, int test_views) {
+  SynthJob job;
+  job.options.resolution = 32;
+  job.options.samples = 8;
+  job.options.train_views = train_views;
+  job.options.test_views = test_views;
+  job.options.seed = 3;
+  job.options.ground_truth_maps = false;
+  job.script = goris::test::resource_dir() / "synth" / "render_scene.py";
+  job.out = goris::test::scratch_dir(name) / "scene";
+  run_synth(job);
+  return job;
+}
 }  // namespace
 
 TEST(SynthRender, TinyGlossyTable) {
@@ -164,17 +178,8 @@ TEST(SynthRender, TrainingViewsWithoutTheTarget) {
   } catch (const goris::Error& e) {
     GTEST_SKIP() << "Blender is not installed: " << e.what();
   }
-  fs::path out = goris::test::scratch_dir("synth_train_after") / "scene";
-  SynthJob job;
-  job.options.resolution = 32;
-  job.options.samples = 8;
-  job.options.train_views = 2;
-  job.options.test_views = 1;
-  job.options.seed = 3;
-  job.options.ground_truth_maps = false;
-  job.script = goris::test::resource_dir() / "synth" / "render_scene.py";
-  job.out = out;
-  run_synth(job);
+  const SynthJob job = tiny_scene("synth_train_after", 2, 1);
+  const fs::path out = job.out;
   goris::synth::TrainAfterJob after{out, job.script, {}, {}};
   int frames = 0;
   after.on_frame = [&](int done, int total) {
@@ -211,6 +216,53 @@ TEST(SynthRender, TrainingViewsWithoutTheTarget) {
   // Not a synth output: refused by name before Blender starts.
   fs::path empty = goris::test::scratch_dir("synth_train_after_empty");
   EXPECT_THROW(goris::synth::render_train_after({empty, job.script, {}, {}}), goris::Error);
+}
+
+// `test-only` (tools/reference_noise.py): the test views alone, here at more samples and another seed, into a
+// new folder; the masks differ only at their anti-aliased edges, the beauty renders show the same scene.
+TEST(SynthRender, TestViewsAlone) {
+  fs::path blender;
+  try {
+    blender = find_blender();
+  } catch (const goris::Error& e) {
+    GTEST_SKIP() << "Blender is not installed: " << e.what();
+  }
+  const SynthJob job = tiny_scene("synth_test_only", 1, 2);
+  const fs::path out = job.out;
+  nlohmann::json desc = nlohmann::json::parse(std::ifstream(out / "scene.json"));
+  desc["render"]["spp"] = 32;
+  desc["render"]["seed"] = int(desc["render"]["seed"]) + 1;
+  const fs::path again = goris::test::scratch_dir("synth_test_only_again");
+  std::ofstream(again / "scene.json") << desc.dump();
+  int frames = 0;
+  const goris::ProcessResult r = run_logged(
+      blender, {"-b", "--factory-startup", "--python", job.script.string(), "--", (again / "scene.json").string(),
+                again.string(), "test-only"},
+      again / "blender.log", [&](const std::string& line) { frames += line.rfind("GORIS_FRAME", 0) == 0; });
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_EQ(frames, 2);
+  EXPECT_FALSE(fs::exists(again / "train" / "r_000.png"));  // no training view rendered
+  EXPECT_FALSE(fs::exists(again / "transforms_train.json"));
+  for (const char* v : {"000", "001"}) {
+    for (const char* f : {"full_", "r_", "mask_"})
+      ASSERT_TRUE(fs::is_regular_file(again / "test" / (std::string(f) + v + ".png"))) << f << v;
+    cv::Mat m0 = read(out / "test" / (std::string("mask_") + v + ".png"), cv::IMREAD_GRAYSCALE);
+    cv::Mat m1 = read(again / "test" / (std::string("mask_") + v + ".png"), cv::IMREAD_GRAYSCALE);
+    cv::Mat mask_diff;
+    cv::absdiff(m0, m1, mask_diff);  // another seed: the anti-aliased edges only
+    EXPECT_EQ(cv::countNonZero(mask_diff > 128), 0) << v;
+    EXPECT_LT(cv::mean(mask_diff)[0], 3.0) << v;
+    for (const char* f : {"full_", "r_"}) {
+      cv::Mat a = read(out / "test" / (std::string(f) + v + ".png"), cv::IMREAD_UNCHANGED);
+      cv::Mat b = read(again / "test" / (std::string(f) + v + ".png"), cv::IMREAD_UNCHANGED);
+      ASSERT_EQ(a.size(), b.size());
+      cv::Mat diff;
+      cv::absdiff(a, b, diff);
+      const cv::Scalar d = cv::mean(diff);
+      EXPECT_GT(d[0] + d[1] + d[2], 0.0) << f << v << ": another seed and sample count render other noise";
+      EXPECT_LT(d[0] + d[1] + d[2], 3 * 12.0) << f << v << ": the same scene";
+    }
+  }
 }
 
 TEST(SynthRender, MissingBlenderNamesTheInstallCommand) {
