@@ -13,7 +13,7 @@ BENCH_OUT is a `goris bench pipeline --suite ...` output folder; each scene's da
   ghost    per configuration, sum |render - r_| / sum |full_ - r_| (the suite's references), then the same
            against the clean references (sum |render - clean r_| / sum |clean full_ - clean r_|, the changed
            region taken from the clean pair);
-  floor    the same two for stage 1's own render against full_ (tools/ghost_floor.py).
+  floor    per configuration, the same two for its stage 1's own render against full_ (tools/ghost_floor.py).
 Blender renders 2 x views images per scene at --spp (about a minute per scene at 512 spp, 128 px, 2 cores).
 Needs numpy, OpenCV and Blender (Debian: python3-numpy python3-opencv blender).
 """
@@ -71,21 +71,19 @@ def table(a):
         sys.exit('%s: no runs/ folder (expected a `goris bench pipeline --suite` output)' % a.bench)
     configs = [c for c in a.configs.split(',') if c]
     scenes = a.scenes or sorted(os.listdir(runs))
-    head = '| scene | noise | floor: suite refs / clean |' + ''.join(' %s ghost: suite refs / clean |' % c for c in configs)
-    print(head)
-    print('|---|--:|--:|' + '--:|' * len(configs))
+    print('| scene | noise |' + ''.join(' %s ghost: suite refs / clean | %s floor: suite refs / clean |' % (c, c) for c in configs))
+    print('|---|--:|' + '--:|--:|' * len(configs))
     for s in scenes:
         base = os.path.join(runs, s, a.schedule)
         present = [c for c in configs if os.path.isdir(os.path.join(base, c, 'run', 'removal'))]
         if not present:
             continue
-        stage1_run = os.path.join(base, present[0], 'run')
-        config = json.load(open(os.path.join(stage1_run, 'config.json')))
+        config = json.load(open(os.path.join(base, present[0], 'run', 'config.json')))
         data, bg = config['data'], config.get('background', [0.0, 0.0, 0.0])
         clean = os.path.join(a.work, s + '_clean')
         clean_references(data, clean, a.spp, a.views, a.blender)
-        render(a.goris, stage1_run, os.path.join(a.work, s + '_stage1'))
         for c in present:
+            render(a.goris, os.path.join(base, c, 'run'), os.path.join(a.work, s + '_' + c + '_stage1'))
             render(a.goris, os.path.join(base, c, 'run', 'removal'), os.path.join(a.work, s + '_' + c))
         sums = {}  # name -> [numerator, denominator]
 
@@ -102,16 +100,17 @@ def table(a):
             reg, creg = region_of(full, after), region_of(cfull, cafter)
             imprint, cimprint = np.abs(full - after)[reg].sum(), np.abs(cfull - cafter)[creg].sum()
             add('noise', np.abs(cafter - after)[reg].sum(), imprint)
-            s1 = load(os.path.join(a.work, s + '_stage1', 'r_%s.png' % v))
-            add('floor', np.abs(s1 - full)[reg].sum(), imprint)
-            add('floor clean', np.abs(s1 - cfull)[creg].sum(), cimprint)
             for c in present:
+                s1 = load(os.path.join(a.work, s + '_' + c + '_stage1', 'r_%s.png' % v))
+                add(c + ' floor', np.abs(s1 - full)[reg].sum(), imprint)
+                add(c + ' floor clean', np.abs(s1 - cfull)[creg].sum(), cimprint)
                 rm = load(os.path.join(a.work, s + '_' + c, 'r_%s.png' % v))
                 add(c, np.abs(rm - after)[reg].sum(), imprint)
                 add(c + ' clean', np.abs(rm - cafter)[creg].sum(), cimprint)
         r = lambda name: sums[name][0] / sums[name][1] if name in sums and sums[name][1] > 0 else float('nan')
-        cells = ''.join(' %.2f / %.2f |' % (r(c), r(c + ' clean')) if c in present else ' - |' for c in configs)
-        print('| %s | %.2f | %.2f / %.2f |%s' % (s, r('noise'), r('floor'), r('floor clean'), cells), flush=True)
+        pair = lambda name: '%.2f / %.2f' % (r(name), r(name + ' clean'))
+        cells = ''.join(' %s | %s |' % (pair(c), pair(c + ' floor')) if c in present else ' - | - |' for c in configs)
+        print('| %s | %.2f |%s' % (s, r('noise'), cells), flush=True)
 
 
 if __name__ == '__main__':
