@@ -14,10 +14,12 @@ BENCH_OUT is a `goris bench pipeline --suite ...` output folder; each scene's da
            against the clean references (sum |render - clean r_| / sum |clean full_ - clean r_|, the changed
            region taken from the clean pair);
   floor    per configuration, the same two for its stage 1's own render against full_ (tools/ghost_floor.py).
+With --work the renders stay there and are reused by a later call (the runs' renders whenever present, the
+clean references when rendered from the same description).
 Blender renders 2 x views images per scene at --spp (about a minute per scene at 512 spp, 128 px, 2 cores).
 Needs numpy, OpenCV and Blender (Debian: python3-numpy python3-opencv blender).
 """
-import argparse, json, os, subprocess, sys
+import argparse, json, os, shutil, subprocess, sys
 import cv2
 import numpy as np
 
@@ -28,20 +30,30 @@ SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'resourc
 
 
 def clean_references(data, out, spp, views, blender):
-    """Renders the first `views` test views of the data set's scene.json at `spp` with another seed into out/test."""
-    if os.path.isdir(os.path.join(out, 'test')):
-        return
+    """Renders the first `views` test views of the data set's scene.json at `spp` with another seed into
+    out/test; returns how many. A folder rendered from the same description is reused, any other replaced."""
     desc = json.load(open(os.path.join(data, 'scene.json')))
     desc['render']['spp'] = spp
     desc['render']['seed'] = desc['render']['seed'] + 1
     desc['cameras']['test'] = desc['cameras']['test'][:views]
     desc['ground_truth_maps'] = False
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, 'scene.json'), 'w') as f:
+    n = len(desc['cameras']['test'])
+    record = os.path.join(out, 'scene.json')
+    done = [os.path.join(out, 'test', '%s_%03d.png' % (k, i)) for i in range(n) for k in ('full', 'r')]
+    if os.path.isfile(record) and json.load(open(record)) == desc and all(map(os.path.isfile, done)):
+        return n
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    with open(record + '.part', 'w') as f:  # the record last: an interrupted render is not reused
         json.dump(desc, f)
-    log = open(os.path.join(out, 'blender.log'), 'w')
-    subprocess.run([blender, '-b', '--factory-startup', '--python', SCRIPT, '--', os.path.join(out, 'scene.json'), out,
-                    'test-only'], check=True, stdout=log, stderr=subprocess.STDOUT)
+    with open(os.path.join(out, 'blender.log'), 'w') as log:
+        r = subprocess.run([blender, '-b', '--factory-startup', '--python', SCRIPT, '--', record + '.part', out,
+                            'test-only'], stdout=log, stderr=subprocess.STDOUT)
+    if r.returncode != 0 or not all(map(os.path.isfile, done)):
+        sys.exit('%s: Blender failed to render the test views again (exit %d); its log: %s'
+                 % (data, r.returncode, os.path.join(out, 'blender.log')))
+    os.replace(record + '.part', record)
+    return n
 
 
 def region_of(full, after):
@@ -81,7 +93,7 @@ def table(a):
         config = json.load(open(os.path.join(base, present[0], 'run', 'config.json')))
         data, bg = config['data'], config.get('background', [0.0, 0.0, 0.0])
         clean = os.path.join(a.work, s + '_clean')
-        clean_references(data, clean, a.spp, a.views, a.blender)
+        views = clean_references(data, clean, a.spp, a.views, a.blender)
         for c in present:
             render(a.goris, os.path.join(base, c, 'run'), os.path.join(a.work, s + '_' + c + '_stage1'))
             render(a.goris, os.path.join(base, c, 'run', 'removal'), os.path.join(a.work, s + '_' + c))
@@ -92,7 +104,7 @@ def table(a):
             acc[0] += num
             acc[1] += den
 
-        for k in range(a.views):
+        for k in range(views):
             v = '%03d' % k
             ref = lambda folder, name: load(os.path.join(folder, 'test', '%s_%s.png' % (name, v)), bg)
             full, after = ref(data, 'full'), ref(data, 'r')
