@@ -20,11 +20,10 @@ Blender renders 2 x views images per scene at --spp (about a minute per scene at
 Needs numpy, OpenCV and Blender (Debian: python3-numpy python3-opencv blender).
 """
 import argparse, json, os, shutil, subprocess, sys
-import cv2
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ghost_floor import in_work_folder, load, render  # noqa: E402  (one loader and renderer for both tools)
+from ghost_floor import changed_region, in_work_folder, load, render  # noqa: E402  (one loader and renderer for both tools)
 
 SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'resources', 'synth', 'render_scene.py')
 
@@ -54,10 +53,6 @@ def clean_references(data, out, spp, views, blender):
                  % (data, r.returncode, os.path.join(out, 'blender.log')))
     os.replace(record + '.part', record)
     return n
-
-
-def region_of(full, after):
-    return cv2.dilate((np.abs(full - after).max(axis=2) > 0.04).astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
 
 
 def main():
@@ -109,7 +104,7 @@ def table(a):
             ref = lambda folder, name: load(os.path.join(folder, 'test', '%s_%s.png' % (name, v)), bg)
             full, after = ref(data, 'full'), ref(data, 'r')
             cfull, cafter = ref(clean, 'full'), ref(clean, 'r')
-            reg, creg = region_of(full, after), region_of(cfull, cafter)
+            reg, creg = changed_region(full, after), changed_region(cfull, cafter)
             imprint, cimprint = np.abs(full - after)[reg].sum(), np.abs(cfull - cafter)[creg].sum()
             add('noise', np.abs(cafter - after)[reg].sum(), imprint)
             for c in present:

@@ -19,6 +19,7 @@
 #include "core/compute/device.h"
 #include "core/util/error.h"
 #include "core/util/number_text.h"
+#include "removal/pipeline/removal_ablations.h"
 #include "removal/pipeline/removal_pipeline.h"
 
 namespace {
@@ -107,13 +108,7 @@ void setup_remove(CLI::App& root) {
                             "2D inpainter: harmonic (the default), telea, ns, fsr (OpenCV contrib), or "
                             "\"cmd:COMMAND {image} {mask} {out}\" to run your own per map");
   c->add_option("--inpainted", o->inpainted, "Folder of ready-made inpainted maps (VIEW_MAP.png)")->excludes(inp);
-  c->add_option("--ablate", o->ablate, "Switch off a part: material (RGB-only inpainting), lamask (no lighting-aware mask: neither "
-                 "reflections nor shadow), twins (keep the target's mirror twin below a planar glossy surface), shadows "
-                 "(keep the target's cast shadow), glossfill (fine-tune with the photos' glossy masks under the target instead of "
-                 "masks filled from around it), reflection (no mask of the target mirrored through the glossy plane, and the glossy surface's part of the hole "
-                 "filled like the rest instead of from the surface alone), underside (keep the Gaussians that stand on the glossy surface "
-                 "under the target), texture (the target's planar reflection filled everywhere, also where the dereflected photo differs "
-                 "from the fill only by the surface's texture)");
+  c->add_option("--ablate", o->ablate, "Switch off a part: " + goris::ablation_help());
   c->add_option("--lighting-fresnel", o->lighting_fresnel,
                  "F in the lighting-aware mask: relative (to the glossy surfaces' F0, default) or absolute (the paper)")
       ->check(CLI::IsMember({"relative", "absolute"}));

@@ -58,13 +58,7 @@ struct RemovalOptions {
   // fsr, cmd:..., dir:.... Harmonic by default: on the generalization suite it scored higher than Telea on the
   // mean and on the worst glossy scene (docs/design/deviations.md, "Appearance loss and 2D inpainting").
   std::string inpainter = "harmonic";
-  std::set<std::string> ablate;     // "material" (RGB-only inpainting), "lamask" (no lighting-aware mask),
-                                    // "twins" (keep the target's mirror twin, core/scene/mirror_twins.h),
-                                    // "shadows" (keep the target's cast shadow, removal/shadow/target_shadow.h),
-                                    // "glossfill" (the photos' glossy masks under the target, removed_glossy_masks.h),
-                                    // "underside" (keep what stands under the target, target_underside.h),
-                                    // "texture" (the planar reflection's fill everywhere in it,
-                                    // photo_under_reflection.h)
+  std::set<std::string> ablate;     // parts switched off: removal_ablations.h
   int finetune_iterations = 0;      // 0 = 4000 at a 30K stage 1, scaled like stage 1's schedule (at least 100)
   // Every other training view's hole (its unseen pixels and the target's planar reflection) is inpainted in
   // 2D as well, and the fine-tune trains it towards that fill with this weight where no lifted reference
